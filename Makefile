@@ -1,0 +1,121 @@
+# fcs3d: Frictional Contact Systems in 3D.
+#   make run       install missing Debian packages (as root), build, run the default deck
+#   make test      the same set-up, then the whole test suite
+#   make validate  long validations (not part of make test)
+#   make bench     benchmarks that print figures (not part of make test)
+#   make figures   figures of the default run into doc/figures/
+#   make DEBUG=1 ... bounds checks and floating-point traps
+#   make MPI=1 ...   also build the Open MPI variant bin/fcs3d-mpi (MUMPS distributed)
+
+VERSION := 0.1.0
+
+ifeq ($(origin FC),default)
+FC := gfortran
+endif
+PYTHON := /usr/bin/python3
+MULTIARCH := $(shell gcc -print-multiarch 2>/dev/null || echo x86_64-linux-gnu)
+
+PACKAGES := gfortran liblapack-dev libopenblas-dev libsuitesparse-dev libhdf5-dev hdf5-tools \
+            gmsh python3-numpy python3-matplotlib python3-h5py calculix-ccx libmumps-seq-dev
+MPI_PACKAGES := openmpi-bin libopenmpi-dev libmumps-dev libmetis-dev
+
+VARIANT := serial
+BUILD := build/$(VARIANT)
+BIN := bin/fcs3d
+ifeq ($(DEBUG),1)
+FFLAGS_OPT := -O0 -g -fcheck=all -ffpe-trap=invalid,zero,overflow -fbacktrace -finit-real=snan
+BUILD := build/debug-$(VARIANT)
+else
+FFLAGS_OPT := -O2 -g -funroll-loops
+endif
+HDF5_INC := /usr/include/hdf5/serial
+HDF5_LIB := /usr/lib/$(MULTIARCH)/hdf5/serial
+# -Wno-uninitialized: gfortran 12 reports false positives on every allocatable assignment
+# from a function result (array descriptors); DEBUG=1 builds trap uninitialised reals instead.
+# -Wno-unused-dummy-argument: implementations of abstract interfaces need not use every dummy.
+FFLAGS := -std=f2008 -Wall -Wextra -Wno-compare-reals -Wno-maybe-uninitialized -Wno-uninitialized \
+          -Wno-unused-dummy-argument -fimplicit-none \
+          $(FFLAGS_OPT) -J $(BUILD) -I $(BUILD) -I $(HDF5_INC) -I /usr/include/mumps_seq
+LDLIBS := -L$(HDF5_LIB) -lhdf5_fortran -lhdf5 -lumfpack -lamd -lsuitesparseconfig \
+          -ldmumps_seq -lmumps_common_seq -lmpiseq_seq -lpord_seq \
+          -llapack -lblas -lpthread
+
+LIB_SRC := $(shell find src -name '*.f90' ! -name main.f90 ! -path 'src/parallel/*/*' | sort) \
+           $(sort $(wildcard src/parallel/$(VARIANT)/*.f90)) $(BUILD)/fcs_version.f90
+LIB_OBJ := $(patsubst %.f90,$(BUILD)/%.o,$(notdir $(LIB_SRC)))
+TEST_SRC := $(sort $(wildcard tests/unit/*.f90))
+TEST_BIN := $(patsubst tests/unit/%.f90,$(BUILD)/tests/%,$(filter tests/unit/test_%,$(TEST_SRC)))
+TEST_SUPPORT := $(patsubst tests/unit/%.f90,$(BUILD)/%.o,$(filter-out tests/unit/test_%,$(TEST_SRC)))
+vpath %.f90 $(sort $(dir $(LIB_SRC) $(TEST_SRC))) src
+
+# The version module is regenerated on every make, but rewritten only when the revision changes.
+$(BUILD)/fcs_version.f90: FORCE | $(BUILD)
+	@sh tools/gen_version.sh $@
+.PHONY: FORCE
+FORCE:
+
+.PHONY: all build run test validate bench figures doc packages clean help unit-tests
+.DEFAULT_GOAL := all
+all: build
+build: $(BIN)
+
+help:
+	@sed -n '2,9p' Makefile | sed 's/^# \{0,1\}//'
+
+packages:
+	@sh tools/ensure_packages.sh $(PACKAGES)
+
+$(BUILD)/deps.mk: $(filter-out $(BUILD)/fcs_version.f90,$(LIB_SRC)) $(TEST_SRC) src/main.f90 \
+                  tools/gen_deps.sh | $(BUILD)/fcs_version.f90
+	@sh tools/gen_deps.sh $(BUILD) $(LIB_SRC) $(TEST_SRC) src/main.f90 > $@
+
+-include $(BUILD)/deps.mk
+
+$(BUILD) $(BUILD)/tests bin:
+	@mkdir -p $@
+
+$(BUILD)/%.o: %.f90 | $(BUILD)
+	$(FC) $(FFLAGS) -c $< -o $@
+
+# MUMPS's Fortran header dmumps_struc.h (and the dmumps_root.h it includes) lives in /usr/include,
+# which gfortran does not search for INCLUDE lines; only the MUMPS wrapper includes it.
+$(BUILD)/fcs_mumps.o: private FFLAGS += -I /usr/include
+
+$(BUILD)/libfcs3d.a: $(LIB_OBJ)
+	@rm -f $@
+	ar rcs $@ $^
+
+$(BIN): $(BUILD)/main.o $(BUILD)/libfcs3d.a | bin
+	$(FC) $(FFLAGS) -o $@ $^ $(LDLIBS)
+
+$(BUILD)/tests/%: $(BUILD)/%.o $(TEST_SUPPORT) $(BUILD)/libfcs3d.a | $(BUILD)/tests
+	$(FC) $(FFLAGS) -o $@ $^ $(LDLIBS)
+
+unit-tests: $(TEST_BIN)
+
+test: packages
+	@$(MAKE) --no-print-directory build unit-tests
+	@FCS3D=$(abspath $(BIN)) UNIT_DIR=$(abspath $(BUILD)/tests) PYTHON=$(PYTHON) \
+	  sh tests/run_tests.sh
+
+run: packages
+	@$(MAKE) --no-print-directory build
+	@sh tools/run_default.sh $(abspath $(BIN))
+
+validate: packages
+	@$(MAKE) --no-print-directory build
+	@FCS3D=$(abspath $(BIN)) PYTHON=$(PYTHON) sh tests/validate/run_validate.sh
+
+bench: packages
+	@$(MAKE) --no-print-directory build
+	@FCS3D=$(abspath $(BIN)) PYTHON=$(PYTHON) sh tests/bench/run_bench.sh
+
+figures:
+	@$(PYTHON) post/make_figures.py --results run/fault_bend/fault_bend.h5 --out doc/figures
+
+doc: build
+	@$(BIN) --list-keywords --markdown > doc/deck_reference.md
+	@echo "doc/deck_reference.md regenerated"
+
+clean:
+	rm -rf build bin

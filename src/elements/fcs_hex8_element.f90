@@ -1,0 +1,322 @@
+!> The 8-node hexahedron in the updated Lagrangian rate formulation (Xing, Mora & Makinouchi
+!> 2003, eq. 1): tangent stiffness with the initial-stress terms, internal force, objective
+!> stress update, and the strain and rotation increments the R-minimum strategy limits.
+!>
+!> Notation: x(3,8) nodal coordinates of the configuration the integrals are taken on,
+!> g_a = grad N_a (dN_a/dx_j at a Gauss point), sigma the Cauchy stress, Voigt order
+!> (11,22,33,12,13,23) with engineering shear strains. Without NLGEOM the reference
+!> configuration is used throughout and the geometric terms and rotations are dropped (small
+!> strain, linear geometry).
+module fcs_hex8_element
+  use fcs_kinds, only: dp
+  use fcs_hex8_shape, only: hex8_shape, hex8_shape_derivatives, hex8_gauss_points, det3, &
+                            inverse3, N_GAUSS_HEX8
+  implicit none
+  private
+  public :: hex8_geometry_t, hex8_geometry, hex8_tangent, hex8_internal_force
+  public :: hex8_strain_increments, hex8_rotate_stress, voigt_to_tensor, tensor_to_voigt
+  public :: mises_stress, hex8_extrapolate
+
+  !> Gradients of the shape functions and volume weights at the 8 Gauss points.
+  type :: hex8_geometry_t
+    !> grad(j, a, q) = dN_a/dx_j at Gauss point q.
+    real(dp) :: grad(3, 8, N_GAUSS_HEX8)
+    !> det J times the Gauss weight: the volume each point represents.
+    real(dp) :: dv(N_GAUSS_HEX8)
+    !> Element volume and mean gradient (for B-bar): mean_grad(j,a) = (1/V) sum_q grad dv.
+    real(dp) :: volume
+    real(dp) :: mean_grad(3, 8)
+  end type hex8_geometry_t
+
+contains
+
+  !> Shape-function gradients on configuration x. `ok` is false if det J <= 0 somewhere.
+  pure subroutine hex8_geometry(x, geo, ok)
+    real(dp), intent(in) :: x(3, 8)
+    type(hex8_geometry_t), intent(out) :: geo
+    logical, intent(out) :: ok
+    real(dp) :: points(3, N_GAUSS_HEX8), weights(N_GAUSS_HEX8), dn(3, 8), jac(3, 3), jinv(3, 3)
+    real(dp) :: det
+    integer :: q, i, j
+    call hex8_gauss_points(points, weights)
+    ok = .true.
+    geo%volume = 0.0_dp
+    geo%mean_grad = 0.0_dp
+    do q = 1, N_GAUSS_HEX8
+      dn = hex8_shape_derivatives(points(:, q))
+      do j = 1, 3
+        do i = 1, 3
+          jac(i, j) = sum(x(i, :) * dn(j, :))
+        end do
+      end do
+      det = det3(jac)
+      if (det <= 0.0_dp) then
+        ok = .false.
+        return
+      end if
+      jinv = inverse3(jac, det)
+      ! dN/dx_j = sum_i dN/dxi_i dxi_i/dx_j
+      do j = 1, 3
+        geo%grad(j, :, q) = jinv(1, j) * dn(1, :) + jinv(2, j) * dn(2, :) + jinv(3, j) * dn(3, :)
+      end do
+      geo%dv(q) = det * weights(q)
+      geo%volume = geo%volume + geo%dv(q)
+      geo%mean_grad = geo%mean_grad + geo%grad(:, :, q) * geo%dv(q)
+    end do
+    geo%mean_grad = geo%mean_grad / geo%volume
+  end subroutine hex8_geometry
+
+  !> Strain-displacement matrix B (6x24) at Gauss point q; with `bbar` the volumetric part is
+  !> replaced by its element mean (Hughes 1980, "Generalization of selective integration
+  !> procedures to anisotropic and nonlinear media", IJNME 15, 1413-1418).
+  pure function b_matrix(geo, q, bbar) result(b)
+    type(hex8_geometry_t), intent(in) :: geo
+    integer, intent(in) :: q
+    logical, intent(in) :: bbar
+    real(dp) :: b(6, 24)
+    real(dp) :: g(3), correction(3)
+    integer :: a, c, i
+    b = 0.0_dp
+    do a = 1, 8
+      c = 3 * (a - 1)
+      g = geo%grad(:, a, q)
+      b(1, c + 1) = g(1)
+      b(2, c + 2) = g(2)
+      b(3, c + 3) = g(3)
+      b(4, c + 1) = g(2)
+      b(4, c + 2) = g(1)
+      b(5, c + 1) = g(3)
+      b(5, c + 3) = g(1)
+      b(6, c + 2) = g(3)
+      b(6, c + 3) = g(2)
+      if (bbar) then
+        correction = (geo%mean_grad(:, a) - g) / 3.0_dp
+        do i = 1, 3
+          b(i, c + 1:c + 3) = b(i, c + 1:c + 3) + correction
+        end do
+      end if
+    end do
+  end function b_matrix
+
+  !> Tangent stiffness (24x24) on the current configuration: material part B^T C B and, with
+  !> NLGEOM, the initial-stress part of eq. (1) plus the volume-change term sigma tr(D).
+  !> `c(:,:,q)` is the material tangent at Gauss point q, `stress(:,q)` the Cauchy stress.
+  pure subroutine hex8_tangent(geo, stress, c, bbar, nlgeom, k)
+    type(hex8_geometry_t), intent(in) :: geo
+    real(dp), intent(in) :: stress(6, N_GAUSS_HEX8), c(6, 6, N_GAUSS_HEX8)
+    logical, intent(in) :: bbar, nlgeom
+    real(dp), intent(out) :: k(24, 24)
+    real(dp) :: b(6, 24), cb(6, 24)
+    integer :: q
+    k = 0.0_dp
+    do q = 1, N_GAUSS_HEX8
+      b = b_matrix(geo, q, bbar)
+      cb = matmul(c(:, :, q), b)
+      k = k + matmul(transpose(b), cb) * geo%dv(q)
+      if (nlgeom) call add_initial_stress(geo%grad(:, :, q), voigt_to_tensor(stress(:, q)), &
+                                          geo%dv(q), k)
+    end do
+    if (nlgeom .and. bbar) call add_bbar_geometric(geo, stress, k)
+  end subroutine hex8_tangent
+
+  !> Geometric derivative of the B-bar correction of the internal force,
+  !> f_a += 1/3 sum_q tr(sigma_q) (gbar_a - g_aq) dv_q, at fixed stress (its dependence on
+  !> the stress is in Bbar^T C Bbar). With d(g_aj dv) = (g_aj g_bm - g_am g_bj) dv dx_bm and
+  !> d gbar_aj = [(1/V) sum_r (g_aj g_bm - g_am g_bj) dv_r - gbar_aj gbar_bm] dx_bm.
+  pure subroutine add_bbar_geometric(geo, stress, k)
+    type(hex8_geometry_t), intent(in) :: geo
+    real(dp), intent(in) :: stress(6, N_GAUSS_HEX8)
+    real(dp), intent(inout) :: k(24, 24)
+    real(dp) :: tr(N_GAUSS_HEX8), total, mean_pair(3, 3), block(3, 3)
+    integer :: a, b, q, j, m
+    tr = (stress(1, :) + stress(2, :) + stress(3, :)) * geo%dv
+    total = sum(tr)
+    do b = 1, 8
+      do a = 1, 8
+        mean_pair = 0.0_dp
+        block = 0.0_dp
+        do q = 1, N_GAUSS_HEX8
+          do m = 1, 3
+            do j = 1, 3
+              mean_pair(j, m) = mean_pair(j, m) + (geo%grad(j, a, q) * geo%grad(m, b, q) - &
+                                geo%grad(m, a, q) * geo%grad(j, b, q)) * geo%dv(q)
+              block(j, m) = block(j, m) + tr(q) * (geo%mean_grad(j, a) * geo%grad(m, b, q) + &
+                            geo%grad(m, a, q) * geo%grad(j, b, q) - geo%grad(j, a, q) * geo%grad(m, b, q))
+            end do
+          end do
+        end do
+        do m = 1, 3
+          do j = 1, 3
+            block(j, m) = block(j, m) + total * (mean_pair(j, m) / geo%volume - &
+                          geo%mean_grad(j, a) * geo%mean_grad(m, b))
+          end do
+        end do
+        k(3 * a - 2:3 * a, 3 * b - 2:3 * b) = k(3 * a - 2:3 * a, 3 * b - 2:3 * b) + block / 3.0_dp
+      end do
+    end do
+  end subroutine add_bbar_geometric
+
+  !> Initial-stress (geometric) stiffness from the rate form of the virtual work on the
+  !> current configuration. With L = grad v, D = sym L, the stress terms of the integrand
+  !> contracted with delta L are  L sigma - D sigma - sigma D + sigma tr(D)  (the terms of
+  !> eq. (1) of Xing, Mora & Makinouchi 2003, transposed to the convention delta L_ij =
+  !> d(delta v_i)/dx_j, plus sigma tr(D), which makes the tangent the exact linearisation of
+  !> equilibrium for a Cauchy-stress Jaumann law). For nodes a (test) and b (trial):
+  !>   K_ab(i,m) = 1/2 delta_im (g_a.s.g_b) - 1/2 g_b,i (s g_a)_m - 1/2 s_im (g_a.g_b)
+  !>             - 1/2 (s g_b)_i g_a,m + (s g_a)_i g_b,m
+  pure subroutine add_initial_stress(grad, s, dv, k)
+    real(dp), intent(in) :: grad(3, 8), s(3, 3), dv
+    real(dp), intent(inout) :: k(24, 24)
+    real(dp) :: sg(3, 8), gsg, gg, block(3, 3)
+    integer :: a, b, i, m
+    sg = matmul(s, grad)
+    do b = 1, 8
+      do a = 1, 8
+        gsg = dot_product(grad(:, a), sg(:, b))
+        gg = dot_product(grad(:, a), grad(:, b))
+        do m = 1, 3
+          do i = 1, 3
+            block(i, m) = -0.5_dp * grad(i, b) * sg(m, a) - 0.5_dp * s(i, m) * gg &
+                          - 0.5_dp * sg(i, b) * grad(m, a) + sg(i, a) * grad(m, b)
+          end do
+          block(m, m) = block(m, m) + 0.5_dp * gsg
+        end do
+        k(3 * a - 2:3 * a, 3 * b - 2:3 * b) = k(3 * a - 2:3 * a, 3 * b - 2:3 * b) + block * dv
+      end do
+    end do
+  end subroutine add_initial_stress
+
+  !> Internal force f_a = sum_q Bbar^T sigma dv (24 values, node-major).
+  pure subroutine hex8_internal_force(geo, stress, bbar, f)
+    type(hex8_geometry_t), intent(in) :: geo
+    real(dp), intent(in) :: stress(6, N_GAUSS_HEX8)
+    logical, intent(in) :: bbar
+    real(dp), intent(out) :: f(24)
+    integer :: q
+    f = 0.0_dp
+    do q = 1, N_GAUSS_HEX8
+      f = f + matmul(stress(:, q), b_matrix(geo, q, bbar)) * geo%dv(q)
+    end do
+  end subroutine hex8_internal_force
+
+  !> Strain increment (Voigt, engineering shear), rotation increment (skew tensor) and the
+  !> equivalent strain and rotation angle at each Gauss point, for displacement increment
+  !> du(3,8) with gradients taken on `geo` (the mid-increment configuration for the update,
+  !> Hughes & Winget 1980).
+  pure subroutine hex8_strain_increments(geo, du, bbar, strain, spin, equivalent, angle)
+    type(hex8_geometry_t), intent(in) :: geo
+    real(dp), intent(in) :: du(3, 8)
+    logical, intent(in) :: bbar
+    real(dp), intent(out) :: strain(6, N_GAUSS_HEX8), spin(3, 3, N_GAUSS_HEX8)
+    real(dp), intent(out) :: equivalent(N_GAUSS_HEX8), angle(N_GAUSS_HEX8)
+    real(dp) :: h(3, 3), e(3, 3), mean_volumetric
+    integer :: q, i
+    mean_volumetric = 0.0_dp
+    if (bbar) then
+      do i = 1, 3
+        mean_volumetric = mean_volumetric + sum(du(i, :) * geo%mean_grad(i, :))
+      end do
+    end if
+    do q = 1, N_GAUSS_HEX8
+      h = matmul(du, transpose(geo%grad(:, :, q)))
+      e = 0.5_dp * (h + transpose(h))
+      spin(:, :, q) = 0.5_dp * (h - transpose(h))
+      if (bbar) then
+        do i = 1, 3
+          e(i, i) = e(i, i) + (mean_volumetric - (h(1, 1) + h(2, 2) + h(3, 3))) / 3.0_dp
+        end do
+      end if
+      strain(:, q) = [e(1, 1), e(2, 2), e(3, 3), 2.0_dp * e(1, 2), 2.0_dp * e(1, 3), 2.0_dp * e(2, 3)]
+      equivalent(q) = sqrt(2.0_dp / 3.0_dp * sum(e * e))
+      angle(q) = sqrt(0.5_dp * sum(spin(:, :, q)**2))
+    end do
+  end subroutine hex8_strain_increments
+
+  !> Rotate a stress objectively over an increment with spin increment w (skew):
+  !> sigma <- Q sigma Q^T, Q = (I - w/2)^-1 (I + w/2) (Hughes & Winget 1980, IJNME 15, 1862),
+  !> an exact rotation, so that |sigma| is preserved under rigid rotation.
+  pure function hex8_rotate_stress(stress, w) result(rotated)
+    real(dp), intent(in) :: stress(6), w(3, 3)
+    real(dp) :: rotated(6)
+    real(dp) :: a(3, 3), b(3, 3), q(3, 3), s(3, 3), a_inverse(3, 3)
+    integer :: i
+    a = -0.5_dp * w
+    b = 0.5_dp * w
+    do i = 1, 3
+      a(i, i) = a(i, i) + 1.0_dp
+      b(i, i) = b(i, i) + 1.0_dp
+    end do
+    a_inverse = inverse3(a, det3(a))
+    q = matmul(a_inverse, b)
+    s = voigt_to_tensor(stress)
+    s = matmul(matmul(q, s), transpose(q))
+    rotated = tensor_to_voigt(s)
+  end function hex8_rotate_stress
+
+  !> Values at the 8 nodes from values at the 8 Gauss points (ncomp, 8): the trilinear field
+  !> through the Gauss-point values, evaluated at the nodes (natural coordinate +-sqrt(3) in
+  !> the coordinates of the Gauss points).
+  pure function hex8_extrapolate(ip_values) result(node_values)
+    real(dp), intent(in) :: ip_values(:, :)
+    real(dp) :: node_values(size(ip_values, 1), 8)
+    real(dp) :: points(3, N_GAUSS_HEX8), weights(N_GAUSS_HEX8), weights_at_node(8)
+    integer :: a
+    call hex8_gauss_points(points, weights)
+    do a = 1, 8
+      ! Gauss point q sits at natural sign pattern sign(points(:,q)); node a at HEX8 corner a.
+      weights_at_node = hex8_shape(sqrt(3.0_dp) * node_corner(a))
+      node_values(:, a) = matmul(ip_values, weights_at_node(gauss_to_corner()))
+    end do
+  end function hex8_extrapolate
+
+  !> Natural coordinates of hexahedron node a.
+  pure function node_corner(a) result(xi)
+    integer, intent(in) :: a
+    real(dp) :: xi(3)
+    real(dp), parameter :: corner(3, 8) = reshape([ &
+      -1.0_dp, -1.0_dp, -1.0_dp, 1.0_dp, -1.0_dp, -1.0_dp, 1.0_dp, 1.0_dp, -1.0_dp, &
+      -1.0_dp, 1.0_dp, -1.0_dp, -1.0_dp, -1.0_dp, 1.0_dp, 1.0_dp, -1.0_dp, 1.0_dp, &
+      1.0_dp, 1.0_dp, 1.0_dp, -1.0_dp, 1.0_dp, 1.0_dp], [3, 8])
+    xi = corner(:, a)
+  end function node_corner
+
+  !> For Gauss point q (xi fastest, then eta, zeta), the hexahedron corner with the same
+  !> sign pattern: the shape function of that corner interpolates the Gauss-point values.
+  pure function gauss_to_corner() result(corner)
+    integer :: corner(N_GAUSS_HEX8)
+    corner = [1, 2, 4, 3, 5, 6, 8, 7]
+  end function gauss_to_corner
+
+  !> Symmetric tensor from a Voigt stress (11,22,33,12,13,23).
+  pure function voigt_to_tensor(v) result(t)
+    real(dp), intent(in) :: v(6)
+    real(dp) :: t(3, 3)
+    t(1, 1) = v(1)
+    t(2, 2) = v(2)
+    t(3, 3) = v(3)
+    t(1, 2) = v(4)
+    t(2, 1) = v(4)
+    t(1, 3) = v(5)
+    t(3, 1) = v(5)
+    t(2, 3) = v(6)
+    t(3, 2) = v(6)
+  end function voigt_to_tensor
+
+  !> Voigt stress from a symmetric tensor.
+  pure function tensor_to_voigt(t) result(v)
+    real(dp), intent(in) :: t(3, 3)
+    real(dp) :: v(6)
+    v = [t(1, 1), t(2, 2), t(3, 3), 0.5_dp * (t(1, 2) + t(2, 1)), 0.5_dp * (t(1, 3) + t(3, 1)), &
+         0.5_dp * (t(2, 3) + t(3, 2))]
+  end function tensor_to_voigt
+
+  !> von Mises equivalent stress sqrt(3/2 s':s').
+  pure real(dp) function mises_stress(v)
+    real(dp), intent(in) :: v(6)
+    real(dp) :: p
+    p = (v(1) + v(2) + v(3)) / 3.0_dp
+    mises_stress = sqrt(1.5_dp * ((v(1) - p)**2 + (v(2) - p)**2 + (v(3) - p)**2 + &
+                                  2.0_dp * (v(4)**2 + v(5)**2 + v(6)**2)))
+  end function mises_stress
+
+end module fcs_hex8_element

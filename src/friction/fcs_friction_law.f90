@@ -1,0 +1,78 @@
+!> The abstract friction law mu(f_n, V, phi) of Xing, Mora & Makinouchi (2003, eqs. 3 and 6):
+!> the friction coefficient as a function of the normal contact pressure f_n, the slip rate V
+!> and a state variable phi, with the derivatives the consistent tangent of eq. (6) needs,
+!> and the evolution of the state over an increment.
+!>
+!> Units are the deck's: pressure [stress], slip rate [length/time], state as the law defines
+!> it (theta [time] for Dieterich-Ruina laws). Laws without state ignore phi (n_state() = 0).
+module fcs_friction_law
+  use fcs_kinds, only: dp
+  implicit none
+  private
+  public :: friction_law_t, friction_derivatives_t
+
+  !> mu and its partial derivatives at one point.
+  type :: friction_derivatives_t
+    real(dp) :: mu = 0.0_dp
+    real(dp) :: dmu_dpressure = 0.0_dp
+    real(dp) :: dmu_drate = 0.0_dp
+    real(dp) :: dmu_dstate = 0.0_dp
+  end type friction_derivatives_t
+
+  type, abstract :: friction_law_t
+  contains
+    procedure(evaluate_interface), deferred :: evaluate
+    procedure(name_interface), deferred :: name
+    procedure :: n_state => friction_law_n_state
+    procedure :: initial_state => friction_law_initial_state
+    procedure :: evolve_state => friction_law_evolve_state
+    procedure :: mu => friction_law_mu
+  end type friction_law_t
+
+  abstract interface
+    !> mu and its derivatives for pressure p >= 0, slip rate v >= 0 and state phi.
+    pure function evaluate_interface(this, pressure, rate, state) result(d)
+      import :: friction_law_t, friction_derivatives_t, dp
+      class(friction_law_t), intent(in) :: this
+      real(dp), intent(in) :: pressure, rate, state
+      type(friction_derivatives_t) :: d
+    end function evaluate_interface
+
+    pure function name_interface(this) result(name)
+      import :: friction_law_t
+      class(friction_law_t), intent(in) :: this
+      character(len=:), allocatable :: name
+    end function name_interface
+  end interface
+
+contains
+
+  !> The friction coefficient alone.
+  pure real(dp) function friction_law_mu(this, pressure, rate, state) result(mu)
+    class(friction_law_t), intent(in) :: this
+    real(dp), intent(in) :: pressure, rate, state
+    type(friction_derivatives_t) :: d
+    d = this%evaluate(pressure, rate, state)
+    mu = d%mu
+  end function friction_law_mu
+
+  !> Number of state variables (0 or 1); laws with state override.
+  pure integer function friction_law_n_state(this)
+    class(friction_law_t), intent(in) :: this
+    friction_law_n_state = 0
+  end function friction_law_n_state
+
+  !> Initial value of the state variable (0 for laws without state).
+  pure real(dp) function friction_law_initial_state(this)
+    class(friction_law_t), intent(in) :: this
+    friction_law_initial_state = 0.0_dp
+  end function friction_law_initial_state
+
+  !> State after slipping at constant rate `rate` for time `dt` (unchanged without state).
+  pure real(dp) function friction_law_evolve_state(this, state, rate, dt) result(new_state)
+    class(friction_law_t), intent(in) :: this
+    real(dp), intent(in) :: state, rate, dt
+    new_state = state
+  end function friction_law_evolve_state
+
+end module fcs_friction_law

@@ -1,0 +1,296 @@
+!> Model builder, mesh keywords: *NODE, *ELEMENT, *NSET, *ELSET, *SURFACE, *MESH.
+module fcs_build_mesh
+  use fcs_kinds, only: dp
+  use fcs_error, only: error_t
+  use fcs_deck_lexer, only: card_t
+  use fcs_deck_fields, only: param_upper, param_value, has_flag, line_real, line_int, &
+                             line_optional_real, resolve_nodes, resolve_elements, is_integer_text
+  use fcs_diagnostics, only: diagnostics_t, format_location
+  use fcs_mesh, only: mesh_t, SURFACE_FACES
+  use fcs_gmsh_reader, only: read_gmsh
+  use fcs_model, only: model_t
+  use fcs_strings, only: to_upper, str, dirname, join_path
+  implicit none
+  private
+  public :: handle_node, handle_element, handle_nset, handle_elset, handle_surface, handle_mesh
+
+  !> Largest count of ids one GENERATE line may produce (guards against typos like 1, 1e9).
+  integer, parameter :: MAX_GENERATED = 50000000
+
+contains
+
+  !> *NODE: id, x, y, z.
+  subroutine handle_node(card, model, diag)
+    type(card_t), intent(in) :: card
+    type(model_t), intent(inout) :: model
+    type(diagnostics_t), intent(inout) :: diag
+    integer :: i, id, n_added, c
+    integer, allocatable :: added(:)
+    real(dp) :: x(3)
+    logical :: ok, duplicate
+    allocate (added(card%n_lines))
+    n_added = 0
+    do i = 1, card%n_lines
+      associate (line => card%lines(i))
+        if (size(line%fields) > 4) then
+          call diag%report(line%loc, '*NODE: expected id, x, y, z; found ' // &
+                           str(size(line%fields)) // ' fields')
+          cycle
+        end if
+        if (.not. line_int(line, 1, id, 'node id', 'NODE', diag)) cycle
+        if (id <= 0) then
+          call diag%report(line%loc, '*NODE: node ids must be positive, not ' // str(id))
+          cycle
+        end if
+        ok = .true.
+        do c = 1, 3
+          if (.not. line_optional_real(line, c + 1, x(c), 0.0_dp, 'coordinate ' // &
+                                       achar(iachar('x') + c - 1), 'NODE', diag)) ok = .false.
+        end do
+        if (.not. ok) cycle
+        call model%mesh%add_node(id, x, duplicate)
+        if (duplicate) then
+          call diag%report(line%loc, '*NODE: node ' // str(id) // ' is defined twice')
+          cycle
+        end if
+        n_added = n_added + 1
+        added(n_added) = model%mesh%n_nodes
+      end associate
+      if (diag%is_full()) return
+    end do
+    if (card%find_param('NSET') > 0) call model%mesh%add_to_node_set(param_upper(card, 'NSET'), &
+                                                                      added(1:n_added))
+  end subroutine handle_node
+
+  !> *ELEMENT, TYPE=C3D8: id, 8 node ids.
+  subroutine handle_element(card, model, diag)
+    type(card_t), intent(in) :: card
+    type(model_t), intent(inout) :: model
+    type(diagnostics_t), intent(inout) :: diag
+    integer :: i, a, b, id, node_id, n_added
+    integer :: nodes(8)
+    integer, allocatable :: added(:)
+    logical :: ok, duplicate
+    allocate (added(card%n_lines))
+    n_added = 0
+    do i = 1, card%n_lines
+      associate (line => card%lines(i))
+        if (size(line%fields) /= 9) then
+          call diag%report(line%loc, '*ELEMENT: a C3D8 element needs its id and 8 node ids; ' // &
+                           'found ' // str(size(line%fields)) // ' fields')
+          cycle
+        end if
+        if (.not. line_int(line, 1, id, 'element id', 'ELEMENT', diag)) cycle
+        if (id <= 0) then
+          call diag%report(line%loc, '*ELEMENT: element ids must be positive, not ' // str(id))
+          cycle
+        end if
+        ok = .true.
+        do a = 1, 8
+          if (.not. line_int(line, a + 1, node_id, 'node id', 'ELEMENT', diag)) then
+            ok = .false.
+            exit
+          end if
+          nodes(a) = model%mesh%node_index(node_id)
+          if (nodes(a) == 0) then
+            call diag%report(line%loc, '*ELEMENT: element ' // str(id) // ' refers to node ' // &
+                             str(node_id) // ', which is not defined (define nodes before ' // &
+                             'the elements that use them)')
+            ok = .false.
+            exit
+          end if
+        end do
+        if (.not. ok) cycle
+        do a = 1, 7
+          do b = a + 1, 8
+            if (nodes(a) == nodes(b)) ok = .false.
+          end do
+        end do
+        if (.not. ok) then
+          call diag%report(line%loc, '*ELEMENT: element ' // str(id) // ' uses a node twice ' // &
+                           '(degenerate hexahedra are not supported)')
+          cycle
+        end if
+        call model%mesh%add_element(id, nodes, duplicate)
+        if (duplicate) then
+          call diag%report(line%loc, '*ELEMENT: element ' // str(id) // ' is defined twice')
+          cycle
+        end if
+        n_added = n_added + 1
+        added(n_added) = model%mesh%n_elements
+      end associate
+      if (diag%is_full()) return
+    end do
+    if (card%find_param('ELSET') > 0) &
+      call model%mesh%add_to_element_set(param_upper(card, 'ELSET'), added(1:n_added))
+  end subroutine handle_element
+
+  !> *NSET: node ids, node set names, or GENERATE ranges.
+  subroutine handle_nset(card, model, diag)
+    type(card_t), intent(in) :: card
+    type(model_t), intent(inout) :: model
+    type(diagnostics_t), intent(inout) :: diag
+    integer, allocatable :: members(:)
+    call collect_members(card, model%mesh, .true., diag, members)
+    call model%mesh%add_to_node_set(param_upper(card, 'NSET'), members)
+  end subroutine handle_nset
+
+  !> *ELSET: element ids, element set names, or GENERATE ranges.
+  subroutine handle_elset(card, model, diag)
+    type(card_t), intent(in) :: card
+    type(model_t), intent(inout) :: model
+    type(diagnostics_t), intent(inout) :: diag
+    integer, allocatable :: members(:)
+    call collect_members(card, model%mesh, .false., diag, members)
+    call model%mesh%add_to_element_set(param_upper(card, 'ELSET'), members)
+  end subroutine handle_elset
+
+  !> Members of a *NSET or *ELSET card, as indices.
+  subroutine collect_members(card, mesh, nodes, diag, members)
+    type(card_t), intent(in) :: card
+    type(mesh_t), intent(in) :: mesh
+    logical, intent(in) :: nodes
+    type(diagnostics_t), intent(inout) :: diag
+    integer, allocatable, intent(out) :: members(:)
+    integer, allocatable :: found(:)
+    character(len=:), allocatable :: keyword
+    integer :: i, f
+    keyword = merge('NSET ', 'ELSET', nodes)
+    keyword = trim(keyword)
+    allocate (members(0))
+    do i = 1, card%n_lines
+      if (has_flag(card, 'GENERATE')) then
+        call generate_range(card%lines(i), mesh, nodes, keyword, diag, found)
+        members = [members, found]
+        cycle
+      end if
+      do f = 1, size(card%lines(i)%fields)
+        if (len(card%lines(i)%fields(f)%s) == 0) cycle
+        if (nodes) then
+          call resolve_nodes(mesh, card%lines(i)%fields(f)%s, card%lines(i), keyword, diag, found)
+        else
+          call resolve_elements(mesh, card%lines(i)%fields(f)%s, card%lines(i), keyword, diag, found)
+        end if
+        members = [members, found]
+      end do
+      if (diag%is_full()) return
+    end do
+  end subroutine collect_members
+
+  !> One GENERATE line: first, last[, increment]; every generated id must exist.
+  subroutine generate_range(line, mesh, nodes, keyword, diag, found)
+    use fcs_deck_lexer, only: data_line_t
+    type(data_line_t), intent(in) :: line
+    type(mesh_t), intent(in) :: mesh
+    logical, intent(in) :: nodes
+    character(len=*), intent(in) :: keyword
+    type(diagnostics_t), intent(inout) :: diag
+    integer, allocatable, intent(out) :: found(:)
+    integer :: first, last, step, id, n, k
+    allocate (found(0))
+    if (size(line%fields) < 2 .or. size(line%fields) > 3) then
+      call diag%report(line%loc, '*' // keyword // ', GENERATE: expected first, last[, increment]')
+      return
+    end if
+    if (.not. line_int(line, 1, first, 'first id', keyword, diag)) return
+    if (.not. line_int(line, 2, last, 'last id', keyword, diag)) return
+    step = 1
+    if (size(line%fields) == 3) then
+      if (.not. line_int(line, 3, step, 'increment', keyword, diag)) return
+    end if
+    if (step <= 0 .or. last < first) then
+      call diag%report(line%loc, '*' // keyword // ', GENERATE: need first <= last and a ' // &
+                       'positive increment')
+      return
+    end if
+    if ((int(last, 8) - first) / step + 1 > MAX_GENERATED) then
+      call diag%report(line%loc, '*' // keyword // ', GENERATE: range too long (more than ' // &
+                       str(MAX_GENERATED) // ' ids)')
+      return
+    end if
+    deallocate (found)
+    allocate (found((last - first) / step + 1))
+    n = 0
+    do id = first, last, step
+      if (nodes) then
+        k = mesh%node_index(id)
+      else
+        k = mesh%element_index(id)
+      end if
+      if (k == 0) then
+        call diag%report(line%loc, '*' // keyword // ', GENERATE: ' // &
+                         trim(merge('node   ', 'element', nodes)) // ' ' // str(id) // &
+                         ' in the range is not defined')
+        found = found(1:n)
+        return
+      end if
+      n = n + 1
+      found(n) = k
+    end do
+  end subroutine generate_range
+
+  !> *SURFACE: element faces (element or set, S1..S6) or nodes (TYPE=NODE).
+  subroutine handle_surface(card, model, diag)
+    type(card_t), intent(in) :: card
+    type(model_t), intent(inout) :: model
+    type(diagnostics_t), intent(inout) :: diag
+    character(len=:), allocatable :: name, label
+    integer, allocatable :: found(:)
+    integer :: i, face
+    logical :: clash
+    real(dp) :: weight
+    name = param_upper(card, 'NAME')
+    clash = .false.
+    do i = 1, card%n_lines
+      associate (line => card%lines(i))
+        if (param_upper(card, 'TYPE') == 'NODE') then
+          if (size(line%fields) > 2) then
+            call diag%report(line%loc, '*SURFACE, TYPE=NODE: expected node or node set[, weight]')
+            cycle
+          end if
+          if (.not. line_optional_real(line, 2, weight, 1.0_dp, 'weight', 'SURFACE', diag)) cycle
+          if (weight /= 1.0_dp) then
+            call diag%report(line%loc, '*SURFACE, TYPE=NODE: node weights are not supported ' // &
+                             '(leave the second field empty or 1)')
+            cycle
+          end if
+          call resolve_nodes(model%mesh, line%fields(1)%s, line, 'SURFACE', diag, found)
+          call model%mesh%add_nodes_to_surface(name, found, clash)
+        else
+          if (size(line%fields) /= 2) then
+            call diag%report(line%loc, '*SURFACE: expected element or element set, face ' // &
+                             'label S1..S6')
+            cycle
+          end if
+          label = to_upper(line%fields(2)%s)
+          face = 0
+          if (len(label) == 2) then
+            if (label(1:1) == 'S') face = index('123456', label(2:2))
+          end if
+          if (face == 0) then
+            call diag%report(line%loc, '*SURFACE: face label "' // line%fields(2)%s // &
+                             '" is not one of S1, S2, S3, S4, S5, S6 (hexahedron faces)')
+            cycle
+          end if
+          call resolve_elements(model%mesh, line%fields(1)%s, line, 'SURFACE', diag, found)
+          call model%mesh%add_faces_to_surface(name, found, spread(face, 1, size(found)), clash)
+        end if
+        if (clash) call diag%report(line%loc, '*SURFACE: surface ' // name // ' mixes element ' // &
+                                    'faces and nodes (TYPE=ELEMENT and TYPE=NODE)')
+      end associate
+    end do
+  end subroutine handle_surface
+
+  !> *MESH, FILE=x.msh: read a gmsh mesh into the model.
+  subroutine handle_mesh(card, model, diag)
+    type(card_t), intent(in) :: card
+    type(model_t), intent(inout) :: model
+    type(diagnostics_t), intent(inout) :: diag
+    type(error_t), allocatable :: err
+    character(len=:), allocatable :: path
+    path = join_path(dirname(card%loc%file), param_value(card, 'FILE'))
+    call read_gmsh(path, model%mesh, err)
+    if (allocated(err)) call diag%report(card%loc, '*MESH: ' // err%message)
+  end subroutine handle_mesh
+
+end module fcs_build_mesh

@@ -1,0 +1,426 @@
+!> Model builder, step keywords: *STEP, *STATIC, *END STEP, *BOUNDARY, *CLOAD, *DSLOAD,
+!> *AMPLITUDE, *TIME POINTS.
+!>
+!> Conditions follow the Abaqus/CalculiX rules: *BOUNDARY in the model definition holds in
+!> every step; in a step, OP=MOD (default) adds to or changes the conditions of the previous
+!> step and OP=NEW first removes all of them. The same holds for *CLOAD and *DSLOAD.
+module fcs_build_step
+  use fcs_kinds, only: dp
+  use fcs_deck_lexer, only: card_t, data_line_t
+  use fcs_deck_fields, only: param_upper, param_value, has_flag, line_real, line_int, &
+                             line_optional_real, resolve_nodes, resolve_elements, is_integer_text
+  use fcs_diagnostics, only: diagnostics_t
+  use fcs_builder_state, only: builder_t
+  use fcs_mesh, only: SURFACE_FACES
+  use fcs_model, only: model_t, step_t, dof_condition_t, face_load_t, amplitude_t, &
+                       time_points_t, BC_DISPLACEMENT, BC_VELOCITY
+  use fcs_strings, only: to_upper, str, parse_int
+  implicit none
+  private
+  public :: handle_step, handle_static, handle_end_step, handle_boundary, handle_cload
+  public :: handle_dsload, handle_amplitude, handle_time_points, find_amplitude, find_time_points
+
+contains
+
+  !> *STEP: open a step.
+  subroutine handle_step(card, state, diag)
+    type(card_t), intent(inout) :: card
+    type(builder_t), intent(inout) :: state
+    type(diagnostics_t), intent(inout) :: diag
+    type(step_t) :: step
+    integer :: increments
+    logical :: ok
+    state%step = step
+    state%in_step = .true.
+    state%step%loc = card%loc
+    state%step%name = param_value(card, 'NAME')
+    if (len(state%step%name) == 0) state%step%name = 'Step-' // str(size(state%steps) + 1)
+    state%step%nlgeom = param_upper(card, 'NLGEOM') == 'YES'
+    call parse_int(param_value(card, 'INC'), increments, ok)
+    if (increments <= 0) then
+      call diag%report(card%loc, '*STEP: INC must be a positive number of increments')
+    end if
+    state%step%max_increments = increments
+    state%step%period = -1.0_dp
+    state%boundary_renewed = .false.
+    state%loads_renewed = .false.
+    state%pressures_renewed = .false.
+  end subroutine handle_step
+
+  !> *STATIC: initial increment, period, minimum and maximum increments.
+  subroutine handle_static(card, state, diag)
+    type(card_t), intent(inout) :: card
+    type(builder_t), intent(inout) :: state
+    type(diagnostics_t), intent(inout) :: diag
+    real(dp) :: v(4)
+    logical :: ok
+    integer :: i
+    v = [1.0_dp, 1.0_dp, -1.0_dp, -1.0_dp]
+    if (card%n_lines > 1) then
+      call diag%report(card%lines(2)%loc, '*STATIC: expected one data line')
+      return
+    end if
+    if (card%n_lines == 1) then
+      if (size(card%lines(1)%fields) > 4) then
+        call diag%report(card%lines(1)%loc, '*STATIC: expected initial increment, period, ' // &
+                         'minimum increment, maximum increment')
+        return
+      end if
+      ok = .true.
+      do i = 1, 4
+        if (.not. line_optional_real(card%lines(1), i, v(i), v(i), static_field(i), 'STATIC', diag)) &
+          ok = .false.
+      end do
+      if (.not. ok) return
+    end if
+    if (v(3) < 0.0_dp) v(3) = 1.0e-5_dp * v(2)
+    if (v(4) < 0.0_dp) v(4) = v(2)
+    if (any(v <= 0.0_dp)) then
+      call diag%report(static_loc(card), '*STATIC: the time increments and the period must be positive')
+      return
+    end if
+    if (v(3) > v(4)) then
+      call diag%report(static_loc(card), '*STATIC: the minimum increment exceeds the maximum increment')
+      return
+    end if
+    v(1) = min(max(v(1), v(3)), v(4), v(2))
+    state%step%initial_increment = v(1)
+    state%step%period = v(2)
+    state%step%min_increment = v(3)
+    state%step%max_increment = v(4)
+  end subroutine handle_static
+
+  pure function static_field(i) result(name)
+    integer, intent(in) :: i
+    character(len=:), allocatable :: name
+    select case (i)
+    case (1)
+      name = 'initial time increment'
+    case (2)
+      name = 'time period'
+    case (3)
+      name = 'minimum time increment'
+    case default
+      name = 'maximum time increment'
+    end select
+  end function static_field
+
+  function static_loc(card) result(loc)
+    use fcs_diagnostics, only: source_loc_t
+    type(card_t), intent(in) :: card
+    type(source_loc_t) :: loc
+    loc = card%loc
+    if (card%n_lines > 0) loc = card%lines(1)%loc
+  end function static_loc
+
+  !> *END STEP: close the step with the complete condition lists.
+  subroutine handle_end_step(card, state, diag)
+    type(card_t), intent(in) :: card
+    type(builder_t), intent(inout) :: state
+    type(diagnostics_t), intent(inout) :: diag
+    if (state%step%period < 0.0_dp) then
+      call diag%report(card%loc, '*END STEP: step "' // state%step%name // '" has no procedure ' // &
+                       '(add *STATIC after *STEP)')
+    end if
+    state%step%boundary = state%boundary%to_array()
+    state%step%loads = state%loads%to_array()
+    state%step%pressures = state%pressures%to_array()
+    if (.not. allocated(state%step%outputs)) allocate (state%step%outputs(0))
+    state%steps = [state%steps, state%step]
+    state%in_step = .false.
+  end subroutine handle_end_step
+
+  !> *BOUNDARY: node or set, first dof, last dof, value.
+  subroutine handle_boundary(card, model, state, diag)
+    type(card_t), intent(in) :: card
+    type(model_t), intent(in) :: model
+    type(builder_t), intent(inout) :: state
+    type(diagnostics_t), intent(inout) :: diag
+    type(dof_condition_t) :: c
+    integer, allocatable :: nodes(:)
+    integer :: i, j, first, last, dof, amplitude
+    real(dp) :: value
+    if (.not. amplitude_param(card, model, diag, amplitude)) return
+    if (param_upper(card, 'OP') == 'NEW' .and. .not. (state%in_step .and. state%boundary_renewed)) then
+      call state%boundary%clear()
+      state%boundary_renewed = state%in_step
+    end if
+    do i = 1, card%n_lines
+      associate (line => card%lines(i))
+        if (size(line%fields) < 2 .or. size(line%fields) > 4) then
+          call diag%report(line%loc, '*BOUNDARY: expected node or node set, first dof[, last ' // &
+                           'dof[, value]]')
+          cycle
+        end if
+        if (.not. line_int(line, 2, first, 'first degree of freedom', 'BOUNDARY', diag)) cycle
+        last = first
+        if (size(line%fields) >= 3) then
+          if (len(line%fields(3)%s) > 0) then
+            if (.not. line_int(line, 3, last, 'last degree of freedom', 'BOUNDARY', diag)) cycle
+          end if
+        end if
+        if (.not. valid_dofs(line, first, last, diag)) cycle
+        if (.not. line_optional_real(line, 4, value, 0.0_dp, 'value', 'BOUNDARY', diag)) cycle
+        call resolve_nodes(model%mesh, line%fields(1)%s, line, 'BOUNDARY', diag, nodes)
+        c%kind = merge(BC_VELOCITY, BC_DISPLACEMENT, param_upper(card, 'TYPE') == 'VELOCITY')
+        c%value = value
+        c%amplitude = amplitude
+        do j = 1, size(nodes)
+          c%node = nodes(j)
+          do dof = first, last
+            c%dof = dof
+            call state%boundary%put(c)
+          end do
+        end do
+      end associate
+    end do
+  end subroutine handle_boundary
+
+  logical function valid_dofs(line, first, last, diag) result(ok)
+    type(data_line_t), intent(in) :: line
+    integer, intent(in) :: first, last
+    type(diagnostics_t), intent(inout) :: diag
+    ok = first >= 1 .and. last <= 3 .and. first <= last
+    if (ok) return
+    if (first >= 4 .and. first <= 6 .or. last >= 4 .and. last <= 6) then
+      call diag%report(line%loc, '*BOUNDARY: degrees of freedom 4-6 are rotations, which solid ' // &
+                       'elements do not have; use 1, 2, 3 (x, y, z)')
+    else
+      call diag%report(line%loc, '*BOUNDARY: degrees of freedom must satisfy 1 <= first <= ' // &
+                       'last <= 3 (x, y, z)')
+    end if
+  end function valid_dofs
+
+  !> *CLOAD: node or set, dof, magnitude (applied to every node of a set).
+  subroutine handle_cload(card, model, state, diag)
+    type(card_t), intent(in) :: card
+    type(model_t), intent(in) :: model
+    type(builder_t), intent(inout) :: state
+    type(diagnostics_t), intent(inout) :: diag
+    type(dof_condition_t) :: c
+    integer, allocatable :: nodes(:)
+    integer :: i, j, dof, amplitude
+    real(dp) :: value
+    if (.not. amplitude_param(card, model, diag, amplitude)) return
+    if (param_upper(card, 'OP') == 'NEW' .and. .not. state%loads_renewed) then
+      call state%loads%clear()
+      state%loads_renewed = .true.
+    end if
+    do i = 1, card%n_lines
+      associate (line => card%lines(i))
+        if (size(line%fields) /= 3) then
+          call diag%report(line%loc, '*CLOAD: expected node or node set, dof, magnitude')
+          cycle
+        end if
+        if (.not. line_int(line, 2, dof, 'degree of freedom', 'CLOAD', diag)) cycle
+        if (dof < 1 .or. dof > 3) then
+          call diag%report(line%loc, '*CLOAD: the degree of freedom must be 1, 2 or 3 (x, y, z)')
+          cycle
+        end if
+        if (.not. line_real(line, 3, value, 'magnitude', 'CLOAD', diag)) cycle
+        call resolve_nodes(model%mesh, line%fields(1)%s, line, 'CLOAD', diag, nodes)
+        c%dof = dof
+        c%value = value
+        c%amplitude = amplitude
+        do j = 1, size(nodes)
+          c%node = nodes(j)
+          call state%loads%put(c)
+        end do
+      end associate
+    end do
+  end subroutine handle_cload
+
+  !> *DSLOAD: surface, P, pressure (or element/set, P1..P6, pressure).
+  subroutine handle_dsload(card, model, state, diag)
+    type(card_t), intent(in) :: card
+    type(model_t), intent(in) :: model
+    type(builder_t), intent(inout) :: state
+    type(diagnostics_t), intent(inout) :: diag
+    type(face_load_t) :: f
+    integer :: i, j, k, amplitude, face
+    integer, allocatable :: elements(:)
+    character(len=:), allocatable :: label
+    real(dp) :: value
+    if (.not. amplitude_param(card, model, diag, amplitude)) return
+    if (param_upper(card, 'OP') == 'NEW' .and. .not. state%pressures_renewed) then
+      call state%pressures%clear()
+      state%pressures_renewed = .true.
+    end if
+    do i = 1, card%n_lines
+      associate (line => card%lines(i))
+        if (size(line%fields) /= 3) then
+          call diag%report(line%loc, '*DSLOAD: expected surface, P, pressure')
+          cycle
+        end if
+        if (.not. line_real(line, 3, value, 'pressure', 'DSLOAD', diag)) cycle
+        label = to_upper(line%fields(2)%s)
+        f%pressure = value
+        f%amplitude = amplitude
+        if (label == 'P') then
+          k = model%mesh%find_surface(to_upper(line%fields(1)%s))
+          if (k == 0) then
+            call diag%report(line%loc, '*DSLOAD: surface "' // line%fields(1)%s // '" is not defined')
+            cycle
+          end if
+          if (model%mesh%surfaces(k)%kind /= SURFACE_FACES) then
+            call diag%report(line%loc, '*DSLOAD: surface "' // line%fields(1)%s // '" is node ' // &
+                             'based; pressure needs an element-face surface')
+            cycle
+          end if
+          do j = 1, size(model%mesh%surfaces(k)%element)
+            f%element = model%mesh%surfaces(k)%element(j)
+            f%face = model%mesh%surfaces(k)%face(j)
+            call state%pressures%put(f)
+          end do
+        else
+          face = 0
+          if (len(label) == 2) then
+            if (label(1:1) == 'P') face = index('123456', label(2:2))
+          end if
+          if (face == 0) then
+            call diag%report(line%loc, '*DSLOAD: load label "' // line%fields(2)%s // '" is not ' // &
+                             'P (with a surface) or P1..P6 (with an element or element set)')
+            cycle
+          end if
+          call resolve_elements(model%mesh, line%fields(1)%s, line, 'DSLOAD', diag, elements)
+          f%face = face
+          do j = 1, size(elements)
+            f%element = elements(j)
+            call state%pressures%put(f)
+          end do
+        end if
+      end associate
+    end do
+  end subroutine handle_dsload
+
+  !> The AMPLITUDE= parameter resolved to an index (0 if absent). False if undefined.
+  logical function amplitude_param(card, model, diag, amplitude) result(ok)
+    type(card_t), intent(in) :: card
+    type(model_t), intent(in) :: model
+    type(diagnostics_t), intent(inout) :: diag
+    integer, intent(out) :: amplitude
+    amplitude = 0
+    ok = .true.
+    if (card%find_param('AMPLITUDE') == 0) return
+    amplitude = find_amplitude(model, param_upper(card, 'AMPLITUDE'))
+    ok = amplitude > 0
+    if (.not. ok) call diag%report(card%loc, '*' // card%keyword // ': amplitude "' // &
+                                   param_value(card, 'AMPLITUDE') // '" is not defined ' // &
+                                   '(define it with *AMPLITUDE before it is used)')
+  end function amplitude_param
+
+  pure integer function find_amplitude(model, name) result(k)
+    type(model_t), intent(in) :: model
+    character(len=*), intent(in) :: name
+    do k = 1, size(model%amplitudes)
+      if (model%amplitudes(k)%name == name) return
+    end do
+    k = 0
+  end function find_amplitude
+
+  pure integer function find_time_points(model, name) result(k)
+    type(model_t), intent(in) :: model
+    character(len=*), intent(in) :: name
+    do k = 1, size(model%time_points)
+      if (model%time_points(k)%name == name) return
+    end do
+    k = 0
+  end function find_time_points
+
+  !> *AMPLITUDE: pairs of time, value with increasing times.
+  subroutine handle_amplitude(card, model, diag)
+    type(card_t), intent(in) :: card
+    type(model_t), intent(inout) :: model
+    type(diagnostics_t), intent(inout) :: diag
+    type(amplitude_t) :: a
+    real(dp) :: t, v
+    integer :: i, j, n
+    logical :: ok
+    a%name = param_upper(card, 'NAME')
+    a%total_time = param_upper(card, 'TIME') == 'TOTAL TIME'
+    if (find_amplitude(model, a%name) > 0) then
+      call diag%report(card%loc, '*AMPLITUDE: amplitude ' // a%name // ' is defined twice')
+      return
+    end if
+    allocate (a%time(0), a%value(0))
+    ok = .true.
+    do i = 1, card%n_lines
+      associate (line => card%lines(i))
+        n = size(line%fields)
+        if (mod(n, 2) /= 0) then
+          call diag%report(line%loc, '*AMPLITUDE: expected pairs of time, value')
+          ok = .false.
+          cycle
+        end if
+        do j = 1, n, 2
+          if (.not. line_real(line, j, t, 'time', 'AMPLITUDE', diag)) ok = .false.
+          if (.not. line_real(line, j + 1, v, 'value', 'AMPLITUDE', diag)) ok = .false.
+          if (.not. ok) exit
+          if (size(a%time) > 0) then
+            if (t <= a%time(size(a%time))) then
+              call diag%report(line%loc, '*AMPLITUDE: times must increase (' // str(t) // &
+                               ' follows ' // str(a%time(size(a%time))) // ')')
+              ok = .false.
+              exit
+            end if
+          end if
+          a%time = [a%time, t]
+          a%value = [a%value, v]
+        end do
+      end associate
+    end do
+    if (ok) model%amplitudes = [model%amplitudes, a]
+  end subroutine handle_amplitude
+
+  !> *TIME POINTS: increasing times, or start, end, increment with GENERATE.
+  subroutine handle_time_points(card, model, diag)
+    type(card_t), intent(in) :: card
+    type(model_t), intent(inout) :: model
+    type(diagnostics_t), intent(inout) :: diag
+    type(time_points_t) :: tp
+    real(dp) :: t, start, finish, increment
+    integer :: i, j, n
+    tp%name = param_upper(card, 'NAME')
+    tp%total_time = param_upper(card, 'TIME') == 'TOTAL TIME'
+    if (find_time_points(model, tp%name) > 0) then
+      call diag%report(card%loc, '*TIME POINTS: list ' // tp%name // ' is defined twice')
+      return
+    end if
+    allocate (tp%times(0))
+    do i = 1, card%n_lines
+      associate (line => card%lines(i))
+        if (has_flag(card, 'GENERATE')) then
+          if (size(line%fields) /= 3) then
+            call diag%report(line%loc, '*TIME POINTS, GENERATE: expected start, end, increment')
+            return
+          end if
+          if (.not. line_real(line, 1, start, 'start', 'TIME POINTS', diag)) return
+          if (.not. line_real(line, 2, finish, 'end', 'TIME POINTS', diag)) return
+          if (.not. line_real(line, 3, increment, 'increment', 'TIME POINTS', diag)) return
+          if (increment <= 0.0_dp .or. finish < start .or. (finish - start) / increment > 1.0e7_dp) then
+            call diag%report(line%loc, '*TIME POINTS, GENERATE: need start <= end and a ' // &
+                             'positive increment giving at most 1e7 points')
+            return
+          end if
+          n = int((finish - start) / increment * (1.0_dp + 1.0e-12_dp))
+          tp%times = [tp%times, [(start + j * increment, j = 0, n)]]
+        else
+          do j = 1, size(line%fields)
+            if (len(line%fields(j)%s) == 0) cycle
+            if (.not. line_real(line, j, t, 'time', 'TIME POINTS', diag)) return
+            tp%times = [tp%times, t]
+          end do
+        end if
+      end associate
+    end do
+    do i = 2, size(tp%times)
+      if (tp%times(i) <= tp%times(i - 1)) then
+        call diag%report(card%loc, '*TIME POINTS: times must increase (' // str(tp%times(i)) // &
+                         ' follows ' // str(tp%times(i - 1)) // ')')
+        return
+      end if
+    end do
+    model%time_points = [model%time_points, tp]
+  end subroutine handle_time_points
+
+end module fcs_build_step

@@ -1,0 +1,130 @@
+!> The model builder's working state while it walks through the cards: the current material,
+!> the step being built, and the running lists of boundary conditions and loads that carry
+!> over from step to step (Abaqus/CalculiX OP=MOD / OP=NEW semantics).
+module fcs_builder_state
+  use fcs_int_map, only: int_map_t
+  use fcs_model, only: step_t, dof_condition_t, face_load_t
+  implicit none
+  private
+  public :: builder_t, condition_list_t, pressure_list_t
+
+  !> Conditions on degrees of freedom, at most one per (node, dof): a new one replaces the old.
+  type :: condition_list_t
+    type(dof_condition_t), allocatable :: items(:)
+    integer :: n = 0
+    type(int_map_t) :: slot
+  contains
+    procedure :: clear => condition_list_clear
+    procedure :: put => condition_list_put
+    procedure :: to_array => condition_list_to_array
+  end type condition_list_t
+
+  !> Face pressures, at most one per (element, face).
+  type :: pressure_list_t
+    type(face_load_t), allocatable :: items(:)
+    integer :: n = 0
+    type(int_map_t) :: slot
+  contains
+    procedure :: clear => pressure_list_clear
+    procedure :: put => pressure_list_put
+    procedure :: to_array => pressure_list_to_array
+  end type pressure_list_t
+
+  type :: builder_t
+    !> Material that *ELASTIC and *DENSITY apply to (0: none yet).
+    integer :: material = 0
+    logical :: in_step = .false.
+    type(step_t) :: step
+    !> Whether this step already applied OP=NEW to each list (only the first NEW clears).
+    logical :: boundary_renewed = .false.
+    logical :: loads_renewed = .false.
+    logical :: pressures_renewed = .false.
+    type(condition_list_t) :: boundary
+    type(condition_list_t) :: loads
+    type(pressure_list_t) :: pressures
+    type(step_t), allocatable :: steps(:)
+  end type builder_t
+
+contains
+
+  subroutine condition_list_clear(this)
+    class(condition_list_t), intent(inout) :: this
+    this%n = 0
+    if (.not. allocated(this%items)) allocate (this%items(64))
+    call this%slot%init(64)
+  end subroutine condition_list_clear
+
+  !> Add `c`, replacing an existing condition on the same (node, dof).
+  subroutine condition_list_put(this, c)
+    class(condition_list_t), intent(inout) :: this
+    type(dof_condition_t), intent(in) :: c
+    type(dof_condition_t), allocatable :: grown(:)
+    integer :: key, k
+    if (.not. allocated(this%items)) call this%clear()
+    key = 3 * (c%node - 1) + c%dof
+    k = this%slot%get(key)
+    if (k > 0) then
+      this%items(k) = c
+      return
+    end if
+    if (this%n == size(this%items)) then
+      allocate (grown(2 * size(this%items)))
+      grown(1:this%n) = this%items(1:this%n)
+      call move_alloc(grown, this%items)
+    end if
+    this%n = this%n + 1
+    this%items(this%n) = c
+    call this%slot%set(key, this%n)
+  end subroutine condition_list_put
+
+  function condition_list_to_array(this) result(out)
+    class(condition_list_t), intent(in) :: this
+    type(dof_condition_t), allocatable :: out(:)
+    if (allocated(this%items)) then
+      out = this%items(1:this%n)
+    else
+      allocate (out(0))
+    end if
+  end function condition_list_to_array
+
+  subroutine pressure_list_clear(this)
+    class(pressure_list_t), intent(inout) :: this
+    this%n = 0
+    if (.not. allocated(this%items)) allocate (this%items(64))
+    call this%slot%init(64)
+  end subroutine pressure_list_clear
+
+  !> Add `f`, replacing an existing pressure on the same face.
+  subroutine pressure_list_put(this, f)
+    class(pressure_list_t), intent(inout) :: this
+    type(face_load_t), intent(in) :: f
+    type(face_load_t), allocatable :: grown(:)
+    integer :: key, k
+    if (.not. allocated(this%items)) call this%clear()
+    key = 6 * (f%element - 1) + f%face
+    k = this%slot%get(key)
+    if (k > 0) then
+      this%items(k) = f
+      return
+    end if
+    if (this%n == size(this%items)) then
+      allocate (grown(2 * size(this%items)))
+      grown(1:this%n) = this%items(1:this%n)
+      call move_alloc(grown, this%items)
+    end if
+    this%n = this%n + 1
+    this%items(this%n) = f
+    call this%slot%set(key, this%n)
+  end subroutine pressure_list_put
+
+  function pressure_list_to_array(this) result(out)
+    class(pressure_list_t), intent(in) :: this
+    type(face_load_t), allocatable :: out(:)
+    if (allocated(this%items)) then
+      out = this%items(1:this%n)
+    else
+      allocate (out(0))
+    end if
+  end function pressure_list_to_array
+
+end module fcs_builder_state

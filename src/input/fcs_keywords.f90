@@ -1,0 +1,341 @@
+!> The keyword table: every keyword fcs3d accepts, with its parameters, defaults, units and
+!> documentation. It is the single source of truth: the model builder validates cards against
+!> it, `fcs3d --list-keywords` prints it and `doc/deck_reference.md` is generated from it.
+!>
+!> Keywords marked "CalculiX" keep the meaning they have in CalculiX 2.20 (ccx manual §6) and
+!> Abaqus; keywords marked "fcs3d" are our extensions in the same syntax.
+module fcs_keywords
+  use fcs_strings, only: string_t, to_upper
+  implicit none
+  private
+  public :: keyword_spec_t, param_spec_t, keyword_table, find_keyword, find_param_spec
+  public :: PARAM_FLAG, PARAM_TEXT, PARAM_NAME, PARAM_REAL, PARAM_INTEGER, PARAM_CHOICE, PARAM_FILE
+  public :: CONTEXT_MODEL, CONTEXT_STEP, CONTEXT_ANY, param_kind_name, context_name
+
+  !> Parameter kinds: a flag without value, free text, a (case-insensitive) name of a set or
+  !> material, a real or integer number, one of a list of choices, a file path.
+  integer, parameter :: PARAM_FLAG = 1, PARAM_TEXT = 2, PARAM_NAME = 3, PARAM_REAL = 4, &
+                        PARAM_INTEGER = 5, PARAM_CHOICE = 6, PARAM_FILE = 7
+  !> Where a keyword may appear: model definition (before the first *STEP), inside a step, or both.
+  integer, parameter :: CONTEXT_MODEL = 1, CONTEXT_STEP = 2, CONTEXT_ANY = 3
+
+  type :: param_spec_t
+    character(len=:), allocatable :: name
+    integer :: kind = PARAM_TEXT
+    !> Default value as text ('' = no default).
+    character(len=:), allocatable :: default
+    logical :: required = .false.
+    !> Valid values of a PARAM_CHOICE, upper case.
+    type(string_t), allocatable :: choices(:)
+    !> For a PARAM_CHOICE that may also be written as a bare flag: the value the flag means.
+    character(len=:), allocatable :: flag_value
+    character(len=:), allocatable :: unit
+    character(len=:), allocatable :: description
+  end type param_spec_t
+
+  type :: keyword_spec_t
+    character(len=:), allocatable :: name
+    integer :: context = CONTEXT_MODEL
+    !> "CalculiX" (standard meaning) or "fcs3d" (our extension).
+    character(len=:), allocatable :: origin
+    character(len=:), allocatable :: summary
+    !> What the data lines hold ('' = the keyword takes no data lines).
+    character(len=:), allocatable :: data
+    logical :: data_required = .false.
+    type(param_spec_t), allocatable :: params(:)
+  end type keyword_spec_t
+
+contains
+
+  !> The whole table, in the order of the deck reference.
+  function keyword_table() result(table)
+    type(keyword_spec_t), allocatable :: table(:)
+    table = [ model_keywords(), material_keywords(), step_keywords(), output_keywords() ]
+  end function keyword_table
+
+  function model_keywords() result(t)
+    type(keyword_spec_t), allocatable :: t(:)
+    t = [ &
+      kw('HEADING', CONTEXT_MODEL, 'CalculiX', 'Title of the analysis.', &
+         'Free text; the first line becomes the title in the echo, the log and the results.', &
+         [p_none()]), &
+      kw('INCLUDE', CONTEXT_ANY, 'CalculiX', 'Insert another file at this point.', '', &
+         [p('INPUT', PARAM_FILE, required=.true., &
+            description='File to insert, relative to the file holding the *INCLUDE.')]), &
+      kw('NODE', CONTEXT_MODEL, 'CalculiX', 'Define nodes.', &
+         'node id, x, y, z (a missing coordinate is 0).', &
+         [p('NSET', PARAM_NAME, description='Also add the nodes to this node set.')], &
+         data_required=.true.), &
+      kw('ELEMENT', CONTEXT_MODEL, 'CalculiX', 'Define elements.', &
+         'element id, then its 8 node ids (the line may continue after a trailing comma).', &
+         [p('TYPE', PARAM_CHOICE, required=.true., choices=[s('C3D8')], &
+            description='Element type. C3D8: 8-node hexahedron with full 2x2x2 integration, ' // &
+            'as in CalculiX (use *SOLID SECTION, FORMULATION=BBAR against volumetric locking).'), &
+          p('ELSET', PARAM_NAME, description='Also add the elements to this element set.')], &
+         data_required=.true.), &
+      kw('NSET', CONTEXT_MODEL, 'CalculiX', 'Define or extend a node set.', &
+         'node ids or names of node sets; with GENERATE: first, last[, increment].', &
+         [p('NSET', PARAM_NAME, required=.true., description='Name of the set.'), &
+          p('GENERATE', PARAM_FLAG, description='Data lines are first, last, increment.')], &
+         data_required=.true.), &
+      kw('ELSET', CONTEXT_MODEL, 'CalculiX', 'Define or extend an element set.', &
+         'element ids or names of element sets; with GENERATE: first, last[, increment].', &
+         [p('ELSET', PARAM_NAME, required=.true., description='Name of the set.'), &
+          p('GENERATE', PARAM_FLAG, description='Data lines are first, last, increment.')], &
+         data_required=.true.), &
+      kw('SURFACE', CONTEXT_MODEL, 'CalculiX', 'Define a surface.', &
+         'TYPE=ELEMENT: element id or element set, face S1..S6. TYPE=NODE: node id or node set.', &
+         [p('NAME', PARAM_NAME, required=.true., description='Name of the surface.'), &
+          p('TYPE', PARAM_CHOICE, default='ELEMENT', choices=[s('ELEMENT'), s('NODE')], &
+            description='Element-face surface or node-based surface.')], &
+         data_required=.true.), &
+      kw('MESH', CONTEXT_MODEL, 'fcs3d', 'Read nodes, hexahedra and physical groups from a ' // &
+         'gmsh mesh file (MSH 4.1, ASCII or binary).', '', &
+         [p('FILE', PARAM_FILE, required=.true., &
+            description='The .msh file, relative to the deck holding *MESH. Physical groups ' // &
+            'become node sets, element sets and element-face surfaces named by the physical name.')]), &
+      kw('SOLVER', CONTEXT_MODEL, 'fcs3d', 'Choose the linear solver.', '', &
+         [p('TYPE', PARAM_CHOICE, default='UMFPACK', &
+            choices=[s('UMFPACK'), s('SKYLINE'), s('MUMPS')], &
+            description='UMFPACK (SuiteSparse, default), SKYLINE (profile LU with reverse ' // &
+            'Cuthill-McKee numbering) or MUMPS. The command line option --solver overrides it.')]) &
+      ]
+  end function model_keywords
+
+  function material_keywords() result(t)
+    type(keyword_spec_t), allocatable :: t(:)
+    t = [ &
+      kw('MATERIAL', CONTEXT_MODEL, 'CalculiX', 'Start a material definition; the ' // &
+         'following *ELASTIC and *DENSITY lines belong to it.', '', &
+         [p('NAME', PARAM_NAME, required=.true., description='Name of the material.')]), &
+      kw('ELASTIC', CONTEXT_MODEL, 'CalculiX', 'Isotropic (hypo)elastic constants of the ' // &
+         'current material.', 'Young''s modulus [stress], Poisson''s ratio [-].', &
+         [p('TYPE', PARAM_CHOICE, default='ISO', choices=[s('ISO'), s('ISOTROPIC')], &
+            description='Only isotropic elasticity is available.')], data_required=.true.), &
+      kw('DENSITY', CONTEXT_MODEL, 'CalculiX', 'Mass density of the current material ' // &
+         '(recorded in the results; the static analysis does not use it).', &
+         'density [mass/length^3].', [p_none()], data_required=.true.), &
+      kw('SOLID SECTION', CONTEXT_MODEL, 'CalculiX', 'Assign a material to an element set.', &
+         'optional, ignored for solids (CalculiX allows an empty line here).', &
+         [p('ELSET', PARAM_NAME, required=.true., description='Element set.'), &
+          p('MATERIAL', PARAM_NAME, required=.true., description='Material name.'), &
+          p('FORMULATION', PARAM_CHOICE, default='FULL', choices=[s('FULL'), s('BBAR')], &
+            description='FULL: 2x2x2 Gauss integration of everything (CalculiX C3D8). BBAR: ' // &
+            'volumetric strain taken as its element mean (selective reduced integration, ' // &
+            'Hughes 1980), which removes volumetric locking (fcs3d extension).')]) &
+      ]
+  end function material_keywords
+
+  function step_keywords() result(t)
+    type(keyword_spec_t), allocatable :: t(:)
+    t = [ &
+      kw('AMPLITUDE', CONTEXT_ANY, 'CalculiX', 'A tabular time function (linear between ' // &
+         'points, constant outside them) scaling loads and prescribed values.', &
+         'pairs time, value (several pairs per line allowed).', &
+         [p('NAME', PARAM_NAME, required=.true., description='Name of the amplitude.'), &
+          p('TIME', PARAM_CHOICE, default='STEP TIME', choices=[s('STEP TIME'), s('TOTAL TIME')], &
+            description='Whether times are measured from the start of each step or of the analysis.'), &
+          p('DEFINITION', PARAM_CHOICE, default='TABULAR', choices=[s('TABULAR')], &
+            description='Only tabular amplitudes are available.')], data_required=.true.), &
+      kw('STEP', CONTEXT_MODEL, 'CalculiX', 'Start a step (a loading stage).', '', &
+         [p('NLGEOM', PARAM_CHOICE, default='NO', choices=[s('YES'), s('NO')], flag_value='YES', &
+            description='Geometric nonlinearity: updated Lagrangian with the Jaumann rate ' // &
+            '(paper eq. 1). Without it the step is small-strain and linear in geometry.'), &
+          p('INC', PARAM_INTEGER, default='1000000', &
+            description='Maximum number of increments in the step. Unlike CalculiX (100), ' // &
+            'the default is large: static-explicit runs take many small increments.'), &
+          p('NAME', PARAM_TEXT, description='Name of the step (for the log and results).')]), &
+      kw('STATIC', CONTEXT_STEP, 'CalculiX', 'Static step: the static-explicit R-minimum ' // &
+         'stepper drives it (no equilibrium iterations).', &
+         'initial time increment, step time period, minimum time increment, maximum time ' // &
+         'increment [time]. Defaults: 1, 1, 1e-5 of the period, the period.', &
+         [p_none()]), &
+      kw('END STEP', CONTEXT_STEP, 'CalculiX', 'End the current step.', '', [p_none()]), &
+      kw('BOUNDARY', CONTEXT_ANY, 'CalculiX', 'Prescribed displacements (fixed or ' // &
+         'given values) or velocities on nodes or node sets.', &
+         'node or node set, first dof, last dof (default: first), value (default 0); ' // &
+         'dofs 1..3 are x, y, z.', &
+         [p('OP', PARAM_CHOICE, default='MOD', choices=[s('MOD'), s('NEW')], &
+            description='MOD keeps earlier conditions; NEW removes all earlier ones first.'), &
+          p('AMPLITUDE', PARAM_NAME, description='Scale the value by this amplitude.'), &
+          p('TYPE', PARAM_CHOICE, default='DISPLACEMENT', &
+            choices=[s('DISPLACEMENT'), s('VELOCITY')], &
+            description='DISPLACEMENT: the value is the displacement reached at the end of ' // &
+            'the step (ramped over the step, or value x amplitude). VELOCITY: the value is a ' // &
+            'velocity [length/time] held through the step (x amplitude) (fcs3d extension).')], &
+         data_required=.true.), &
+      kw('CLOAD', CONTEXT_STEP, 'CalculiX', 'Concentrated nodal forces.', &
+         'node or node set, dof, magnitude [force].', &
+         [p('OP', PARAM_CHOICE, default='MOD', choices=[s('MOD'), s('NEW')], &
+            description='MOD keeps earlier loads; NEW removes all earlier ones first.'), &
+          p('AMPLITUDE', PARAM_NAME, description='Scale the value by this amplitude.')], &
+         data_required=.true.), &
+      kw('DSLOAD', CONTEXT_STEP, 'CalculiX', 'Pressure on an element-face surface ' // &
+         '(positive pressure pushes into the surface). Under NLGEOM it follows the current ' // &
+         'face area and normal, with its load stiffness.', &
+         'surface name, P, magnitude [stress].', &
+         [p('OP', PARAM_CHOICE, default='MOD', choices=[s('MOD'), s('NEW')], &
+            description='MOD keeps earlier loads; NEW removes all earlier ones first.'), &
+          p('AMPLITUDE', PARAM_NAME, description='Scale the value by this amplitude.')], &
+         data_required=.true.) &
+      ]
+  end function step_keywords
+
+  function output_keywords() result(t)
+    type(keyword_spec_t), allocatable :: t(:)
+    t = [ &
+      kw('TIME POINTS', CONTEXT_ANY, 'CalculiX', 'A list of output times; the stepper lands ' // &
+         'on each exactly.', 'times; with GENERATE: start, end, increment.', &
+         [p('NAME', PARAM_NAME, required=.true., description='Name of the list.'), &
+          p('TIME', PARAM_CHOICE, default='STEP TIME', choices=[s('STEP TIME'), s('TOTAL TIME')], &
+            description='Whether the times are measured from the start of each step or of the analysis.'), &
+          p('GENERATE', PARAM_FLAG, description='Data lines are start, end, increment.')], &
+         data_required=.true.), &
+      kw('NODE PRINT', CONTEXT_STEP, 'CalculiX', 'Print nodal results to <job>.dat in ' // &
+         'CalculiX''s layout.', 'U (displacements), RF (reaction forces).', &
+         [p('NSET', PARAM_NAME, required=.true., description='Node set to print.'), &
+          p('FREQUENCY', PARAM_INTEGER, default='0', description='Also print every N ' // &
+            'increments (0: only at the end of the step and at the time points).'), &
+          p('TIME POINTS', PARAM_NAME, description='Print at these times.'), &
+          p('TOTALS', PARAM_CHOICE, default='NO', choices=[s('NO'), s('YES'), s('ONLY')], &
+            description='Also (YES) or only (ONLY) print the sum over the set.')], &
+         data_required=.true.), &
+      kw('EL PRINT', CONTEXT_STEP, 'CalculiX', 'Print integration-point results to ' // &
+         '<job>.dat in CalculiX''s layout.', 'S (Cauchy stress), E (strain).', &
+         [p('ELSET', PARAM_NAME, required=.true., description='Element set to print.'), &
+          p('FREQUENCY', PARAM_INTEGER, default='0', description='Also print every N ' // &
+            'increments (0: only at the end of the step and at the time points).'), &
+          p('TIME POINTS', PARAM_NAME, description='Print at these times.')], &
+         data_required=.true.), &
+      kw('NODE FILE', CONTEXT_STEP, 'CalculiX', 'Request result frames in <job>.h5/.xdmf. ' // &
+         'Every frame holds all fields (displacement, reactions, stresses, Mises stress); ' // &
+         'the variables listed are checked, not used to select.', 'U, RF, ...', &
+         [p('FREQUENCY', PARAM_INTEGER, default='0', description='Also write every N increments.'), &
+          p('TIME POINTS', PARAM_NAME, description='Write at these times.')]), &
+      kw('EL FILE', CONTEXT_STEP, 'CalculiX', 'As *NODE FILE, for element variables.', &
+         'S, E, ...', &
+         [p('FREQUENCY', PARAM_INTEGER, default='0', description='Also write every N increments.'), &
+          p('TIME POINTS', PARAM_NAME, description='Write at these times.')]) &
+      ]
+  end function output_keywords
+
+  !> Build a keyword specification.
+  function kw(name, context, origin, summary, data, params, data_required) result(k)
+    character(len=*), intent(in) :: name, origin, summary, data
+    integer, intent(in) :: context
+    type(param_spec_t), intent(in) :: params(:)
+    logical, intent(in), optional :: data_required
+    type(keyword_spec_t) :: k
+    integer :: i, n
+    k%name = name
+    k%context = context
+    k%origin = origin
+    k%summary = summary
+    k%data = data
+    if (present(data_required)) k%data_required = data_required
+    n = 0
+    do i = 1, size(params)
+      if (len(params(i)%name) > 0) n = n + 1
+    end do
+    allocate (k%params(n))
+    n = 0
+    do i = 1, size(params)
+      if (len(params(i)%name) == 0) cycle
+      n = n + 1
+      k%params(n) = params(i)
+    end do
+  end function kw
+
+  !> Build a parameter specification.
+  function p(name, kind, default, required, choices, flag_value, unit, description) result(q)
+    character(len=*), intent(in) :: name
+    integer, intent(in) :: kind
+    character(len=*), intent(in), optional :: default, flag_value, unit, description
+    logical, intent(in), optional :: required
+    type(string_t), intent(in), optional :: choices(:)
+    type(param_spec_t) :: q
+    q%name = name
+    q%kind = kind
+    q%default = ''
+    if (present(default)) q%default = default
+    if (present(required)) q%required = required
+    if (present(choices)) then
+      q%choices = choices
+    else
+      allocate (q%choices(0))
+    end if
+    q%flag_value = ''
+    if (present(flag_value)) q%flag_value = flag_value
+    q%unit = ''
+    if (present(unit)) q%unit = unit
+    q%description = ''
+    if (present(description)) q%description = description
+  end function p
+
+  !> Placeholder for "no parameters" (dropped by kw).
+  function p_none() result(q)
+    type(param_spec_t) :: q
+    q = p('', PARAM_FLAG)
+  end function p_none
+
+  pure function s(text) result(out)
+    character(len=*), intent(in) :: text
+    type(string_t) :: out
+    out%s = text
+  end function s
+
+  !> Index of keyword `name` (upper case) in `table`, 0 if unknown.
+  pure integer function find_keyword(table, name) result(k)
+    type(keyword_spec_t), intent(in) :: table(:)
+    character(len=*), intent(in) :: name
+    do k = 1, size(table)
+      if (table(k)%name == to_upper(name)) return
+    end do
+    k = 0
+  end function find_keyword
+
+  !> Index of parameter `name` of keyword `spec`, 0 if unknown.
+  pure integer function find_param_spec(spec, name) result(k)
+    type(keyword_spec_t), intent(in) :: spec
+    character(len=*), intent(in) :: name
+    do k = 1, size(spec%params)
+      if (spec%params(k)%name == name) return
+    end do
+    k = 0
+  end function find_param_spec
+
+  pure function param_kind_name(kind) result(name)
+    integer, intent(in) :: kind
+    character(len=:), allocatable :: name
+    select case (kind)
+    case (PARAM_FLAG)
+      name = 'flag'
+    case (PARAM_NAME)
+      name = 'name'
+    case (PARAM_REAL)
+      name = 'real'
+    case (PARAM_INTEGER)
+      name = 'integer'
+    case (PARAM_CHOICE)
+      name = 'choice'
+    case (PARAM_FILE)
+      name = 'file'
+    case default
+      name = 'text'
+    end select
+  end function param_kind_name
+
+  pure function context_name(context) result(name)
+    integer, intent(in) :: context
+    character(len=:), allocatable :: name
+    select case (context)
+    case (CONTEXT_MODEL)
+      name = 'model definition'
+    case (CONTEXT_STEP)
+      name = 'step'
+    case default
+      name = 'model definition or step'
+    end select
+  end function context_name
+
+end module fcs_keywords

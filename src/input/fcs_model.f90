@@ -1,0 +1,133 @@
+!> The model: everything the deck defines, as plain data, checked and with names resolved to
+!> indices. The builder (`fcs_model_builder`) produces it; the stepper reads it and never
+!> changes it. Units are the deck's own (consistent units, e.g. mm, s, MPa, N).
+module fcs_model
+  use fcs_kinds, only: dp
+  use fcs_mesh, only: mesh_t
+  use fcs_diagnostics, only: source_loc_t
+  use fcs_strings, only: string_t
+  implicit none
+  private
+  public :: model_t, material_def_t, section_t, amplitude_t, time_points_t, dof_condition_t
+  public :: face_load_t, output_request_t, step_t, rmin_settings_t
+  public :: BC_DISPLACEMENT, BC_VELOCITY, FORMULATION_FULL, FORMULATION_BBAR
+  public :: OUTPUT_NODE_PRINT, OUTPUT_EL_PRINT, OUTPUT_NODE_FILE, OUTPUT_EL_FILE
+  public :: TOTALS_NO, TOTALS_YES, TOTALS_ONLY
+
+  !> Kinds of prescribed degree-of-freedom conditions.
+  integer, parameter :: BC_DISPLACEMENT = 1, BC_VELOCITY = 2
+  !> Element formulations (see *SOLID SECTION, FORMULATION=).
+  integer, parameter :: FORMULATION_FULL = 1, FORMULATION_BBAR = 2
+  !> Output request kinds.
+  integer, parameter :: OUTPUT_NODE_PRINT = 1, OUTPUT_EL_PRINT = 2, OUTPUT_NODE_FILE = 3, &
+                        OUTPUT_EL_FILE = 4
+  !> *NODE PRINT, TOTALS=.
+  integer, parameter :: TOTALS_NO = 0, TOTALS_YES = 1, TOTALS_ONLY = 2
+
+  !> A material as defined in the deck.
+  type :: material_def_t
+    character(len=:), allocatable :: name
+    logical :: has_elastic = .false.
+    real(dp) :: youngs_modulus = 0.0_dp
+    real(dp) :: poisson_ratio = 0.0_dp
+    logical :: has_density = .false.
+    real(dp) :: density = 0.0_dp
+    type(source_loc_t) :: loc
+  end type material_def_t
+
+  !> *SOLID SECTION: a material and a formulation for an element set.
+  type :: section_t
+    integer :: element_set = 0
+    integer :: material = 0
+    integer :: formulation = FORMULATION_FULL
+    type(source_loc_t) :: loc
+  end type section_t
+
+  !> A tabular amplitude a(t), linear between points, constant beyond the ends.
+  type :: amplitude_t
+    character(len=:), allocatable :: name
+    real(dp), allocatable :: time(:)
+    real(dp), allocatable :: value(:)
+    logical :: total_time = .false.
+  end type amplitude_t
+
+  !> A list of output times.
+  type :: time_points_t
+    character(len=:), allocatable :: name
+    real(dp), allocatable :: times(:)
+    logical :: total_time = .false.
+  end type time_points_t
+
+  !> A prescribed value on one degree of freedom: displacement or velocity (*BOUNDARY) or a
+  !> concentrated force (*CLOAD). `amplitude` = 0: no amplitude (ramped over the step).
+  type :: dof_condition_t
+    integer :: node = 0
+    integer :: dof = 0
+    real(dp) :: value = 0.0_dp
+    integer :: kind = BC_DISPLACEMENT
+    integer :: amplitude = 0
+  end type dof_condition_t
+
+  !> Pressure on one element face (*DSLOAD).
+  type :: face_load_t
+    integer :: element = 0
+    integer :: face = 0
+    real(dp) :: pressure = 0.0_dp
+    integer :: amplitude = 0
+  end type face_load_t
+
+  !> An output request (*NODE PRINT, *EL PRINT, *NODE FILE, *EL FILE).
+  type :: output_request_t
+    integer :: kind = OUTPUT_NODE_PRINT
+    integer :: set = 0
+    type(string_t), allocatable :: variables(:)
+    integer :: frequency = 0
+    integer :: time_points = 0
+    integer :: totals = TOTALS_NO
+  end type output_request_t
+
+  !> Limits of the R-minimum step control (defaults explained in doc/theory.md).
+  type :: rmin_settings_t
+    !> Largest equivalent strain increment in one increment [-].
+    real(dp) :: max_strain_increment = 2.0e-3_dp
+    !> Largest rotation increment in one increment [rad] (0.5 degree).
+    real(dp) :: max_rotation_increment = 8.726646259971648e-3_dp
+    !> Events whose fractions are within this relative tolerance of the smallest are taken
+    !> together in one increment [-].
+    real(dp) :: event_tolerance = 1.0e-3_dp
+  end type rmin_settings_t
+
+  !> One step (loading stage). The condition lists are complete: they hold every condition
+  !> active in this step, after applying OP=NEW/MOD to those of the previous steps.
+  type :: step_t
+    character(len=:), allocatable :: name
+    logical :: nlgeom = .false.
+    integer :: max_increments = 1000000
+    real(dp) :: initial_increment = 1.0_dp
+    real(dp) :: period = 1.0_dp
+    real(dp) :: min_increment = 1.0e-5_dp
+    real(dp) :: max_increment = 1.0_dp
+    type(rmin_settings_t) :: rmin
+    type(dof_condition_t), allocatable :: boundary(:)
+    type(dof_condition_t), allocatable :: loads(:)
+    type(face_load_t), allocatable :: pressures(:)
+    type(output_request_t), allocatable :: outputs(:)
+    type(source_loc_t) :: loc
+  end type step_t
+
+  !> The whole model.
+  type :: model_t
+    character(len=:), allocatable :: title
+    character(len=:), allocatable :: deck_path
+    type(mesh_t) :: mesh
+    type(material_def_t), allocatable :: materials(:)
+    type(section_t), allocatable :: sections(:)
+    !> Section index of every element (0 = none, an error after building).
+    integer, allocatable :: element_section(:)
+    type(amplitude_t), allocatable :: amplitudes(:)
+    type(time_points_t), allocatable :: time_points(:)
+    type(step_t), allocatable :: steps(:)
+    character(len=:), allocatable :: solver_name
+  end type model_t
+
+end module fcs_model

@@ -1,0 +1,336 @@
+!> The model builder: reads a deck, checks every card against the keyword table, hands each
+!> to its handler, and checks the finished model. All problems are collected and reported
+!> together (up to a limit); a deck with errors yields no model.
+module fcs_model_builder
+  use fcs_kinds, only: dp
+  use fcs_error, only: error_t
+  use fcs_deck_lexer, only: deck_t, card_t, param_t, read_deck
+  use fcs_diagnostics, only: diagnostics_t
+  use fcs_keywords, only: keyword_spec_t, param_spec_t, keyword_table, find_keyword, &
+                          find_param_spec, PARAM_FLAG, PARAM_NAME, PARAM_REAL, PARAM_INTEGER, &
+                          PARAM_CHOICE, PARAM_FILE, CONTEXT_MODEL, CONTEXT_STEP
+  use fcs_builder_state, only: builder_t
+  use fcs_build_mesh, only: handle_node, handle_element, handle_nset, handle_elset, &
+                            handle_surface, handle_mesh
+  use fcs_build_material, only: handle_material, handle_elastic, handle_density, &
+                                handle_solid_section, handle_solver
+  use fcs_build_step, only: handle_step, handle_static, handle_end_step, handle_boundary, &
+                            handle_cload, handle_dsload, handle_amplitude, handle_time_points
+  use fcs_build_output, only: handle_output_request
+  use fcs_model, only: model_t
+  use fcs_model_checks, only: check_model
+  use fcs_strings, only: string_t, to_upper, parse_int, parse_real, join_strings, str
+  implicit none
+  private
+  public :: build_model, unsupported_keyword_reason
+
+contains
+
+  !> Read the deck at `path` and build `model`. On any input error, `err` holds all messages.
+  subroutine build_model(path, model, deck, err)
+    character(len=*), intent(in) :: path
+    type(model_t), intent(out) :: model
+    type(deck_t), intent(out) :: deck
+    type(error_t), allocatable, intent(out) :: err
+    type(diagnostics_t) :: diag
+    type(builder_t) :: state
+    type(keyword_spec_t), allocatable :: table(:)
+    integer :: i, k
+    call read_deck(path, deck, diag)
+    if (diag%has_errors()) then
+      call diag%to_error(err)
+      return
+    end if
+    call init_model(model, path)
+    allocate (state%steps(0))
+    call state%boundary%clear()
+    call state%loads%clear()
+    call state%pressures%clear()
+    table = keyword_table()
+    do i = 1, deck%n_cards
+      k = find_keyword(table, deck%cards(i)%keyword)
+      if (.not. valid_card(deck%cards(i), table, k, state, diag)) cycle
+      call dispatch(deck%cards(i), model, state, diag)
+      if (diag%is_full()) exit
+    end do
+    if (state%in_step .and. .not. diag%is_full()) then
+      call diag%report(state%step%loc, '*STEP: the step is not closed (add *END STEP at the end)')
+    end if
+    model%steps = state%steps
+    if (.not. diag%has_errors()) call check_model(model, diag)
+    if (diag%has_errors()) call diag%to_error(err)
+  end subroutine build_model
+
+  subroutine init_model(model, path)
+    type(model_t), intent(inout) :: model
+    character(len=*), intent(in) :: path
+    model%title = ''
+    model%deck_path = path
+    model%solver_name = 'UMFPACK'
+    call model%mesh%init()
+    allocate (model%materials(0), model%sections(0), model%amplitudes(0), &
+              model%time_points(0), model%steps(0))
+  end subroutine init_model
+
+  !> Hand a validated card to its handler.
+  subroutine dispatch(card, model, state, diag)
+    type(card_t), intent(inout) :: card
+    type(model_t), intent(inout) :: model
+    type(builder_t), intent(inout) :: state
+    type(diagnostics_t), intent(inout) :: diag
+    select case (card%keyword)
+    case ('HEADING')
+      if (card%n_lines > 0 .and. len(model%title) == 0) &
+        model%title = join_strings(card%lines(1)%fields, ', ')
+    case ('NODE')
+      call handle_node(card, model, diag)
+    case ('ELEMENT')
+      call handle_element(card, model, diag)
+    case ('NSET')
+      call handle_nset(card, model, diag)
+    case ('ELSET')
+      call handle_elset(card, model, diag)
+    case ('SURFACE')
+      call handle_surface(card, model, diag)
+    case ('MESH')
+      call handle_mesh(card, model, diag)
+    case ('SOLVER')
+      call handle_solver(card, model)
+    case ('MATERIAL')
+      call handle_material(card, model, state, diag)
+    case ('ELASTIC')
+      call handle_elastic(card, model, state, diag)
+    case ('DENSITY')
+      call handle_density(card, model, state, diag)
+    case ('SOLID SECTION')
+      call handle_solid_section(card, model, diag)
+    case ('AMPLITUDE')
+      call handle_amplitude(card, model, diag)
+    case ('TIME POINTS')
+      call handle_time_points(card, model, diag)
+    case ('STEP')
+      call handle_step(card, state, diag)
+    case ('STATIC')
+      call handle_static(card, state, diag)
+    case ('END STEP')
+      call handle_end_step(card, state, diag)
+    case ('BOUNDARY')
+      call handle_boundary(card, model, state, diag)
+    case ('CLOAD')
+      call handle_cload(card, model, state, diag)
+    case ('DSLOAD')
+      call handle_dsload(card, model, state, diag)
+    case ('NODE PRINT', 'EL PRINT', 'NODE FILE', 'EL FILE')
+      call handle_output_request(card, model, state, diag)
+    case default
+      call diag%report(card%loc, '*' // card%keyword // ': internal error: no handler ' // &
+                       '(the keyword table and the builder disagree)')
+    end select
+    if (card%keyword /= 'MATERIAL' .and. card%keyword /= 'ELASTIC' .and. &
+        card%keyword /= 'DENSITY') state%material = 0
+  end subroutine dispatch
+
+  !> Check a card against its specification: known keyword, right context, known and
+  !> well-formed parameters, required ones present, data lines as expected. Defaults of
+  !> absent parameters are added to the card (so the echo shows them).
+  logical function valid_card(card, table, k, state, diag) result(ok)
+    type(card_t), intent(inout) :: card
+    type(keyword_spec_t), intent(in) :: table(:)
+    integer, intent(in) :: k
+    type(builder_t), intent(in) :: state
+    type(diagnostics_t), intent(inout) :: diag
+    integer :: n_before
+    n_before = diag%count
+    if (k == 0) then
+      call diag%report(card%loc, unknown_keyword_message(card%keyword, table))
+      ok = .false.
+      return
+    end if
+    associate (spec => table(k))
+      if (spec%context == CONTEXT_MODEL .and. state%in_step) then
+        if (card%keyword == 'STEP') then
+          call diag%report(card%loc, '*STEP: the previous step "' // state%step%name // &
+                           '" is not closed (add *END STEP before the next *STEP)')
+        else
+          call diag%report(card%loc, '*' // card%keyword // ' belongs to the model definition ' // &
+                           'and cannot appear inside a step (move it before the first *STEP)')
+        end if
+      else if (spec%context == CONTEXT_STEP .and. .not. state%in_step) then
+        call diag%report(card%loc, '*' // card%keyword // ' can only appear inside a step ' // &
+                         '(between *STEP and *END STEP)')
+      end if
+      call check_params(card, spec, diag)
+      if (len(spec%data) == 0 .and. card%n_lines > 0) then
+        call diag%report(card%lines(1)%loc, '*' // card%keyword // ' takes no data lines ' // &
+                         '(is a "*" missing at the start of the next keyword line?)')
+      else if (spec%data_required .and. card%n_lines == 0) then
+        call diag%report(card%loc, '*' // card%keyword // ': missing data lines: ' // spec%data)
+      end if
+    end associate
+    ok = diag%count == n_before
+  end function valid_card
+
+  !> Check each given parameter and add defaults of the absent ones.
+  subroutine check_params(card, spec, diag)
+    type(card_t), intent(inout) :: card
+    type(keyword_spec_t), intent(in) :: spec
+    type(diagnostics_t), intent(inout) :: diag
+    integer :: i, j
+    type(param_t) :: extra
+    do i = 1, size(card%params)
+      if (len(card%params(i)%name) == 0) cycle
+      j = find_param_spec(spec, card%params(i)%name)
+      if (j == 0) then
+        call diag%report(card%loc, '*' // card%keyword // ': unknown parameter "' // &
+                         card%params(i)%name // '"; ' // expected_params(spec))
+        cycle
+      end if
+      call check_param_value(card, card%params(i), spec%params(j), diag)
+    end do
+    do j = 1, size(spec%params)
+      if (card%find_param(spec%params(j)%name) > 0) cycle
+      if (spec%params(j)%required) then
+        call diag%report(card%loc, '*' // card%keyword // ': missing required parameter ' // &
+                         spec%params(j)%name // '= (' // spec%params(j)%description // ')')
+      else if (len(spec%params(j)%default) > 0) then
+        extra%name = spec%params(j)%name
+        extra%value = spec%params(j)%default
+        extra%has_value = .true.
+        card%params = [card%params, extra]
+      end if
+    end do
+  end subroutine check_params
+
+  !> Check one parameter's value against its kind; normalise choices to upper case.
+  subroutine check_param_value(card, param, spec, diag)
+    type(card_t), intent(in) :: card
+    type(param_t), intent(inout) :: param
+    type(param_spec_t), intent(in) :: spec
+    type(diagnostics_t), intent(inout) :: diag
+    character(len=:), allocatable :: prefix
+    integer :: i, int_value
+    real(dp) :: real_value
+    logical :: ok
+    prefix = '*' // card%keyword // ': ' // param%name
+    if (spec%kind == PARAM_FLAG) then
+      if (param%has_value) call diag%report(card%loc, prefix // ' is a flag and takes no value')
+      return
+    end if
+    if (.not. param%has_value .and. spec%kind == PARAM_CHOICE .and. len(spec%flag_value) > 0) then
+      param%value = spec%flag_value
+      param%has_value = .true.
+    end if
+    if (.not. param%has_value .or. len(param%value) == 0) then
+      call diag%report(card%loc, prefix // ' needs a value (' // param%name // '=...)')
+      return
+    end if
+    select case (spec%kind)
+    case (PARAM_CHOICE)
+      param%value = to_upper(param%value)
+      do i = 1, size(spec%choices)
+        if (spec%choices(i)%s == param%value) return
+      end do
+      call diag%report(card%loc, prefix // '=' // param%value // ' is not valid; expected ' // &
+                       join_strings(spec%choices, ', ') // '. ' // spec%description)
+    case (PARAM_INTEGER)
+      call parse_int(param%value, int_value, ok)
+      if (.not. ok) call diag%report(card%loc, prefix // ' must be a whole number, not "' // &
+                                     param%value // '"')
+    case (PARAM_REAL)
+      call parse_real(param%value, real_value, ok)
+      if (.not. ok) call diag%report(card%loc, prefix // ' must be a number, not "' // &
+                                     param%value // '"')
+    case default
+    end select
+  end subroutine check_param_value
+
+  function expected_params(spec) result(text)
+    type(keyword_spec_t), intent(in) :: spec
+    character(len=:), allocatable :: text
+    integer :: j
+    if (size(spec%params) == 0) then
+      text = '*' // spec%name // ' takes no parameters'
+      return
+    end if
+    text = 'expected one of '
+    do j = 1, size(spec%params)
+      if (j > 1) text = text // ', '
+      text = text // spec%params(j)%name
+    end do
+  end function expected_params
+
+  !> Message for an unknown keyword: a known CalculiX keyword we do not support says why;
+  !> otherwise the closest known keyword is suggested.
+  function unknown_keyword_message(keyword, table) result(text)
+    character(len=*), intent(in) :: keyword
+    type(keyword_spec_t), intent(in) :: table(:)
+    character(len=:), allocatable :: text
+    character(len=:), allocatable :: reason
+    integer :: k, best, d, best_distance
+    reason = unsupported_keyword_reason(keyword)
+    if (len(reason) > 0) then
+      text = '*' // keyword // ' is not supported by fcs3d: ' // reason
+      return
+    end if
+    text = 'unknown keyword *' // keyword
+    best = 0
+    best_distance = huge(1)
+    do k = 1, size(table)
+      d = edit_distance(keyword, table(k)%name)
+      if (d < best_distance) then
+        best_distance = d
+        best = k
+      end if
+    end do
+    if (best > 0 .and. best_distance <= max(2, len(keyword) / 3)) then
+      text = text // ' (did you mean *' // table(best)%name // '?)'
+    else
+      text = text // ' (fcs3d --list-keywords lists the keywords it knows)'
+    end if
+  end function unknown_keyword_message
+
+  !> Why a keyword of CalculiX/Abaqus is refused ('' when it is simply unknown).
+  function unsupported_keyword_reason(keyword) result(reason)
+    character(len=*), intent(in) :: keyword
+    character(len=:), allocatable :: reason
+    select case (keyword)
+    case ('DYNAMIC', 'MODAL DYNAMIC', 'FREQUENCY', 'BUCKLE', 'HEAT TRANSFER', 'VISCO', &
+          'COUPLED TEMPERATURE-DISPLACEMENT', 'UNCOUPLED TEMPERATURE-DISPLACEMENT', &
+          'STEADY STATE DYNAMICS', 'GREEN', 'SENSITIVITY', 'COMPLEX FREQUENCY', 'ELECTROMAGNETICS')
+      reason = 'fcs3d solves quasi-static problems with its static-explicit stepper only (*STATIC)'
+    case ('SHELL SECTION', 'BEAM SECTION', 'MEMBRANE SECTION', 'SPRING', 'DASHPOT', 'MASS', &
+          'USER ELEMENT', 'GAP')
+      reason = 'fcs3d has 8-node hexahedra (C3D8) only'
+    case ('EQUATION', 'MPC', 'RIGID BODY', 'COUPLING', 'DISTRIBUTING', 'KINEMATIC', 'TRANSFORM')
+      reason = 'constraints other than *BOUNDARY are not available yet'
+    case ('ORIENTATION', 'EXPANSION', 'CONDUCTIVITY', 'SPECIFIC HEAT', 'HYPERELASTIC', &
+          'HYPERFOAM', 'CREEP', 'USER MATERIAL', 'DEFORMATION PLASTICITY', 'CYCLIC HARDENING')
+      reason = 'materials are isotropic hypoelastic (*ELASTIC) only'
+    case ('INITIAL CONDITIONS', 'TEMPERATURE', 'DLOAD', 'CFLUX', 'DFLUX', 'FILM', 'RADIATE')
+      reason = 'this load or initial condition is not available yet'
+    case ('NODE OUTPUT', 'ELEMENT OUTPUT', 'OUTPUT', 'CONTACT OUTPUT', 'CONTACT FILE', &
+          'SECTION PRINT', 'FACE PRINT')
+      reason = 'use *NODE PRINT / *EL PRINT (text) or *NODE FILE / *EL FILE (results file)'
+    case default
+      reason = ''
+    end select
+  end function unsupported_keyword_reason
+
+  !> Levenshtein distance between two short strings.
+  pure integer function edit_distance(a, b) result(d)
+    character(len=*), intent(in) :: a, b
+    integer :: row(0:len(b)), previous, tmp, i, j
+    row = [(j, j = 0, len(b))]
+    do i = 1, len(a)
+      previous = row(0)
+      row(0) = i
+      do j = 1, len(b)
+        tmp = row(j)
+        row(j) = min(row(j) + 1, row(j - 1) + 1, previous + merge(0, 1, a(i:i) == b(j:j)))
+        previous = tmp
+      end do
+    end do
+    d = row(len(b))
+  end function edit_distance
+
+end module fcs_model_builder

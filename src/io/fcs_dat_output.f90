@@ -1,0 +1,143 @@
+!> Text tables of results in `<job>.dat`, in CalculiX's layout (ccx 2.20: "displacements
+!> (vx,vy,vz) for set X and time t" blocks), so that printed results of classic decks can be
+!> compared line by line with CalculiX's.
+!>
+!> Conventions as CalculiX: forces (RF) are the internal nodal forces, i.e. the reaction at a
+!> supported node and the applied load at a loaded free node; strains are printed as tensor
+!> components (exy = gamma_xy / 2). Rows are in ascending id order.
+module fcs_dat_output
+  use fcs_kinds, only: dp
+  use fcs_error, only: error_t, fatal_error
+  use fcs_model, only: model_t, output_request_t, TOTALS_NO, TOTALS_ONLY
+  use fcs_sort, only: argsort_integers
+  use fcs_hex8_shape, only: N_GAUSS_HEX8
+  implicit none
+  private
+  public :: dat_file_t
+
+  type :: dat_file_t
+    integer :: unit = -1
+  contains
+    procedure :: open => dat_open
+    procedure :: close => dat_close
+    procedure :: node_print => dat_node_print
+    procedure :: el_print => dat_el_print
+  end type dat_file_t
+
+contains
+
+  subroutine dat_open(this, path, err, append)
+    class(dat_file_t), intent(inout) :: this
+    character(len=*), intent(in) :: path
+    type(error_t), allocatable, intent(out) :: err
+    logical, intent(in), optional :: append
+    integer :: stat
+    character(len=256) :: msg
+    character(len=8) :: position
+    position = 'rewind'
+    if (present(append)) then
+      if (append) position = 'append'
+    end if
+    open (newunit=this%unit, file=path, action='write', position=trim(position), iostat=stat, &
+          iomsg=msg)
+    if (stat /= 0) call fatal_error(err, 'opening ' // path // ': ' // trim(msg))
+  end subroutine dat_open
+
+  subroutine dat_close(this)
+    class(dat_file_t), intent(inout) :: this
+    if (this%unit >= 0) close (this%unit)
+    this%unit = -1
+  end subroutine dat_close
+
+  !> *NODE PRINT: U and/or RF (and totals) of the request's node set.
+  subroutine dat_node_print(this, model, request, time, u, rf)
+    class(dat_file_t), intent(inout) :: this
+    type(model_t), intent(in) :: model
+    type(output_request_t), intent(in) :: request
+    real(dp), intent(in) :: time, u(:, :), rf(:, :)
+    integer :: v
+    integer, allocatable :: nodes(:)
+    associate (set => model%mesh%node_sets(request%set))
+      nodes = set%members(argsort_integers(model%mesh%node_id(set%members)))
+      do v = 1, size(request%variables)
+        select case (request%variables(v)%s)
+        case ('U')
+          call node_block(this%unit, 'displacements (vx,vy,vz)', set%name, time, model, nodes, u, &
+                          request%totals)
+        case ('RF')
+          call node_block(this%unit, 'forces (fx,fy,fz)', set%name, time, model, nodes, rf, &
+                          request%totals)
+        end select
+      end do
+    end associate
+    flush (this%unit)
+  end subroutine dat_node_print
+
+  subroutine node_block(unit, title, set_name, time, model, nodes, values, totals)
+    integer, intent(in) :: unit, totals
+    character(len=*), intent(in) :: title, set_name
+    real(dp), intent(in) :: time, values(:, :)
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: nodes(:)
+    integer :: i
+    if (totals /= TOTALS_ONLY) then
+      call header(unit, title, set_name, time)
+      do i = 1, size(nodes)
+        write (unit, '(i10,3es14.6)') model%mesh%node_id(nodes(i)), values(:, nodes(i))
+      end do
+    end if
+    if (totals /= TOTALS_NO .and. index(title, 'forces') == 1) then
+      call header(unit, 'total force (fx,fy,fz)', set_name, time)
+      write (unit, '(6x,3es14.6)') sum(values(:, nodes), dim=2)
+    end if
+  end subroutine node_block
+
+  !> *EL PRINT: S and/or E at the integration points of the request's element set.
+  subroutine dat_el_print(this, model, request, time, stress, strain)
+    class(dat_file_t), intent(inout) :: this
+    type(model_t), intent(in) :: model
+    type(output_request_t), intent(in) :: request
+    real(dp), intent(in) :: time, stress(:, :, :), strain(:, :, :)
+    integer :: v, i, q, e
+    integer, allocatable :: elements(:)
+    real(dp) :: tensor_strain(6)
+    associate (set => model%mesh%element_sets(request%set))
+      elements = set%members(argsort_integers(model%mesh%element_id(set%members)))
+      do v = 1, size(request%variables)
+        select case (request%variables(v)%s)
+        case ('S')
+          call header(this%unit, 'stresses (elem, integ.pnt.,sxx,syy,szz,sxy,sxz,syz)', &
+                      set%name, time)
+          do i = 1, size(elements)
+            e = elements(i)
+            do q = 1, N_GAUSS_HEX8
+              write (this%unit, '(i10,i4,6es14.6)') model%mesh%element_id(e), q, stress(:, q, e)
+            end do
+          end do
+        case ('E')
+          call header(this%unit, 'strains (elem, integ.pnt.,exx,eyy,ezz,exy,exz,eyz)', &
+                      set%name, time)
+          do i = 1, size(elements)
+            e = elements(i)
+            do q = 1, N_GAUSS_HEX8
+              tensor_strain = strain(:, q, e)
+              tensor_strain(4:6) = 0.5_dp * tensor_strain(4:6)
+              write (this%unit, '(i10,i4,6es14.6)') model%mesh%element_id(e), q, tensor_strain
+            end do
+          end do
+        end select
+      end do
+    end associate
+    flush (this%unit)
+  end subroutine dat_el_print
+
+  subroutine header(unit, title, set_name, time)
+    integer, intent(in) :: unit
+    character(len=*), intent(in) :: title, set_name
+    real(dp), intent(in) :: time
+    write (unit, '(a)') ''
+    write (unit, '(a,e14.7)') ' ' // title // ' for set ' // set_name // ' and time ', time
+    write (unit, '(a)') ''
+  end subroutine header
+
+end module fcs_dat_output

@@ -1,0 +1,67 @@
+!> The abstract linear solver: every direct solver of fcs3d (skyline, UMFPACK, MUMPS) extends
+!> `linear_solver_t` and is created by name through `fcs_solver_factory`.
+!>
+!> Protocol: `factor` is called after the matrix values change; it redoes the symbolic analysis
+!> only when `matrix%pattern_version` differs from the one analysed last. `solve` may then be
+!> called any number of times. Matrices are general (unsymmetric): frictional contact makes
+!> the tangent unsymmetric.
+module fcs_linear_solver
+  use fcs_kinds, only: dp
+  use fcs_error, only: error_t
+  use fcs_sparse, only: sparse_matrix_t
+  implicit none
+  private
+  public :: linear_solver_t, solver_stats_t
+
+  !> Figures a solver reports about its last factorisation (0 when unknown).
+  type :: solver_stats_t
+    real(dp) :: analyse_seconds = 0.0_dp
+    real(dp) :: factor_seconds = 0.0_dp
+    real(dp) :: solve_seconds = 0.0_dp
+    real(dp) :: factor_entries = 0.0_dp
+    integer :: n_analyses = 0
+    integer :: n_factorisations = 0
+  end type solver_stats_t
+
+  type, abstract :: linear_solver_t
+    type(solver_stats_t) :: stats
+  contains
+    procedure(factor_interface), deferred :: factor
+    procedure(solve_interface), deferred :: solve
+    procedure(free_interface), deferred :: free
+    procedure(name_interface), deferred :: name
+  end type linear_solver_t
+
+  abstract interface
+    !> Factorise `matrix` (symbolic analysis again only if its pattern changed).
+    subroutine factor_interface(this, matrix, err)
+      import :: linear_solver_t, sparse_matrix_t, error_t
+      class(linear_solver_t), intent(inout) :: this
+      type(sparse_matrix_t), intent(in) :: matrix
+      type(error_t), allocatable, intent(out) :: err
+    end subroutine factor_interface
+
+    !> Solve A x = b with the last factorisation of A = `matrix`.
+    subroutine solve_interface(this, matrix, b, x, err)
+      import :: linear_solver_t, sparse_matrix_t, error_t, dp
+      class(linear_solver_t), intent(inout) :: this
+      type(sparse_matrix_t), intent(in) :: matrix
+      real(dp), intent(in) :: b(:)
+      real(dp), intent(out) :: x(:)
+      type(error_t), allocatable, intent(out) :: err
+    end subroutine solve_interface
+
+    subroutine free_interface(this)
+      import :: linear_solver_t
+      class(linear_solver_t), intent(inout) :: this
+    end subroutine free_interface
+
+    !> The solver's name as the deck spells it (SKYLINE, UMFPACK, MUMPS).
+    function name_interface(this) result(name)
+      import :: linear_solver_t
+      class(linear_solver_t), intent(in) :: this
+      character(len=:), allocatable :: name
+    end function name_interface
+  end interface
+
+end module fcs_linear_solver

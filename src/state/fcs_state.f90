@@ -1,0 +1,68 @@
+!> The run state: everything that changes during an analysis, in one object, so that a
+!> checkpoint is "write state_t" and a restart is "read state_t" (doc/architecture.md).
+module fcs_state
+  use fcs_kinds, only: dp
+  use fcs_hex8_shape, only: N_GAUSS_HEX8
+  implicit none
+  private
+  public :: state_t
+
+  type :: state_t
+    integer :: n_nodes = 0
+    integer :: n_elements = 0
+    !> Current coordinates (3, n_nodes) and total displacements from the reference.
+    real(dp), allocatable :: x(:, :)
+    real(dp), allocatable :: u(:, :)
+    !> Cauchy stress and accumulated strain at the integration points (6, 8, n_elements),
+    !> Voigt order 11, 22, 33, 12, 13, 23; strains with engineering shear.
+    real(dp), allocatable :: stress(:, :, :)
+    real(dp), allocatable :: strain(:, :, :)
+    !> Material internal variables (n_state, 8, n_elements); n_state may be 0.
+    real(dp), allocatable :: material_state(:, :, :)
+    !> Reaction forces at constrained degrees of freedom (3, n_nodes), last computed.
+    real(dp), allocatable :: reaction(:, :)
+    !> Displacements at the start of the current step (for ramped prescribed displacements).
+    real(dp), allocatable :: step_start_u(:, :)
+    !> Total time, time within the current step, current step (1-based).
+    real(dp) :: time = 0.0_dp
+    real(dp) :: step_time = 0.0_dp
+    integer :: step = 1
+    !> Increments done in total and in the current step.
+    integer :: increment = 0
+    integer :: step_increment = 0
+    !> Size of the last increment and its R-minimum factor.
+    real(dp) :: last_increment = 0.0_dp
+    real(dp) :: last_r = 1.0_dp
+    !> Out-of-balance force norm at the start of the last increment.
+    real(dp) :: residual_norm = 0.0_dp
+  contains
+    procedure :: init => state_init
+  end type state_t
+
+contains
+
+  !> Initial state: reference geometry, zero stress.
+  subroutine state_init(this, x_reference, n_elements, n_material_state)
+    class(state_t), intent(inout) :: this
+    real(dp), intent(in) :: x_reference(:, :)
+    integer, intent(in) :: n_elements, n_material_state
+    this%n_nodes = size(x_reference, 2)
+    this%n_elements = n_elements
+    this%x = x_reference
+    allocate (this%u(3, this%n_nodes), this%reaction(3, this%n_nodes))
+    this%u = 0.0_dp
+    this%reaction = 0.0_dp
+    this%step_start_u = this%u
+    allocate (this%stress(6, N_GAUSS_HEX8, n_elements), this%strain(6, N_GAUSS_HEX8, n_elements))
+    this%stress = 0.0_dp
+    this%strain = 0.0_dp
+    allocate (this%material_state(n_material_state, N_GAUSS_HEX8, n_elements))
+    this%material_state = 0.0_dp
+    this%time = 0.0_dp
+    this%step_time = 0.0_dp
+    this%step = 1
+    this%increment = 0
+    this%step_increment = 0
+  end subroutine state_init
+
+end module fcs_state

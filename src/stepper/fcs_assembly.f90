@@ -1,0 +1,159 @@
+!> Assembly of the element contributions: tangent stiffness K and internal forces from every
+!> hexahedron, face-pressure forces and their load stiffness, and the element cliques of the
+!> sparse pattern.
+module fcs_assembly
+  use fcs_kinds, only: dp
+  use fcs_error, only: error_t, fatal_error
+  use fcs_model, only: model_t, FORMULATION_BBAR
+  use fcs_state, only: state_t
+  use fcs_material, only: material_t
+  use fcs_material_factory, only: create_material
+  use fcs_hex8_element, only: hex8_geometry_t, hex8_geometry, hex8_tangent, hex8_internal_force
+  use fcs_hex8_face, only: face_pressure_load
+  use fcs_hex8_shape, only: N_GAUSS_HEX8
+  use fcs_mesh, only: hex8_face_nodes
+  use fcs_sparse, only: sparse_matrix_t
+  use fcs_loading, only: step_loading_t
+  use fcs_strings, only: str
+  implicit none
+  private
+  public :: material_slot_t, make_materials, assemble_elements, assemble_pressures
+  public :: element_cliques, element_configuration, inverted_element_error
+
+  !> One material object per *MATERIAL.
+  type :: material_slot_t
+    class(material_t), allocatable :: m
+  end type material_slot_t
+
+contains
+
+  !> Material objects for the model's materials; `n_state` is the largest number of
+  !> internal variables any of them keeps per integration point.
+  subroutine make_materials(model, slots, n_state, err)
+    type(model_t), intent(in) :: model
+    type(material_slot_t), allocatable, intent(out) :: slots(:)
+    integer, intent(out) :: n_state
+    type(error_t), allocatable, intent(out) :: err
+    integer :: k
+    allocate (slots(size(model%materials)))
+    n_state = 0
+    do k = 1, size(model%materials)
+      call create_material('HYPOELASTIC', model%materials(k)%youngs_modulus, &
+                           model%materials(k)%poisson_ratio, slots(k)%m, err)
+      if (allocated(err)) return
+      n_state = max(n_state, slots(k)%m%n_state())
+    end do
+  end subroutine make_materials
+
+  !> Node lists of the elements as cliques for the sparse pattern.
+  subroutine element_cliques(model, clique_ptr, clique_nodes)
+    type(model_t), intent(in) :: model
+    integer, allocatable, intent(out) :: clique_ptr(:), clique_nodes(:)
+    integer :: e, ne
+    ne = model%mesh%n_elements
+    allocate (clique_ptr(ne + 1), clique_nodes(8 * ne))
+    do e = 1, ne
+      clique_ptr(e) = 8 * (e - 1) + 1
+      clique_nodes(8 * e - 7:8 * e) = model%mesh%connectivity(:, e)
+    end do
+    clique_ptr(ne + 1) = 8 * ne + 1
+  end subroutine element_cliques
+
+  !> Coordinates of element e's nodes on the configuration integrals are taken on: current
+  !> (NLGEOM) or reference.
+  pure function element_configuration(model, state, e, nlgeom) result(x)
+    type(model_t), intent(in) :: model
+    type(state_t), intent(in) :: state
+    integer, intent(in) :: e
+    logical, intent(in) :: nlgeom
+    real(dp) :: x(3, 8)
+    if (nlgeom) then
+      x = state%x(:, model%mesh%connectivity(:, e))
+    else
+      x = model%mesh%x(:, model%mesh%connectivity(:, e))
+    end if
+  end function element_configuration
+
+  !> Error for an element whose Jacobian is no longer positive.
+  subroutine inverted_element_error(model, e, err)
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: e
+    type(error_t), allocatable, intent(out) :: err
+    call fatal_error(err, 'element ' // str(model%mesh%element_id(e)) // ' is inverted ' // &
+      '(Jacobian determinant <= 0): the deformation is too large for the mesh, or a load or ' // &
+      'contact penalty crushes it; refine the mesh there or reduce the R-minimum limits')
+  end subroutine inverted_element_error
+
+  !> Internal forces f_int (3*n_nodes) and, when `matrix` is present, the tangent K added
+  !> into it (values only: the caller zeroes it).
+  subroutine assemble_elements(model, state, slots, nlgeom, f_int, err, matrix)
+    type(model_t), intent(in) :: model
+    type(state_t), intent(in) :: state
+    type(material_slot_t), intent(in) :: slots(:)
+    logical, intent(in) :: nlgeom
+    real(dp), intent(out) :: f_int(:)
+    type(error_t), allocatable, intent(out) :: err
+    type(sparse_matrix_t), intent(inout), optional :: matrix
+    type(hex8_geometry_t) :: geo
+    real(dp) :: k(24, 24), f(24), c(6, 6, N_GAUSS_HEX8)
+    integer :: e, q, a, node, s
+    logical :: ok, bbar, missing
+    f_int = 0.0_dp
+    do e = 1, model%mesh%n_elements
+      call hex8_geometry(element_configuration(model, state, e, nlgeom), geo, ok)
+      if (.not. ok) then
+        call inverted_element_error(model, e, err)
+        return
+      end if
+      s = model%element_section(e)
+      bbar = model%sections(s)%formulation == FORMULATION_BBAR
+      call hex8_internal_force(geo, state%stress(:, :, e), bbar, f)
+      do a = 1, 8
+        node = model%mesh%connectivity(a, e)
+        f_int(3 * node - 2:3 * node) = f_int(3 * node - 2:3 * node) + f(3 * a - 2:3 * a)
+      end do
+      if (.not. present(matrix)) cycle
+      associate (material => slots(model%sections(s)%material)%m)
+        do q = 1, N_GAUSS_HEX8
+          c(:, :, q) = material%tangent(state%stress(:, q, e), state%material_state(:, q, e))
+        end do
+      end associate
+      call hex8_tangent(geo, state%stress(:, :, e), c, bbar, nlgeom, k)
+      call matrix%add_matrix(model%mesh%connectivity(:, e), k, missing)
+    end do
+  end subroutine assemble_elements
+
+  !> Pressure forces at step time t added to f_ext; with `matrix` (NLGEOM only) the follower
+  !> load stiffness -dF/dx is added to the tangent.
+  subroutine assemble_pressures(model, loading, t, state, nlgeom, f_ext, matrix)
+    type(model_t), intent(in) :: model
+    type(step_loading_t), intent(in) :: loading
+    real(dp), intent(in) :: t
+    type(state_t), intent(in) :: state
+    logical, intent(in) :: nlgeom
+    real(dp), intent(inout) :: f_ext(:)
+    type(sparse_matrix_t), intent(inout), optional :: matrix
+    real(dp) :: xf(3, 4), f(12), dfdx(12, 12), p
+    integer :: i, a, nodes(4)
+    logical :: missing
+    do i = 1, size(loading%face_element)
+      p = loading%pressure_at(model%amplitudes, i, t)
+      nodes = hex8_face_nodes(model%mesh, loading%face_element(i), loading%face_number(i))
+      if (nlgeom) then
+        xf = state%x(:, nodes)
+      else
+        xf = model%mesh%x(:, nodes)
+      end if
+      if (present(matrix) .and. nlgeom) then
+        call face_pressure_load(xf, p, f, dfdx)
+        call matrix%add_matrix(nodes, -dfdx, missing)
+      else
+        call face_pressure_load(xf, p, f)
+      end if
+      do a = 1, 4
+        f_ext(3 * nodes(a) - 2:3 * nodes(a)) = f_ext(3 * nodes(a) - 2:3 * nodes(a)) + f(3 * a - 2:3 * a)
+      end do
+    end do
+  end subroutine assemble_pressures
+
+end module fcs_assembly

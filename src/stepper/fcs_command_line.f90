@@ -1,0 +1,154 @@
+!> The command line of fcs3d: options, help text, and what main should do.
+module fcs_command_line
+  use, intrinsic :: iso_fortran_env, only: output_unit
+  use fcs_error, only: error_t, input_error
+  use fcs_run_options, only: run_options_t
+  use fcs_solver_factory, only: LINEAR_SOLVER_NAMES
+  use fcs_strings, only: to_upper, basename, path_stem, join_path
+  use fcs_version, only: FCS3D_VERSION, FCS3D_REVISION
+  implicit none
+  private
+  public :: parse_command_line, ACTION_RUN, ACTION_DONE
+
+  !> What main does after parsing: run a job, or nothing more (help/version/keywords printed).
+  integer, parameter :: ACTION_RUN = 1, ACTION_DONE = 2
+
+contains
+
+  !> Parse the arguments into `options`; `action` says whether to run.
+  subroutine parse_command_line(options, action, err)
+    type(run_options_t), intent(out) :: options
+    integer, intent(out) :: action
+    type(error_t), allocatable, intent(out) :: err
+    integer :: i, n
+    character(len=:), allocatable :: arg, output_dir
+    logical :: markdown, list_keywords
+    options%deck_path = ''
+    options%solver = ''
+    options%restart_file = ''
+    output_dir = ''
+    markdown = .false.
+    list_keywords = .false.
+    action = ACTION_RUN
+    n = command_argument_count()
+    i = 0
+    do while (i < n)
+      i = i + 1
+      arg = argument(i)
+      select case (arg)
+      case ('-h', '--help')
+        call print_help()
+        action = ACTION_DONE
+        return
+      case ('--version')
+        write (output_unit, '(a)') 'fcs3d ' // FCS3D_VERSION // ' (git ' // FCS3D_REVISION // ')'
+        action = ACTION_DONE
+        return
+      case ('--list-keywords')
+        list_keywords = .true.
+      case ('--markdown')
+        markdown = .true.
+      case ('--check')
+        options%check_only = .true.
+      case ('-q', '--quiet')
+        options%quiet = .true.
+      case ('--solver', '--restart', '-o', '--output-dir')
+        if (i == n) then
+          call input_error(err, 'option ' // arg // ' needs a value (fcs3d --help)')
+          return
+        end if
+        i = i + 1
+        select case (arg)
+        case ('--solver')
+          options%solver = to_upper(argument(i))
+          if (.not. any(LINEAR_SOLVER_NAMES == options%solver)) then
+            call input_error(err, '--solver ' // argument(i) // ': unknown solver; expected ' // &
+                             'UMFPACK, SKYLINE or MUMPS')
+            return
+          end if
+        case ('--restart')
+          options%restart_file = argument(i)
+        case default
+          output_dir = argument(i)
+        end select
+      case default
+        if (arg(1:1) == '-') then
+          call input_error(err, 'unknown option ' // arg // ' (fcs3d --help lists the options)')
+          return
+        end if
+        if (len(options%deck_path) > 0) then
+          call input_error(err, 'more than one deck given (' // options%deck_path // ', ' // arg // ')')
+          return
+        end if
+        options%deck_path = arg
+      end select
+    end do
+    if (list_keywords) then
+      call print_keywords(markdown)
+      action = ACTION_DONE
+      return
+    end if
+    if (len(options%deck_path) == 0) then
+      call input_error(err, 'no input deck given; usage: fcs3d [options] job.inp (fcs3d --help)')
+      return
+    end if
+    if (len(output_dir) == 0) then
+      options%job = path_stem(options%deck_path)
+    else
+      options%job = join_path(output_dir, path_stem(basename(options%deck_path)))
+    end if
+  end subroutine parse_command_line
+
+  subroutine print_keywords(markdown)
+    use fcs_keyword_docs, only: print_keyword_list, print_keyword_reference
+    logical, intent(in) :: markdown
+    if (markdown) then
+      call print_keyword_reference()
+    else
+      call print_keyword_list()
+    end if
+  end subroutine print_keywords
+
+  function argument(i) result(arg)
+    integer, intent(in) :: i
+    character(len=:), allocatable :: arg
+    integer :: length
+    call get_command_argument(i, length=length)
+    allocate (character(len=length) :: arg)
+    call get_command_argument(i, arg)
+  end function argument
+
+  subroutine print_help()
+    character(len=*), parameter :: lines(*) = [character(len=100) :: &
+      'fcs3d - frictional contact systems in 3D (static-explicit, R-minimum, node-to-point contact)', &
+      '', &
+      'usage: fcs3d [options] job.inp', &
+      '', &
+      'Reads the keyword deck job.inp (Abaqus/CalculiX conventions) and writes, next to it', &
+      '(or in the output directory): job.echo (the deck with defaults filled in), job.log', &
+      '(run log, one line per increment), job.dat (*NODE PRINT/*EL PRINT tables in CalculiX''s', &
+      'layout), job.h5 + job.xdmf (results; open job.xdmf in ParaView).', &
+      '', &
+      'options:', &
+      '  -h, --help            this text', &
+      '  --version             version and git revision', &
+      '  --list-keywords       the keywords the deck may use, with their parameters', &
+      '  --markdown            with --list-keywords: the deck reference in Markdown', &
+      '  --check               read and check the deck and the model, write job.echo, do not run', &
+      '  --solver NAME         linear solver: UMFPACK (default), SKYLINE or MUMPS', &
+      '  --restart FILE        continue from a checkpoint (job.rst.h5)', &
+      '  -o, --output-dir DIR  write the output files into DIR (which must exist)', &
+      '  -q, --quiet           no progress on the terminal (warnings and errors still shown)', &
+      '', &
+      'exit status: 0 success; 1 internal failure (solver, file system, bad state during the', &
+      'run); 2 bad input (deck, mesh, command line, checkpoint that does not match);', &
+      '3 stopped by SIGTERM/SIGINT after writing a checkpoint.', &
+      '', &
+      'documentation: doc/user_guide.md, doc/deck_reference.md, doc/theory.md']
+    integer :: i
+    do i = 1, size(lines)
+      write (output_unit, '(a)') trim(lines(i))
+    end do
+  end subroutine print_help
+
+end module fcs_command_line

@@ -1,0 +1,359 @@
+!> The analysis driver: builds the model from the deck, sets up the state, the solver and the
+!> outputs, runs every step increment by increment, and writes results at the output times.
+module fcs_driver
+  use fcs_kinds, only: dp
+  use fcs_error, only: error_t, fatal_error, add_context
+  use fcs_deck_lexer, only: deck_t
+  use fcs_model, only: model_t, step_t, output_request_t, OUTPUT_NODE_PRINT, OUTPUT_EL_PRINT, &
+                       OUTPUT_NODE_FILE, OUTPUT_EL_FILE
+  use fcs_model_builder, only: build_model
+  use fcs_run_options, only: run_options_t
+  use fcs_state, only: state_t
+  use fcs_loading, only: build_step_loading
+  use fcs_assembly, only: make_materials, element_cliques, assemble_elements
+  use fcs_static_explicit, only: analysis_t, take_increment, increment_record_t
+  use fcs_solver_factory, only: create_linear_solver
+  use fcs_results, only: results_file_t
+  use fcs_dat_output, only: dat_file_t
+  use fcs_echo, only: write_echo
+  use fcs_log, only: logger_t, format_duration
+  use fcs_timer, only: wall_time, peak_memory_mib
+  use fcs_rmin_events, only: event_kind_name, EVENT_FULL_INCREMENT, EVENT_STRAIN_LIMIT, &
+                             EVENT_ROTATION_LIMIT, EVENT_YIELD
+  use fcs_hex8_element, only: mises_stress, hex8_extrapolate
+  use fcs_hex8_shape, only: N_GAUSS_HEX8
+  use fcs_strings, only: str, to_upper
+  implicit none
+  private
+  public :: run_job
+
+  !> Everything open during a run.
+  type :: run_t
+    type(analysis_t) :: analysis
+    type(logger_t) :: log
+    type(results_file_t) :: results
+    type(dat_file_t) :: dat
+    real(dp) :: started = 0.0_dp
+    real(dp) :: total_time = 0.0_dp
+  end type run_t
+
+contains
+
+  !> Run the job described by `options`.
+  subroutine run_job(options, err)
+    type(run_options_t), intent(in) :: options
+    type(error_t), allocatable, intent(out) :: err
+    type(model_t) :: model
+    type(deck_t) :: deck
+    type(run_t) :: run
+    real(dp) :: t_start
+    t_start = wall_time()
+    call build_model(options%deck_path, model, deck, err)
+    if (allocated(err)) return
+    if (len(options%solver) > 0) model%solver_name = to_upper(options%solver)
+    call write_echo(options%job // '.echo', deck, model, err)
+    if (allocated(err)) return
+    call run%log%open(options%job // '.log', options%quiet, err)
+    if (allocated(err)) return
+    call describe_model(run%log, model, options)
+    if (options%check_only) then
+      call run%log%info('check: the deck and the model are valid (echo in ' // options%job // '.echo)')
+      call run%log%close()
+      return
+    end if
+    run%started = t_start
+    call setup(run, model, options, err)
+    if (.not. allocated(err)) call run_steps(run, model, err)
+    if (.not. allocated(err)) call summary(run, model)
+    call close_outputs(run)
+  end subroutine run_job
+
+  subroutine describe_model(log, model, options)
+    type(logger_t), intent(inout) :: log
+    type(model_t), intent(in) :: model
+    type(run_options_t), intent(in) :: options
+    if (len(model%title) > 0) then
+      call log%info('fcs3d: ' // options%deck_path // ': ' // model%title)
+    else
+      call log%info('fcs3d: ' // options%deck_path)
+    end if
+    call log%info('model: ' // str(model%mesh%n_nodes) // ' nodes, ' // &
+                  str(model%mesh%n_elements) // ' hexahedra, ' // str(3 * model%mesh%n_nodes) // &
+                  ' degrees of freedom, ' // str(size(model%steps)) // ' step(s); solver ' // &
+                  model%solver_name)
+  end subroutine describe_model
+
+  !> State, materials, sparse pattern, solver, output files.
+  subroutine setup(run, model, options, err)
+    type(run_t), intent(inout) :: run
+    type(model_t), intent(in) :: model
+    type(run_options_t), intent(in) :: options
+    type(error_t), allocatable, intent(out) :: err
+    integer, allocatable :: clique_ptr(:), clique_nodes(:)
+    integer :: n_state, n
+    associate (a => run%analysis)
+      call make_materials(model, a%materials, n_state, err)
+      if (allocated(err)) return
+      a%materials_have_states = n_state > 0
+      call a%state%init(model%mesh%x, model%mesh%n_elements, n_state)
+      call element_cliques(model, clique_ptr, clique_nodes)
+      call a%matrix%build(model%mesh%n_nodes, clique_ptr, clique_nodes)
+      call create_linear_solver(model%solver_name, a%solver, err)
+      if (allocated(err)) return
+      n = 3 * model%mesh%n_nodes
+      allocate (a%f_int(n), a%f_ext0(n), a%f_ext1(n), a%rhs(n), a%du(n), a%prescribed(n), &
+                a%constrained(n))
+      a%f_int = 0.0_dp
+    end associate
+    run%total_time = sum(model%steps(:)%period)
+    call run%dat%open(options%job // '.dat', err)
+    if (allocated(err)) return
+    call run%results%create(options%job, model%mesh%node_id, model%mesh%x, model%mesh%element_id, &
+                            model%mesh%connectivity, err)
+    if (allocated(err)) return
+    call write_frame(run, model, err)
+  end subroutine setup
+
+  !> All steps, increment by increment.
+  subroutine run_steps(run, model, err)
+    type(run_t), intent(inout) :: run
+    type(model_t), intent(in) :: model
+    type(error_t), allocatable, intent(out) :: err
+    type(increment_record_t) :: record
+    integer :: k
+    associate (a => run%analysis, state => run%analysis%state)
+      do k = state%step, size(model%steps)
+        state%step = k
+        call begin_step(run, model, k)
+        do while (state%step_time < model%steps(k)%period * (1.0_dp - 1.0e-12_dp))
+          if (state%step_increment >= model%steps(k)%max_increments) then
+            call fatal_error(err, 'step ' // str(k) // ' ("' // model%steps(k)%name // '") needs ' // &
+              'more than INC=' // str(model%steps(k)%max_increments) // ' increments; raise INC ' // &
+              'on *STEP or the R-minimum limits')
+            exit
+          end if
+          call take_increment(a, model, record, err)
+          if (allocated(err)) exit
+          call log_increment(run, model, record)
+          call increment_outputs(run, model, .false., err)
+          if (allocated(err)) exit
+        end do
+        if (allocated(err)) then
+          call add_context(err, 'step ' // str(k) // ', increment ' // str(state%increment + 1) // &
+                           ', time ' // str(state%time))
+          return
+        end if
+        state%step_time = model%steps(k)%period
+        call increment_outputs(run, model, .true., err)
+        if (allocated(err)) return
+        call run%log%info('end of step ' // str(k) // ' ("' // model%steps(k)%name // '") at time ' // &
+                          str(state%time) // ' after ' // str(state%step_increment) // ' increment(s)')
+      end do
+    end associate
+  end subroutine run_steps
+
+  subroutine begin_step(run, model, k)
+    type(run_t), intent(inout) :: run
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: k
+    associate (state => run%analysis%state)
+      call build_step_loading(model, k, state%time - state%step_time, run%analysis%loading)
+      if (state%step_time == 0.0_dp) then
+        state%step_start_u = state%u
+        state%step_increment = 0
+      end if
+      call run%log%info('step ' // str(k) // ' ("' // model%steps(k)%name // '"): period ' // &
+        str(model%steps(k)%period) // ', increments between ' // str(model%steps(k)%min_increment) // &
+        ' and ' // str(model%steps(k)%max_increment) // trim(merge(', NLGEOM', '        ', &
+        model%steps(k)%nlgeom)))
+    end associate
+  end subroutine begin_step
+
+  !> One log line per increment (log file), and a progress line on the terminal.
+  subroutine log_increment(run, model, record)
+    type(run_t), intent(inout) :: run
+    type(model_t), intent(in) :: model
+    type(increment_record_t), intent(in) :: record
+    character(len=:), allocatable :: line, entity
+    associate (state => run%analysis%state)
+      entity = ''
+      select case (record%limiting%kind)
+      case (EVENT_STRAIN_LIMIT, EVENT_ROTATION_LIMIT, EVENT_YIELD)
+        entity = ' element ' // str(model%mesh%element_id(record%limiting%entity)) // ' ip ' // &
+                 str(record%limiting%detail)
+      case (EVENT_FULL_INCREMENT)
+        entity = ''
+      case default
+        if (record%limiting%entity > 0) entity = ' node ' // str(model%mesh%node_id(record%limiting%entity))
+      end select
+      line = 'inc ' // str(state%increment) // ' step ' // str(state%step) // ' time ' // &
+        str(state%time, 10) // ' dt ' // str(state%last_increment) // ' r ' // str(record%r) // &
+        ' limit ' // event_kind_name(record%limiting%kind) // entity // &
+        merge(' (floor)', '        ', record%floored) // ' events ' // str(record%n_events_taken) // &
+        ' residual ' // str(record%residual_norm) // ' of force ' // str(record%force_norm)
+      call run%log%detail(trim(line))
+      call run%log%progress('time ' // str(state%time) // ' of ' // str(run%total_time) // ', inc ' // &
+        str(state%increment) // ', dt ' // str(state%last_increment) // ' (' // &
+        event_kind_name(record%limiting%kind) // ')', state%time / max(run%total_time, tiny(1.0_dp)), &
+        wall_time() - run%started)
+    end associate
+  end subroutine log_increment
+
+  !> Print and write whatever is due after an increment (or at the end of the step).
+  subroutine increment_outputs(run, model, end_of_step, err)
+    type(run_t), intent(inout) :: run
+    type(model_t), intent(in) :: model
+    logical, intent(in) :: end_of_step
+    type(error_t), allocatable, intent(out) :: err
+    logical :: need_frame, need_print
+    integer :: i
+    associate (step => model%steps(run%analysis%state%step), state => run%analysis%state)
+      need_frame = end_of_step
+      need_print = .false.
+      do i = 1, size(step%outputs)
+        if (.not. is_due(model, step, step%outputs(i), state, end_of_step)) cycle
+        select case (step%outputs(i)%kind)
+        case (OUTPUT_NODE_FILE, OUTPUT_EL_FILE)
+          need_frame = .true.
+        case default
+          need_print = .true.
+        end select
+      end do
+      if (.not. (need_frame .or. need_print)) return
+      call assemble_elements(model, state, run%analysis%materials, step%nlgeom, &
+                             run%analysis%f_int, err)
+      if (allocated(err)) return
+      state%reaction = reshape(run%analysis%f_int, shape(state%reaction))
+      do i = 1, size(step%outputs)
+        if (.not. is_due(model, step, step%outputs(i), state, end_of_step)) cycle
+        select case (step%outputs(i)%kind)
+        case (OUTPUT_NODE_PRINT)
+          call run%dat%node_print(model, step%outputs(i), state%time, state%u, state%reaction)
+        case (OUTPUT_EL_PRINT)
+          call run%dat%el_print(model, step%outputs(i), state%time, state%stress, state%strain)
+        end select
+      end do
+      if (need_frame) call write_frame(run, model, err)
+    end associate
+  end subroutine increment_outputs
+
+  !> Whether output request `request` is due now.
+  logical function is_due(model, step, request, state, end_of_step)
+    type(model_t), intent(in) :: model
+    type(step_t), intent(in) :: step
+    type(output_request_t), intent(in) :: request
+    type(state_t), intent(in) :: state
+    logical, intent(in) :: end_of_step
+    real(dp) :: t, tolerance
+    integer :: i
+    is_due = end_of_step
+    if (is_due) return
+    if (request%frequency > 0) then
+      is_due = mod(state%step_increment, request%frequency) == 0
+      if (is_due) return
+    end if
+    if (request%time_points == 0) return
+    tolerance = 1.0e-9_dp * step%period
+    associate (tp => model%time_points(request%time_points))
+      do i = 1, size(tp%times)
+        t = tp%times(i)
+        if (tp%total_time) t = t - (state%time - state%step_time)
+        if (abs(state%step_time - t) <= tolerance) is_due = .true.
+      end do
+    end associate
+  end function is_due
+
+  !> A results frame: geometry, displacements, forces, stresses (integration points, nodal
+  !> averages of the extrapolated values) and Mises stress.
+  subroutine write_frame(run, model, err)
+    type(run_t), intent(inout) :: run
+    type(model_t), intent(in) :: model
+    type(error_t), allocatable, intent(out) :: err
+    real(dp), allocatable :: nodal(:, :), cell_mises(:, :), nodal_mises(:, :)
+    integer :: q
+    associate (state => run%analysis%state)
+      call run%results%begin_frame(state%time, state%step, state%increment, err)
+      if (allocated(err)) return
+      call run%results%write_coordinates(state%x, err)
+      if (.not. allocated(err)) call run%results%write_nodal('displacement', state%u, err)
+      if (.not. allocated(err)) call run%results%write_nodal('force', state%reaction, err)
+      if (allocated(err)) return
+      nodal = nodal_average(model, state%stress)
+      allocate (nodal_mises(1, size(nodal, 2)), cell_mises(1, model%mesh%n_elements))
+      do q = 1, size(nodal, 2)
+        nodal_mises(1, q) = mises_stress(nodal(:, q))
+      end do
+      do q = 1, model%mesh%n_elements
+        cell_mises(1, q) = element_mean_mises(state%stress(:, :, q))
+      end do
+      call run%results%write_nodal('stress', nodal, err)
+      if (.not. allocated(err)) call run%results%write_nodal('mises', nodal_mises, err)
+      if (.not. allocated(err)) call run%results%write_cell('mises', cell_mises, err)
+      if (.not. allocated(err)) call run%results%write_integration_points('stress', state%stress, err)
+      if (.not. allocated(err)) call run%results%write_integration_points('strain', state%strain, err)
+      if (.not. allocated(err)) call run%results%end_frame(err)
+    end associate
+  end subroutine write_frame
+
+  pure real(dp) function element_mean_mises(stress) result(m)
+    real(dp), intent(in) :: stress(:, :)
+    integer :: q
+    m = 0.0_dp
+    do q = 1, size(stress, 2)
+      m = m + mises_stress(stress(:, q))
+    end do
+    m = m / size(stress, 2)
+  end function element_mean_mises
+
+  !> Nodal values: integration-point values extrapolated to each element's nodes, averaged
+  !> over the elements sharing a node.
+  function nodal_average(model, ip_values) result(nodal)
+    type(model_t), intent(in) :: model
+    real(dp), intent(in) :: ip_values(:, :, :)
+    real(dp), allocatable :: nodal(:, :)
+    real(dp), allocatable :: weight(:)
+    real(dp) :: at_nodes(size(ip_values, 1), 8)
+    integer :: e, a, node
+    allocate (nodal(size(ip_values, 1), model%mesh%n_nodes), weight(model%mesh%n_nodes))
+    nodal = 0.0_dp
+    weight = 0.0_dp
+    do e = 1, model%mesh%n_elements
+      at_nodes = hex8_extrapolate(ip_values(:, :, e))
+      do a = 1, 8
+        node = model%mesh%connectivity(a, e)
+        nodal(:, node) = nodal(:, node) + at_nodes(:, a)
+        weight(node) = weight(node) + 1.0_dp
+      end do
+    end do
+    do node = 1, model%mesh%n_nodes
+      if (weight(node) > 0.0_dp) nodal(:, node) = nodal(:, node) / weight(node)
+    end do
+  end function nodal_average
+
+  !> Run summary: size, solver, increments, time per phase, memory.
+  subroutine summary(run, model)
+    type(run_t), intent(inout) :: run
+    type(model_t), intent(in) :: model
+    character(len=*), parameter :: phases(6) = [character(len=13) :: 'assembly', 'factorisation', &
+                                                'solve', 'r-minimum', 'update', 'output']
+    integer :: i
+    associate (a => run%analysis)
+      call run%log%info('done: ' // str(a%state%increment) // ' increment(s), time ' // &
+        str(a%state%time) // ', wall ' // format_duration(wall_time() - run%started) // &
+        ', peak memory ' // str(peak_memory_mib(), 4) // ' MiB; solver ' // a%solver%name())
+      do i = 1, size(phases)
+        call run%log%info('  ' // phases(i) // ': ' // format_duration(a%timers%total(trim(phases(i)))))
+      end do
+    end associate
+  end subroutine summary
+
+  subroutine close_outputs(run)
+    type(run_t), intent(inout) :: run
+    type(error_t), allocatable :: err
+    call run%dat%close()
+    if (run%results%is_open()) call run%results%close(err)
+    if (allocated(run%analysis%solver)) call run%analysis%solver%free()
+    call run%log%close()
+  end subroutine close_outputs
+
+end module fcs_driver

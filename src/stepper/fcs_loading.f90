@@ -1,0 +1,312 @@
+!> Loading of one step as functions of the step time: prescribed displacements and
+!> velocities, nodal forces and face pressures, following the Abaqus/CalculiX conventions
+!> (*STATIC: values ramp linearly over the step from their values at its start, unless an
+!> *AMPLITUDE is given, in which case value x a(t)). The stepper never lets an increment
+!> cross a breakpoint (an amplitude point or an output time), so that within one increment
+!> every load is linear in time and the R-minimum scaling of the increment is exact.
+module fcs_loading
+  use fcs_kinds, only: dp
+  use fcs_model, only: model_t, step_t, amplitude_t, BC_DISPLACEMENT, BC_VELOCITY, &
+                       OUTPUT_NODE_FILE, OUTPUT_EL_FILE
+  use fcs_sort, only: argsort_reals
+  implicit none
+  private
+  public :: step_loading_t, build_step_loading, amplitude_value, amplitude_integral
+
+  !> The loading of one step.
+  type :: step_loading_t
+    real(dp) :: period = 1.0_dp
+    !> Total time at the start of the step (for amplitudes in total time).
+    real(dp) :: start_time = 0.0_dp
+    !> Prescribed degrees of freedom (global dof 3*(node-1)+direction).
+    integer, allocatable :: bc_dof(:), bc_kind(:), bc_amplitude(:)
+    real(dp), allocatable :: bc_value(:)
+    !> Concentrated forces: value ramps from start to end (or end x amplitude).
+    integer, allocatable :: force_dof(:), force_amplitude(:)
+    real(dp), allocatable :: force_start(:), force_end(:)
+    !> Face pressures, same rule.
+    integer, allocatable :: face_element(:), face_number(:), face_amplitude(:)
+    real(dp), allocatable :: pressure_start(:), pressure_end(:)
+    !> Step times inside (0, period) where an amplitude has a point.
+    real(dp), allocatable :: breakpoints(:)
+  contains
+    procedure :: force_at => loading_force_at
+    procedure :: pressure_at => loading_pressure_at
+    procedure :: prescribed_target => loading_prescribed_target
+    procedure :: next_breakpoint => loading_next_breakpoint
+  end type step_loading_t
+
+contains
+
+  !> Build the loading of step `k` starting at total time `start_time`. Forces and pressures
+  !> start from the values they had at the end of step k-1.
+  subroutine build_step_loading(model, k, start_time, loading)
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: k
+    real(dp), intent(in) :: start_time
+    type(step_loading_t), intent(out) :: loading
+    integer :: i
+    associate (step => model%steps(k))
+      loading%period = step%period
+      loading%start_time = start_time
+      allocate (loading%bc_dof(size(step%boundary)), loading%bc_kind(size(step%boundary)), &
+                loading%bc_amplitude(size(step%boundary)), loading%bc_value(size(step%boundary)))
+      do i = 1, size(step%boundary)
+        loading%bc_dof(i) = 3 * (step%boundary(i)%node - 1) + step%boundary(i)%dof
+        loading%bc_kind(i) = step%boundary(i)%kind
+        loading%bc_amplitude(i) = step%boundary(i)%amplitude
+        loading%bc_value(i) = step%boundary(i)%value
+      end do
+      allocate (loading%force_dof(size(step%loads)), loading%force_amplitude(size(step%loads)), &
+                loading%force_start(size(step%loads)), loading%force_end(size(step%loads)))
+      do i = 1, size(step%loads)
+        loading%force_dof(i) = 3 * (step%loads(i)%node - 1) + step%loads(i)%dof
+        loading%force_amplitude(i) = step%loads(i)%amplitude
+        loading%force_end(i) = step%loads(i)%value
+        loading%force_start(i) = previous_force(model, k, step%loads(i)%node, step%loads(i)%dof, &
+                                                start_time)
+      end do
+      allocate (loading%face_element(size(step%pressures)), loading%face_number(size(step%pressures)), &
+                loading%face_amplitude(size(step%pressures)), &
+                loading%pressure_start(size(step%pressures)), loading%pressure_end(size(step%pressures)))
+      do i = 1, size(step%pressures)
+        loading%face_element(i) = step%pressures(i)%element
+        loading%face_number(i) = step%pressures(i)%face
+        loading%face_amplitude(i) = step%pressures(i)%amplitude
+        loading%pressure_end(i) = step%pressures(i)%pressure
+        loading%pressure_start(i) = previous_pressure(model, k, step%pressures(i)%element, &
+                                                      step%pressures(i)%face, start_time)
+      end do
+      call collect_breakpoints(model, step, start_time, loading)
+    end associate
+  end subroutine build_step_loading
+
+  !> Value of a concentrated force at the end of step k-1 (0 if it was not loaded).
+  real(dp) function previous_force(model, k, node, dof, start_time) result(value)
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: k, node, dof
+    real(dp), intent(in) :: start_time
+    integer :: i
+    value = 0.0_dp
+    if (k == 1) return
+    associate (loads => model%steps(k - 1)%loads)
+      do i = 1, size(loads)
+        if (loads(i)%node == node .and. loads(i)%dof == dof) then
+          value = loads(i)%value
+          if (loads(i)%amplitude > 0) value = value * amplitude_value(model%amplitudes( &
+            loads(i)%amplitude), model%steps(k - 1)%period, start_time - model%steps(k - 1)%period)
+          return
+        end if
+      end do
+    end associate
+  end function previous_force
+
+  !> Pressure on a face at the end of step k-1 (0 if it was not loaded).
+  real(dp) function previous_pressure(model, k, element, face, start_time) result(value)
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: k, element, face
+    real(dp), intent(in) :: start_time
+    integer :: i
+    value = 0.0_dp
+    if (k == 1) return
+    associate (pressures => model%steps(k - 1)%pressures)
+      do i = 1, size(pressures)
+        if (pressures(i)%element == element .and. pressures(i)%face == face) then
+          value = pressures(i)%pressure
+          if (pressures(i)%amplitude > 0) value = value * amplitude_value(model%amplitudes( &
+            pressures(i)%amplitude), model%steps(k - 1)%period, start_time - model%steps(k - 1)%period)
+          return
+        end if
+      end do
+    end associate
+  end function previous_pressure
+
+  !> Breakpoints: amplitude points of every amplitude the step uses, and the output times of
+  !> its requests, as step times in (0, period), sorted and unique.
+  subroutine collect_breakpoints(model, step, start_time, loading)
+    type(model_t), intent(in) :: model
+    type(step_t), intent(in) :: step
+    real(dp), intent(in) :: start_time
+    type(step_loading_t), intent(inout) :: loading
+    real(dp), allocatable :: times(:)
+    logical, allocatable :: used(:)
+    integer :: i, a
+    allocate (used(size(model%amplitudes)), times(0))
+    used = .false.
+    do i = 1, size(step%boundary)
+      if (step%boundary(i)%amplitude > 0) used(step%boundary(i)%amplitude) = .true.
+    end do
+    do i = 1, size(step%loads)
+      if (step%loads(i)%amplitude > 0) used(step%loads(i)%amplitude) = .true.
+    end do
+    do i = 1, size(step%pressures)
+      if (step%pressures(i)%amplitude > 0) used(step%pressures(i)%amplitude) = .true.
+    end do
+    do a = 1, size(model%amplitudes)
+      if (.not. used(a)) cycle
+      if (model%amplitudes(a)%total_time) then
+        times = [times, model%amplitudes(a)%time - start_time]
+      else
+        times = [times, model%amplitudes(a)%time]
+      end if
+    end do
+    do i = 1, size(step%outputs)
+      a = step%outputs(i)%time_points
+      if (a == 0) cycle
+      if (model%time_points(a)%total_time) then
+        times = [times, model%time_points(a)%times - start_time]
+      else
+        times = [times, model%time_points(a)%times]
+      end if
+    end do
+    loading%breakpoints = sorted_inside(times, step%period)
+  end subroutine collect_breakpoints
+
+  !> Sorted values strictly inside (0, period), duplicates (within 1e-12 period) removed.
+  function sorted_inside(times, period) result(out)
+    real(dp), intent(in) :: times(:), period
+    real(dp), allocatable :: out(:)
+    integer, allocatable :: order(:)
+    integer :: i, n
+    real(dp) :: tolerance
+    tolerance = 1.0e-12_dp * period
+    order = argsort_reals(times)
+    allocate (out(size(times)))
+    n = 0
+    do i = 1, size(order)
+      associate (t => times(order(i)))
+        if (t <= tolerance .or. t >= period - tolerance) cycle
+        if (n > 0) then
+          if (t - out(n) <= tolerance) cycle
+        end if
+        n = n + 1
+        out(n) = t
+      end associate
+    end do
+    out = out(1:n)
+  end function sorted_inside
+
+  !> First breakpoint after step time t (the period if none).
+  pure real(dp) function loading_next_breakpoint(this, t) result(next)
+    class(step_loading_t), intent(in) :: this
+    real(dp), intent(in) :: t
+    integer :: i
+    next = this%period
+    do i = 1, size(this%breakpoints)
+      if (this%breakpoints(i) > t * (1.0_dp + 1.0e-12_dp) + 1.0e-300_dp) then
+        next = this%breakpoints(i)
+        return
+      end if
+    end do
+  end function loading_next_breakpoint
+
+  !> Ramp or amplitude factor rule: start + (end - start) t/T, or end x a(t).
+  pure real(dp) function ramped(start, finish, amplitude, amplitudes, t, period, start_time)
+    real(dp), intent(in) :: start, finish, t, period, start_time
+    integer, intent(in) :: amplitude
+    type(amplitude_t), intent(in) :: amplitudes(:)
+    if (amplitude > 0) then
+      ramped = finish * amplitude_value(amplitudes(amplitude), t, start_time)
+    else
+      ramped = start + (finish - start) * min(max(t / period, 0.0_dp), 1.0_dp)
+    end if
+  end function ramped
+
+  !> Concentrated forces at step time t, added into f(3*n_nodes).
+  subroutine loading_force_at(this, amplitudes, t, f)
+    class(step_loading_t), intent(in) :: this
+    type(amplitude_t), intent(in) :: amplitudes(:)
+    real(dp), intent(in) :: t
+    real(dp), intent(inout) :: f(:)
+    integer :: i
+    do i = 1, size(this%force_dof)
+      f(this%force_dof(i)) = f(this%force_dof(i)) + ramped(this%force_start(i), this%force_end(i), &
+        this%force_amplitude(i), amplitudes, t, this%period, this%start_time)
+    end do
+  end subroutine loading_force_at
+
+  !> Pressure on face i of the list at step time t.
+  pure real(dp) function loading_pressure_at(this, amplitudes, i, t) result(p)
+    class(step_loading_t), intent(in) :: this
+    type(amplitude_t), intent(in) :: amplitudes(:)
+    integer, intent(in) :: i
+    real(dp), intent(in) :: t
+    p = ramped(this%pressure_start(i), this%pressure_end(i), this%face_amplitude(i), amplitudes, &
+               t, this%period, this%start_time)
+  end function loading_pressure_at
+
+  !> Target increment of prescribed dof i from step time t0 to t1, given the current
+  !> displacement `current` of that dof and its value `step_start` at the start of the step.
+  pure real(dp) function loading_prescribed_target(this, amplitudes, i, t0, t1, current, &
+                                                   step_start) result(du)
+    class(step_loading_t), intent(in) :: this
+    type(amplitude_t), intent(in) :: amplitudes(:)
+    integer, intent(in) :: i
+    real(dp), intent(in) :: t0, t1, current, step_start
+    real(dp) :: target
+    if (this%bc_kind(i) == BC_VELOCITY) then
+      if (this%bc_amplitude(i) > 0) then
+        du = this%bc_value(i) * (amplitude_integral(amplitudes(this%bc_amplitude(i)), t1, &
+             this%start_time) - amplitude_integral(amplitudes(this%bc_amplitude(i)), t0, this%start_time))
+      else
+        du = this%bc_value(i) * (t1 - t0)
+      end if
+    else
+      target = ramped(step_start, this%bc_value(i), this%bc_amplitude(i), amplitudes, t1, &
+                      this%period, this%start_time)
+      du = target - current
+    end if
+  end function loading_prescribed_target
+
+  !> a(t) at step time t: linear between points, constant beyond the ends.
+  pure real(dp) function amplitude_value(amplitude, t, start_time) result(a)
+    type(amplitude_t), intent(in) :: amplitude
+    real(dp), intent(in) :: t, start_time
+    real(dp) :: time, w
+    integer :: i, n
+    time = t
+    if (amplitude%total_time) time = t + start_time
+    n = size(amplitude%time)
+    if (time <= amplitude%time(1)) then
+      a = amplitude%value(1)
+    else if (time >= amplitude%time(n)) then
+      a = amplitude%value(n)
+    else
+      do i = 2, n
+        if (time <= amplitude%time(i)) exit
+      end do
+      w = (time - amplitude%time(i - 1)) / (amplitude%time(i) - amplitude%time(i - 1))
+      a = (1.0_dp - w) * amplitude%value(i - 1) + w * amplitude%value(i)
+    end if
+  end function amplitude_value
+
+  !> Integral of a(s) ds from the amplitude's time origin to step time t (exact for the
+  !> piecewise-linear amplitude; differences of it give velocity-driven displacements).
+  pure real(dp) function amplitude_integral(amplitude, t, start_time) result(total)
+    type(amplitude_t), intent(in) :: amplitude
+    real(dp), intent(in) :: t, start_time
+    real(dp) :: time, t_hi
+    integer :: i, n
+    time = t
+    if (amplitude%total_time) time = t + start_time
+    n = size(amplitude%time)
+    total = amplitude%value(1) * min(time, amplitude%time(1))
+    do i = 2, n
+      if (time <= amplitude%time(i - 1)) exit
+      t_hi = min(time, amplitude%time(i))
+      total = total + 0.5_dp * (amplitude%value(i - 1) + amplitude_value_local(amplitude, i, t_hi)) * &
+              (t_hi - amplitude%time(i - 1))
+    end do
+    if (time > amplitude%time(n)) total = total + amplitude%value(n) * (time - amplitude%time(n))
+  end function amplitude_integral
+
+  pure real(dp) function amplitude_value_local(amplitude, i, t) result(a)
+    type(amplitude_t), intent(in) :: amplitude
+    integer, intent(in) :: i
+    real(dp), intent(in) :: t
+    real(dp) :: w
+    w = (t - amplitude%time(i - 1)) / (amplitude%time(i) - amplitude%time(i - 1))
+    a = (1.0_dp - w) * amplitude%value(i - 1) + w * amplitude%value(i)
+  end function amplitude_value_local
+
+end module fcs_loading

@@ -1,0 +1,302 @@
+!> The static-explicit increment with the R-minimum strategy (Xing, Mora & Makinouchi 2003,
+!> eq. 10; Xing & Makinouchi 2002, CMAME 191; method notes 1.5-1.6):
+!>   1. assemble the tangent K (+ K_f, + load stiffness) and the internal forces on the
+!>      current configuration;
+!>   2. solve once, without equilibrium iterations, for a trial increment driven by the load
+!>      increment over a trial time increment plus the out-of-balance force
+!>      (K + K_f) du = dF + (F_ext - F_int), the latter carrying the equilibrium error of the
+!>      previous increments into this one;
+!>   3. collect from every module the fraction r of the trial increment at which its next
+!>      event happens (yield, contact, stick/slip ...) and the strain and rotation limits;
+!>   4. scale the increment by r_min and update stresses (Hughes-Winget), geometry and time.
+module fcs_static_explicit
+  use fcs_kinds, only: dp
+  use fcs_error, only: error_t, fatal_error
+  use fcs_model, only: model_t, step_t
+  use fcs_state, only: state_t
+  use fcs_sparse, only: sparse_matrix_t
+  use fcs_linear_solver, only: linear_solver_t
+  use fcs_loading, only: step_loading_t
+  use fcs_assembly, only: material_slot_t, assemble_elements, assemble_pressures, &
+                          element_configuration, inverted_element_error
+  use fcs_hex8_element, only: hex8_geometry_t, hex8_geometry, hex8_strain_increments, &
+                              hex8_rotate_stress
+  use fcs_hex8_shape, only: N_GAUSS_HEX8
+  use fcs_model, only: FORMULATION_BBAR
+  use fcs_rmin_events, only: rmin_collector_t, rmin_event_t, EVENT_STRAIN_LIMIT, &
+                             EVENT_ROTATION_LIMIT, EVENT_YIELD, event_kind_name
+  use fcs_timer, only: phase_timer_t
+  use fcs_strings, only: str
+  implicit none
+  private
+  public :: analysis_t, take_increment, increment_record_t
+
+  !> What one increment did, for the log.
+  type :: increment_record_t
+    real(dp) :: trial_increment = 0.0_dp
+    real(dp) :: r = 1.0_dp
+    type(rmin_event_t) :: limiting
+    integer :: n_events_taken = 0
+    real(dp) :: residual_norm = 0.0_dp
+    real(dp) :: force_norm = 0.0_dp
+    logical :: floored = .false.
+  end type increment_record_t
+
+  !> Working storage of the analysis, allocated once and reused every increment.
+  type :: analysis_t
+    type(state_t) :: state
+    type(material_slot_t), allocatable :: materials(:)
+    logical :: materials_have_states = .false.
+    type(sparse_matrix_t) :: matrix
+    class(linear_solver_t), allocatable :: solver
+    type(step_loading_t) :: loading
+    real(dp), allocatable :: f_int(:), f_ext0(:), f_ext1(:), rhs(:), du(:), prescribed(:)
+    logical, allocatable :: constrained(:)
+    type(rmin_collector_t) :: collector
+    type(phase_timer_t) :: timers
+  end type analysis_t
+
+contains
+
+  !> One static-explicit increment of the current step. On return the state has advanced by
+  !> r_min times the trial increment; `record` says what limited it.
+  subroutine take_increment(a, model, record, err)
+    type(analysis_t), intent(inout) :: a
+    type(model_t), intent(in) :: model
+    type(increment_record_t), intent(out) :: record
+    type(error_t), allocatable, intent(out) :: err
+    real(dp) :: t0, t1, dt, r
+    associate (step => model%steps(a%state%step), state => a%state)
+      t0 = state%step_time
+      dt = min(step%max_increment, a%loading%next_breakpoint(t0) - t0)
+      t1 = t0 + dt
+      record%trial_increment = dt
+      call a%timers%start('assembly')
+      call external_forces(a, model, step%nlgeom, t0, t1)
+      call prescribed_increments(a, model, t0, t1)
+      call a%matrix%zero()
+      call assemble_elements(model, state, a%materials, step%nlgeom, a%f_int, err, a%matrix)
+      if (allocated(err)) return
+      if (step%nlgeom) call assemble_pressures(model, a%loading, t0, state, .true., a%f_ext0, a%matrix)
+      call a%timers%stop('assembly')
+      a%rhs = a%f_ext1 - a%f_int
+      record%residual_norm = norm2(merge(0.0_dp, a%f_ext0 - a%f_int, a%constrained))
+      record%force_norm = norm2(merge(0.0_dp, a%f_ext0, a%constrained))
+      state%residual_norm = record%residual_norm
+      call a%matrix%apply_dirichlet(a%constrained, a%prescribed, a%rhs)
+      call solve_system(a, err)
+      if (allocated(err)) return
+      call a%timers%start('r-minimum')
+      call collect_events(a, model, step, err)
+      if (allocated(err)) return
+      r = a%collector%r_min
+      record%limiting = a%collector%limiting
+      if (r * dt < step%min_increment .and. r < 1.0_dp) then
+        if (a%collector%limiting%kind == EVENT_STRAIN_LIMIT .or. &
+            a%collector%limiting%kind == EVENT_ROTATION_LIMIT) then
+          call fatal_error(err, 'the ' // event_kind_name(a%collector%limiting%kind) // &
+            ' cuts the time increment to ' // str(r * dt) // ', below the minimum ' // &
+            str(step%min_increment) // ' of *STATIC (element ' // &
+            str(model%mesh%element_id(a%collector%limiting%entity)) // '): the deformation ' // &
+            'is too fast for the time scale; lower the minimum increment or check the loading')
+          return
+        end if
+        r = min(1.0_dp, step%min_increment / dt)
+        record%floored = .true.
+      end if
+      record%r = r
+      call a%timers%stop('r-minimum')
+      call a%timers%start('update')
+      a%du = r * a%du
+      call update_elements(a, model, step%nlgeom, r, record, err)
+      if (allocated(err)) return
+      state%u = state%u + reshape(a%du, shape(state%u))
+      if (step%nlgeom) state%x = state%x + reshape(a%du, shape(state%x))
+      if (r >= 1.0_dp) then
+        state%step_time = t1
+      else
+        state%step_time = t0 + r * dt
+      end if
+      state%time = state%time + (state%step_time - t0)
+      state%last_increment = state%step_time - t0
+      state%last_r = r
+      state%increment = state%increment + 1
+      state%step_increment = state%step_increment + 1
+      call a%timers%stop('update')
+    end associate
+  end subroutine take_increment
+
+  !> f_ext0 = F(t0), f_ext1 = F(t1): concentrated forces and pressures on the current
+  !> geometry (the follower load stiffness is added during assembly).
+  subroutine external_forces(a, model, nlgeom, t0, t1)
+    type(analysis_t), intent(inout) :: a
+    type(model_t), intent(in) :: model
+    logical, intent(in) :: nlgeom
+    real(dp), intent(in) :: t0, t1
+    a%f_ext0 = 0.0_dp
+    a%f_ext1 = 0.0_dp
+    call a%loading%force_at(model%amplitudes, t0, a%f_ext0)
+    call a%loading%force_at(model%amplitudes, t1, a%f_ext1)
+    if (.not. nlgeom) call assemble_pressures(model, a%loading, t0, a%state, .false., a%f_ext0)
+    call assemble_pressures(model, a%loading, t1, a%state, nlgeom, a%f_ext1)
+  end subroutine external_forces
+
+  !> Constrained degrees of freedom and their prescribed increments over [t0, t1].
+  subroutine prescribed_increments(a, model, t0, t1)
+    type(analysis_t), intent(inout) :: a
+    type(model_t), intent(in) :: model
+    real(dp), intent(in) :: t0, t1
+    integer :: i, dof, node, direction
+    a%constrained = .false.
+    a%prescribed = 0.0_dp
+    do i = 1, size(a%loading%bc_dof)
+      dof = a%loading%bc_dof(i)
+      node = (dof - 1) / 3 + 1
+      direction = dof - 3 * (node - 1)
+      a%constrained(dof) = .true.
+      a%prescribed(dof) = a%loading%prescribed_target(model%amplitudes, i, t0, t1, &
+        a%state%u(direction, node), a%state%step_start_u(direction, node))
+    end do
+  end subroutine prescribed_increments
+
+  !> Factorise and solve; a non-finite solution is an error.
+  subroutine solve_system(a, err)
+    type(analysis_t), intent(inout) :: a
+    type(error_t), allocatable, intent(out) :: err
+    integer :: i
+    call a%timers%start('factorisation')
+    call a%solver%factor(a%matrix, err)
+    call a%timers%stop('factorisation')
+    if (allocated(err)) return
+    call a%timers%start('solve')
+    call a%solver%solve(a%matrix, a%rhs, a%du, err)
+    call a%timers%stop('solve')
+    if (allocated(err)) return
+    do i = 1, size(a%du)
+      if (.not. (abs(a%du(i)) <= huge(1.0_dp))) then
+        call fatal_error(err, 'the solution is not finite (NaN or Inf) at node ' // &
+          str((i - 1) / 3 + 1) // ', direction ' // str(i - 3 * ((i - 1) / 3)) // &
+          ': the system is singular or badly conditioned (an unsupported body, or a penalty ' // &
+          'stiffness far larger than the material stiffness)')
+        return
+      end if
+    end do
+  end subroutine solve_system
+
+  !> Offer every event and limit of the trial increment to the collector.
+  subroutine collect_events(a, model, step, err)
+    type(analysis_t), intent(inout) :: a
+    type(model_t), intent(in) :: model
+    type(step_t), intent(in) :: step
+    type(error_t), allocatable, intent(out) :: err
+    type(hex8_geometry_t) :: geo
+    real(dp) :: strain(6, N_GAUSS_HEX8), spin(3, 3, N_GAUSS_HEX8), equivalent(N_GAUSS_HEX8)
+    real(dp) :: angle(N_GAUSS_HEX8), du(3, 8), stress_increment(6)
+    integer :: e, q, s
+    logical :: ok, bbar
+    call a%collector%reset()
+    if (.not. (step%nlgeom .or. a%materials_have_states)) return
+    do e = 1, model%mesh%n_elements
+      call hex8_geometry(element_configuration(model, a%state, e, step%nlgeom), geo, ok)
+      if (.not. ok) then
+        call inverted_element_error(model, e, err)
+        return
+      end if
+      s = model%element_section(e)
+      bbar = model%sections(s)%formulation == FORMULATION_BBAR
+      du = element_increment(a%du, model%mesh%connectivity(:, e))
+      call hex8_strain_increments(geo, du, bbar, strain, spin, equivalent, angle)
+      if (step%nlgeom) then
+        if (maxval(equivalent) > 0.0_dp) call a%collector%offer(step%rmin%max_strain_increment / &
+          maxval(equivalent), EVENT_STRAIN_LIMIT, e, maxloc(equivalent, 1))
+        if (maxval(angle) > 0.0_dp) call a%collector%offer(step%rmin%max_rotation_increment / &
+          maxval(angle), EVENT_ROTATION_LIMIT, e, maxloc(angle, 1))
+      end if
+      if (.not. a%materials_have_states) cycle
+      associate (material => a%materials(model%sections(s)%material)%m)
+        do q = 1, N_GAUSS_HEX8
+          stress_increment = matmul(material%tangent(a%state%stress(:, q, e), &
+                                    a%state%material_state(:, q, e)), strain(:, q))
+          call a%collector%offer(material%event_fraction(a%state%stress(:, q, e), &
+            stress_increment, a%state%material_state(:, q, e)), EVENT_YIELD, e, q)
+        end do
+      end associate
+    end do
+  end subroutine collect_events
+
+  !> Nodal displacement increments of one element.
+  pure function element_increment(du, nodes) result(du_e)
+    real(dp), intent(in) :: du(:)
+    integer, intent(in) :: nodes(8)
+    real(dp) :: du_e(3, 8)
+    integer :: a
+    do a = 1, 8
+      du_e(:, a) = du(3 * nodes(a) - 2:3 * nodes(a))
+    end do
+  end function element_increment
+
+  !> Stress and strain update for the (scaled) increment: gradients on the mid-increment
+  !> configuration, objective rotation (Hughes & Winget 1980), then the material law.
+  subroutine update_elements(a, model, nlgeom, r, record, err)
+    type(analysis_t), intent(inout) :: a
+    type(model_t), intent(in) :: model
+    logical, intent(in) :: nlgeom
+    real(dp), intent(in) :: r
+    type(increment_record_t), intent(inout) :: record
+    type(error_t), allocatable, intent(out) :: err
+    type(hex8_geometry_t) :: geo
+    real(dp) :: strain(6, N_GAUSS_HEX8), spin(3, 3, N_GAUSS_HEX8), equivalent(N_GAUSS_HEX8)
+    real(dp) :: angle(N_GAUSS_HEX8), du(3, 8), x(3, 8)
+    integer :: e, q, s
+    logical :: ok, bbar
+    do e = 1, model%mesh%n_elements
+      du = element_increment(a%du, model%mesh%connectivity(:, e))
+      x = element_configuration(model, a%state, e, nlgeom)
+      if (nlgeom) x = x + 0.5_dp * du
+      call hex8_geometry(x, geo, ok)
+      if (.not. ok) then
+        call inverted_element_error(model, e, err)
+        return
+      end if
+      s = model%element_section(e)
+      bbar = model%sections(s)%formulation == FORMULATION_BBAR
+      call hex8_strain_increments(geo, du, bbar, strain, spin, equivalent, angle)
+      associate (material => a%materials(model%sections(s)%material)%m)
+        do q = 1, N_GAUSS_HEX8
+          if (nlgeom) then
+            a%state%stress(:, q, e) = hex8_rotate_stress(a%state%stress(:, q, e), spin(:, :, q))
+            a%state%strain(:, q, e) = rotate_strain(a%state%strain(:, q, e), spin(:, :, q))
+          end if
+          call material%update(a%state%stress(:, q, e), strain(:, q), a%state%material_state(:, q, e))
+          a%state%strain(:, q, e) = a%state%strain(:, q, e) + strain(:, q)
+        end do
+      end associate
+    end do
+    record%n_events_taken = count_taken(a, r)
+  end subroutine update_elements
+
+  !> Rotate an engineering-shear strain like a stress (tensor shear in between).
+  pure function rotate_strain(strain, spin) result(rotated)
+    real(dp), intent(in) :: strain(6), spin(3, 3)
+    real(dp) :: rotated(6)
+    real(dp) :: tensor(6)
+    tensor = strain
+    tensor(4:6) = 0.5_dp * tensor(4:6)
+    rotated = hex8_rotate_stress(tensor, spin)
+    rotated(4:6) = 2.0_dp * rotated(4:6)
+  end function rotate_strain
+
+  !> How many discrete events fall within the increment taken (near-simultaneous ones).
+  integer function count_taken(a, r) result(n)
+    type(analysis_t), intent(in) :: a
+    real(dp), intent(in) :: r
+    integer :: i
+    n = 0
+    do i = 1, a%collector%n_events
+      if (a%collector%events(i)%kind == EVENT_STRAIN_LIMIT .or. &
+          a%collector%events(i)%kind == EVENT_ROTATION_LIMIT) cycle
+      if (a%collector%events(i)%r <= r * (1.0_dp + 1.0e-3_dp)) n = n + 1
+    end do
+  end function count_taken
+
+end module fcs_static_explicit
