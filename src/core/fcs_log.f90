@@ -12,6 +12,7 @@ module fcs_log
 
   !> Where messages go. `quiet` silences the terminal except warnings and errors.
   type :: logger_t
+    !> Fortran unit of the log file; -1 when closed (NEWUNIT numbers are negative, never -1).
     integer :: file_unit = -1
     logical :: quiet = .false.
     logical :: terminal = .true.
@@ -53,7 +54,7 @@ contains
 
   subroutine logger_close(this)
     class(logger_t), intent(inout) :: this
-    if (this%file_unit >= 0) close (this%file_unit)
+    if (this%file_unit /= -1) close (this%file_unit)
     this%file_unit = -1
   end subroutine logger_close
 
@@ -72,7 +73,7 @@ contains
   subroutine logger_detail(this, message)
     class(logger_t), intent(inout) :: this
     character(len=*), intent(in) :: message
-    if (this%file_unit >= 0) write (this%file_unit, '(a)') message
+    if (this%file_unit /= -1) write (this%file_unit, '(a)') message
   end subroutine logger_detail
 
   !> A warning: always on standard error, and in the log file.

@@ -40,6 +40,7 @@ module fcs_rmin_events
     procedure :: reset => collector_reset
     procedure :: offer => collector_offer
     procedure :: is_taken => collector_is_taken
+    procedure :: taken_fraction => collector_taken_fraction
   end type rmin_collector_t
 
 contains
@@ -84,6 +85,29 @@ contains
     real(dp), intent(in) :: r, r_taken, tolerance
     collector_is_taken = r <= r_taken * (1.0_dp + tolerance) .and. this%n_events >= 0
   end function collector_is_taken
+
+  !> The fraction of the trial increment to take: r_min, widened to the last discrete event
+  !> within the relative `tolerance` of it, so that near-simultaneous events all happen in
+  !> this increment. Limits that are not events (strain, rotation) are never widened.
+  pure real(dp) function collector_taken_fraction(this, tolerance) result(r)
+    class(rmin_collector_t), intent(in) :: this
+    real(dp), intent(in) :: tolerance
+    integer :: i
+    r = this%r_min
+    if (is_limit(this%limiting%kind) .or. this%limiting%kind == EVENT_FULL_INCREMENT) return
+    do i = 1, this%n_events
+      if (is_limit(this%events(i)%kind)) cycle
+      if (this%events(i)%r <= this%r_min * (1.0_dp + tolerance)) r = max(r, this%events(i)%r)
+    end do
+    do i = 1, this%n_events
+      if (is_limit(this%events(i)%kind)) r = min(r, this%events(i)%r)
+    end do
+  end function collector_taken_fraction
+
+  pure logical function is_limit(kind)
+    integer, intent(in) :: kind
+    is_limit = kind == EVENT_STRAIN_LIMIT .or. kind == EVENT_ROTATION_LIMIT
+  end function is_limit
 
   !> Name of an event kind, for the log.
   pure function event_kind_name(kind) result(name)

@@ -14,11 +14,12 @@ module fcs_build_step
   use fcs_mesh, only: SURFACE_FACES
   use fcs_model, only: model_t, step_t, dof_condition_t, face_load_t, amplitude_t, &
                        time_points_t, BC_DISPLACEMENT, BC_VELOCITY
-  use fcs_strings, only: to_upper, str, parse_int
+  use fcs_strings, only: to_upper, str, parse_int, parse_real
   implicit none
   private
   public :: handle_step, handle_static, handle_end_step, handle_boundary, handle_cload
   public :: handle_dsload, handle_amplitude, handle_time_points, find_amplitude, find_time_points
+  public :: handle_rmin
 
 contains
 
@@ -112,6 +113,29 @@ contains
     loc = card%loc
     if (card%n_lines > 0) loc = card%lines(1)%loc
   end function static_loc
+
+  !> *RMIN: limits of the R-minimum step control for this step.
+  subroutine handle_rmin(card, state, diag)
+    type(card_t), intent(in) :: card
+    type(builder_t), intent(inout) :: state
+    type(diagnostics_t), intent(inout) :: diag
+    real(dp) :: strain, rotation, tolerance
+    logical :: ok
+    call parse_real(param_value(card, 'MAX STRAIN INCREMENT'), strain, ok)
+    call parse_real(param_value(card, 'MAX ROTATION INCREMENT'), rotation, ok)
+    call parse_real(param_value(card, 'EVENT TOLERANCE'), tolerance, ok)
+    if (strain <= 0.0_dp .or. strain > 0.1_dp) then
+      call diag%report(card%loc, '*RMIN: MAX STRAIN INCREMENT must lie in (0, 0.1]')
+    else if (rotation <= 0.0_dp .or. rotation > 10.0_dp) then
+      call diag%report(card%loc, '*RMIN: MAX ROTATION INCREMENT must lie in (0, 10] degrees')
+    else if (tolerance < 0.0_dp .or. tolerance > 0.5_dp) then
+      call diag%report(card%loc, '*RMIN: EVENT TOLERANCE must lie in [0, 0.5]')
+    else
+      state%step%rmin%max_strain_increment = strain
+      state%step%rmin%max_rotation_increment = rotation * acos(-1.0_dp) / 180.0_dp
+      state%step%rmin%event_tolerance = tolerance
+    end if
+  end subroutine handle_rmin
 
   !> *END STEP: close the step with the complete condition lists.
   subroutine handle_end_step(card, state, diag)

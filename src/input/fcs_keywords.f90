@@ -151,6 +151,19 @@ contains
          'increment [time]. Defaults: 1, 1, 1e-5 of the period, the period.', &
          [p_none()]), &
       kw('END STEP', CONTEXT_STEP, 'CalculiX', 'End the current step.', '', [p_none()]), &
+      kw('RMIN', CONTEXT_STEP, 'fcs3d', 'Limits of the R-minimum step control of this step ' // &
+         '(each increment is scaled so that no state changes drastically within it).', '', &
+         [p('MAX STRAIN INCREMENT', PARAM_REAL, default='2e-3', unit='-', &
+            description='Largest equivalent strain increment sqrt(2/3 de:de) at any ' // &
+            'integration point in one increment (NLGEOM steps). 2e-3 keeps the midpoint ' // &
+            'integration of the Jaumann rate well within 0.1% of the logarithmic-strain answer.'), &
+          p('MAX ROTATION INCREMENT', PARAM_REAL, default='0.5', unit='degree', &
+            description='Largest rotation increment of any integration point (NLGEOM steps). ' // &
+            'The Hughes-Winget update is exact for rotations; the limit keeps the midpoint ' // &
+            'configuration, the tangent and the contact linearisation accurate.'), &
+          p('EVENT TOLERANCE', PARAM_REAL, default='1e-3', unit='-', &
+            description='Events (contact, stick/slip, yield) whose fractions r lie within this ' // &
+            'relative tolerance of the smallest are taken together in one increment.')]), &
       kw('BOUNDARY', CONTEXT_ANY, 'CalculiX', 'Prescribed displacements (fixed or ' // &
          'given values) or velocities on nodes or node sets.', &
          'node or node set, first dof, last dof (default: first), value (default 0); ' // &

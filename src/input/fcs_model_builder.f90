@@ -15,7 +15,8 @@ module fcs_model_builder
   use fcs_build_material, only: handle_material, handle_elastic, handle_density, &
                                 handle_solid_section, handle_solver
   use fcs_build_step, only: handle_step, handle_static, handle_end_step, handle_boundary, &
-                            handle_cload, handle_dsload, handle_amplitude, handle_time_points
+                            handle_cload, handle_dsload, handle_amplitude, handle_time_points, &
+                            handle_rmin
   use fcs_build_output, only: handle_output_request
   use fcs_model, only: model_t
   use fcs_model_checks, only: check_model
@@ -112,6 +113,8 @@ contains
       call handle_step(card, state, diag)
     case ('STATIC')
       call handle_static(card, state, diag)
+    case ('RMIN')
+      call handle_rmin(card, state, diag)
     case ('END STEP')
       call handle_end_step(card, state, diag)
     case ('BOUNDARY')

@@ -45,7 +45,7 @@ contains
 
   subroutine dat_close(this)
     class(dat_file_t), intent(inout) :: this
-    if (this%unit >= 0) close (this%unit)
+    if (this%unit /= -1) close (this%unit)
     this%unit = -1
   end subroutine dat_close
 

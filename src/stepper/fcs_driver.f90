@@ -189,8 +189,9 @@ contains
       line = 'inc ' // str(state%increment) // ' step ' // str(state%step) // ' time ' // &
         str(state%time, 10) // ' dt ' // str(state%last_increment) // ' r ' // str(record%r) // &
         ' limit ' // event_kind_name(record%limiting%kind) // entity // &
-        merge(' (floor)', '        ', record%floored) // ' events ' // str(record%n_events_taken) // &
-        ' residual ' // str(record%residual_norm) // ' of force ' // str(record%force_norm)
+        trim(merge(' (floor)', '        ', record%floored)) // ' events ' // &
+        str(record%n_events_taken) // ' residual ' // str(record%residual_norm) // &
+        ' (internal force ' // str(record%force_norm) // ')'
       call run%log%detail(trim(line))
       call run%log%progress('time ' // str(state%time) // ' of ' // str(run%total_time) // ', inc ' // &
         str(state%increment) // ', dt ' // str(state%last_increment) // ' (' // &

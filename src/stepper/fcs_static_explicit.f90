@@ -81,7 +81,7 @@ contains
       call a%timers%stop('assembly')
       a%rhs = a%f_ext1 - a%f_int
       record%residual_norm = norm2(merge(0.0_dp, a%f_ext0 - a%f_int, a%constrained))
-      record%force_norm = norm2(merge(0.0_dp, a%f_ext0, a%constrained))
+      record%force_norm = norm2(a%f_int)
       state%residual_norm = record%residual_norm
       call a%matrix%apply_dirichlet(a%constrained, a%prescribed, a%rhs)
       call solve_system(a, err)
@@ -89,7 +89,7 @@ contains
       call a%timers%start('r-minimum')
       call collect_events(a, model, step, err)
       if (allocated(err)) return
-      r = a%collector%r_min
+      r = a%collector%taken_fraction(step%rmin%event_tolerance)
       record%limiting = a%collector%limiting
       if (r * dt < step%min_increment .and. r < 1.0_dp) then
         if (a%collector%limiting%kind == EVENT_STRAIN_LIMIT .or. &
@@ -108,7 +108,7 @@ contains
       call a%timers%stop('r-minimum')
       call a%timers%start('update')
       a%du = r * a%du
-      call update_elements(a, model, step%nlgeom, r, record, err)
+      call update_elements(a, model, step, r, record, err)
       if (allocated(err)) return
       state%u = state%u + reshape(a%du, shape(state%u))
       if (step%nlgeom) state%x = state%x + reshape(a%du, shape(state%x))
@@ -237,10 +237,10 @@ contains
 
   !> Stress and strain update for the (scaled) increment: gradients on the mid-increment
   !> configuration, objective rotation (Hughes & Winget 1980), then the material law.
-  subroutine update_elements(a, model, nlgeom, r, record, err)
+  subroutine update_elements(a, model, step, r, record, err)
     type(analysis_t), intent(inout) :: a
     type(model_t), intent(in) :: model
-    logical, intent(in) :: nlgeom
+    type(step_t), intent(in) :: step
     real(dp), intent(in) :: r
     type(increment_record_t), intent(inout) :: record
     type(error_t), allocatable, intent(out) :: err
@@ -248,7 +248,8 @@ contains
     real(dp) :: strain(6, N_GAUSS_HEX8), spin(3, 3, N_GAUSS_HEX8), equivalent(N_GAUSS_HEX8)
     real(dp) :: angle(N_GAUSS_HEX8), du(3, 8), x(3, 8)
     integer :: e, q, s
-    logical :: ok, bbar
+    logical :: ok, bbar, nlgeom
+    nlgeom = step%nlgeom
     do e = 1, model%mesh%n_elements
       du = element_increment(a%du, model%mesh%connectivity(:, e))
       x = element_configuration(model, a%state, e, nlgeom)
@@ -295,7 +296,7 @@ contains
     do i = 1, a%collector%n_events
       if (a%collector%events(i)%kind == EVENT_STRAIN_LIMIT .or. &
           a%collector%events(i)%kind == EVENT_ROTATION_LIMIT) cycle
-      if (a%collector%events(i)%r <= r * (1.0_dp + 1.0e-3_dp)) n = n + 1
+      if (a%collector%events(i)%r <= r) n = n + 1
     end do
   end function count_taken
 
