@@ -7,8 +7,9 @@
 !> (g = n.(x_s - x_c) < 0 in penetration, A the slave node's tributary area) and the
 !> frictional force f_t = f_m e_m kept by its components f_m in the local Cartesian frame
 !> e_m of the master segment (the paper's e_i). Friction is treated like plasticity:
-!> stick f_m = E_t A u~_m^e (eq. 4), slip on the cone |f_t| = mu f_n (eqs. 3, 5), return
-!> mapping f^tr = f_old + E_t A du~ (eq. 5), f = mu f_n f^tr/|f^tr| when outside.
+!> stick f_m = -E_t A u~_m^e (eq. 4; the force on the slave opposes its motion relative to
+!> the master), slip on the cone |f_t| = mu f_n (eqs. 3, 5), return mapping
+!> f^tr = f_old - E_t A du~ (eq. 5), f = mu f_n f^tr/|f^tr| when outside.
 !>
 !> `contact_linearise` gives the derivatives of every contact quantity with respect to the
 !> 15 nodal displacements on the current configuration: the gap, the natural coordinates of
@@ -116,15 +117,16 @@ contains
     lin%dslip = outer(p%a(:, 1), lin%dxi(1, :)) + outer(p%a(:, 2), lin%dxi(2, :))
     lin%dfn = -en * area * lin%dgap
     ft_vec = ft(1) * p%e(:, 1) + ft(2) * p%e(:, 2)
-    lin%dft_stick = ft(1) * de(:, :, 1) + ft(2) * de(:, :, 2) + et * area * lin%dslip
+    lin%dft_stick = ft(1) * de(:, :, 1) + ft(2) * de(:, :, 2) - et * area * lin%dslip
     select case (status)
     case (CONTACT_SLIP)
       eta = ft / max(norm2(ft), tiny(1.0_dp))
       eta_vec = eta(1) * p%e(:, 1) + eta(2) * p%e(:, 2)
       factor = fr%mu * fn / max(trial_norm, tiny(1.0_dp))
-      dmu = fr%dmu_dpressure * lin%dfn / area + fr%dmu_drate * rate_factor * matmul(eta_vec, lin%dslip)
+      ! Slip rate V = |slip| / dt with the slip opposite to the force direction eta.
+      dmu = fr%dmu_dpressure * lin%dfn / area - fr%dmu_drate * rate_factor * matmul(eta_vec, lin%dslip)
       lin%df = outer(eta_vec, fr%mu * lin%dfn + fn * dmu) &
-               + factor * et * area * matmul(identity3() - outer3(p%normal, p%normal) &
+               - factor * et * area * matmul(identity3() - outer3(p%normal, p%normal) &
                                              - outer3(eta_vec, eta_vec), lin%dslip) &
                + fr%mu * fn * (eta(1) * de(:, :, 1) + eta(2) * de(:, :, 2))
     case default
@@ -145,7 +147,8 @@ contains
   !> Return mapping of one closed contact node over an increment (eq. 5): new contact point
   !> `p_new` (already projected), the old point `p_old` evaluated on the new master
   !> coordinates (for the slip vector), the old friction components `ft_old`, and mu.
-  !> Tied nodes keep a bilateral normal spring about `tied_gap` and never slip.
+  !> Tied nodes keep a bilateral normal spring about `tied_gap` and never slip. Whether a
+  !> node with zero normal force is open is decided by the caller (fcs_contact_system).
   pure function contact_update(p_new, gap_new, p_old_on_new, ft_old, status_old, area, en, et, mu, &
                                tied_gap) result(out)
     type(segment_point_t), intent(in) :: p_new, p_old_on_new
@@ -157,7 +160,8 @@ contains
     out%gap = gap_new
     out%slip_vector = p_new%x - p_old_on_new%x
     out%mu = mu
-    trial = ft_old + et * area * matmul(out%slip_vector, p_new%e)
+    ! The frictional force on the slave opposes its motion relative to the master (eq. 4).
+    trial = ft_old - et * area * matmul(out%slip_vector, p_new%e)
     if (status_old == CONTACT_TIED) then
       out%status = CONTACT_TIED
       out%normal_force = -en * area * (gap_new - tied_gap)
@@ -165,11 +169,6 @@ contains
       return
     end if
     out%normal_force = en * area * max(0.0_dp, -gap_new)
-    if (out%normal_force <= 0.0_dp) then
-      out%status = CONTACT_OPEN
-      out%friction = 0.0_dp
-      return
-    end if
     norm_trial = norm2(trial)
     if (norm_trial <= mu * out%normal_force) then
       out%status = CONTACT_STICK

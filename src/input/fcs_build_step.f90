@@ -57,6 +57,8 @@ contains
     logical :: ok
     integer :: i
     v = [1.0_dp, 1.0_dp, -1.0_dp, -1.0_dp]
+    ! The step has a procedure even if its values are bad: no second error at *END STEP.
+    state%step%period = 0.0_dp
     if (card%n_lines > 1) then
       call diag%report(card%lines(2)%loc, '*STATIC: expected one data line')
       return

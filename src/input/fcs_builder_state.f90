@@ -33,6 +33,8 @@ module fcs_builder_state
   type :: builder_t
     !> Material that *ELASTIC and *DENSITY apply to (0: none yet).
     integer :: material = 0
+    !> Interaction that *SURFACE BEHAVIOR and *FRICTION apply to (0: none yet).
+    integer :: interaction = 0
     logical :: in_step = .false.
     type(step_t) :: step
     !> Whether this step already applied OP=NEW to each list (only the first NEW clears).

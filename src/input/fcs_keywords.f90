@@ -50,7 +50,8 @@ contains
   !> The whole table, in the order of the deck reference.
   function keyword_table() result(table)
     type(keyword_spec_t), allocatable :: table(:)
-    table = [ model_keywords(), material_keywords(), step_keywords(), output_keywords() ]
+    table = [ model_keywords(), material_keywords(), contact_keywords(), step_keywords(), &
+              output_keywords() ]
   end function keyword_table
 
   function model_keywords() result(t)
@@ -125,6 +126,50 @@ contains
             'Hughes 1980), which removes volumetric locking (fcs3d extension).')]) &
       ]
   end function material_keywords
+
+  function contact_keywords() result(t)
+    type(keyword_spec_t), allocatable :: t(:)
+    t = [ &
+      kw('SURFACE INTERACTION', CONTEXT_MODEL, 'CalculiX', 'Start a contact interaction; ' // &
+         'the following *SURFACE BEHAVIOR and *FRICTION belong to it.', '', &
+         [p('NAME', PARAM_NAME, required=.true., description='Name of the interaction.')]), &
+      kw('SURFACE BEHAVIOR', CONTEXT_MODEL, 'CalculiX', 'Normal behaviour of the current ' // &
+         'interaction: penalty slope E_n of the contact pressure against the overclosure.', &
+         'slope E_n [stress/length] (further CalculiX values sigma_inf, c0 must be 0 or absent). ' // &
+         'Without *SURFACE BEHAVIOR, E_n = 10 E / h (E the master body''s Young''s modulus, ' // &
+         'h the mean thickness of the master elements).', &
+         [p('PRESSURE-OVERCLOSURE', PARAM_CHOICE, required=.true., &
+            choices=[s('LINEAR'), s('TIED')], &
+            description='LINEAR: penalty contact (opens under tension). TIED: the pair is ' // &
+            'tied (no separation, no slip), the "stick" segments of the paper.')], &
+         data_required=.true.), &
+      kw('FRICTION', CONTEXT_MODEL, 'CalculiX', 'Friction of the current interaction, treated ' // &
+         'like plasticity: stick with stiffness E_t, slip on the Coulomb cone (paper eqs. 2-6).', &
+         'friction coefficient mu, stick slope E_t [stress/length] (default E_t = E_n).', &
+         [p('LAW', PARAM_CHOICE, default='COULOMB', choices=[s('COULOMB')], &
+            description='Friction law (fcs3d extension): COULOMB, constant mu.')], &
+         data_required=.true.), &
+      kw('CONTACT PAIR', CONTEXT_MODEL, 'CalculiX', 'A node-to-point contact pair: the slave ' // &
+         'surface''s nodes against the master surface''s 4-node faces.', &
+         'slave surface (element-face or node based), master surface (element-face).', &
+         [p('INTERACTION', PARAM_NAME, required=.true., description='The *SURFACE INTERACTION.'), &
+          p('TYPE', PARAM_CHOICE, default='NODE TO SURFACE', choices=[s('NODE TO SURFACE')], &
+            description='Only node-to-surface (node-to-point) contact is available.'), &
+          p('NAME', PARAM_NAME, description='Name of the pair in the log and results ' // &
+            '(default: slave-master) (fcs3d extension).')], data_required=.true.), &
+      kw('TIE', CONTEXT_MODEL, 'CalculiX', 'Tie a slave surface to a master surface: no ' // &
+         'relative motion ever (penalty tie with E_n = E_t = 10 E / h).', &
+         'slave surface, master surface.', &
+         [p('NAME', PARAM_NAME, required=.true., description='Name of the tie.'), &
+          p('POSITION TOLERANCE', PARAM_REAL, unit='length', description='Slave nodes ' // &
+            'farther than this from the master surface are not tied (default: 5% of the ' // &
+            'mean master face size).'), &
+          p('ADJUST', PARAM_CHOICE, default='NO', choices=[s('NO'), s('YES')], &
+            description='fcs3d ties each slave node at its initial distance from the master ' // &
+            '(no initial stress); ADJUST=YES is accepted for CalculiX decks and behaves the same.')], &
+         data_required=.true.) &
+      ]
+  end function contact_keywords
 
   function step_keywords() result(t)
     type(keyword_spec_t), allocatable :: t(:)

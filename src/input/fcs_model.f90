@@ -6,10 +6,12 @@ module fcs_model
   use fcs_mesh, only: mesh_t
   use fcs_diagnostics, only: source_loc_t
   use fcs_strings, only: string_t
+  use fcs_friction_factory, only: friction_def_t
   implicit none
   private
   public :: model_t, material_def_t, section_t, amplitude_t, time_points_t, dof_condition_t
   public :: face_load_t, output_request_t, step_t, rmin_settings_t
+  public :: friction_def_t, interaction_def_t, contact_pair_def_t
   public :: BC_DISPLACEMENT, BC_VELOCITY, FORMULATION_FULL, FORMULATION_BBAR
   public :: OUTPUT_NODE_PRINT, OUTPUT_EL_PRINT, OUTPUT_NODE_FILE, OUTPUT_EL_FILE
   public :: TOTALS_NO, TOTALS_YES, TOTALS_ONLY
@@ -115,6 +117,38 @@ module fcs_model
     type(source_loc_t) :: loc
   end type step_t
 
+  !> *SURFACE INTERACTION with its *SURFACE BEHAVIOR and *FRICTION.
+  type :: interaction_def_t
+    character(len=:), allocatable :: name
+    !> Normal penalty E_n and stick stiffness E_t [stress/length]; <= 0: default.
+    real(dp) :: normal_stiffness = 0.0_dp
+    real(dp) :: stick_stiffness = 0.0_dp
+    logical :: has_friction = .false.
+    !> PRESSURE-OVERCLOSURE=TIED: the pairs using it never separate nor slip.
+    logical :: tied = .false.
+    type(friction_def_t) :: friction
+    type(source_loc_t) :: loc
+  end type interaction_def_t
+
+  !> A node-to-point contact pair (*CONTACT PAIR) or a tied pair (*TIE).
+  type :: contact_pair_def_t
+    character(len=:), allocatable :: name
+    !> Slave: a surface (element-face or node based); master: an element-face surface.
+    integer :: slave_surface = 0
+    integer :: master_surface = 0
+    integer :: interaction = 0
+    logical :: tied = .false.
+    !> *TIE: slave nodes farther than this from the master are not tied (<= 0: default).
+    real(dp) :: position_tolerance = 0.0_dp
+    !> Resolved penalties E_n, E_t [stress/length] and friction coefficient of this pair.
+    real(dp) :: normal_stiffness = 0.0_dp
+    real(dp) :: stick_stiffness = 0.0_dp
+    !> Mean thickness h of the master elements and the modulus E the defaults come from.
+    real(dp) :: master_thickness = 0.0_dp
+    real(dp) :: master_modulus = 0.0_dp
+    type(source_loc_t) :: loc
+  end type contact_pair_def_t
+
   !> The whole model.
   type :: model_t
     character(len=:), allocatable :: title
@@ -128,6 +162,8 @@ module fcs_model
     type(time_points_t), allocatable :: time_points(:)
     type(step_t), allocatable :: steps(:)
     character(len=:), allocatable :: solver_name
+    type(interaction_def_t), allocatable :: interactions(:)
+    type(contact_pair_def_t), allocatable :: contact_pairs(:)
   end type model_t
 
 end module fcs_model

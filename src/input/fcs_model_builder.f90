@@ -18,7 +18,9 @@ module fcs_model_builder
                             handle_cload, handle_dsload, handle_amplitude, handle_time_points, &
                             handle_rmin
   use fcs_build_output, only: handle_output_request
-  use fcs_model, only: model_t
+  use fcs_build_contact, only: handle_surface_interaction, handle_surface_behavior, &
+                               handle_friction, handle_contact_pair, handle_tie
+  use fcs_model, only: model_t, step_t
   use fcs_model_checks, only: check_model
   use fcs_strings, only: string_t, to_upper, parse_int, parse_real, join_strings, str
   implicit none
@@ -50,7 +52,10 @@ contains
     table = keyword_table()
     do i = 1, deck%n_cards
       k = find_keyword(table, deck%cards(i)%keyword)
-      if (.not. valid_card(deck%cards(i), table, k, state, diag)) cycle
+      if (.not. valid_card(deck%cards(i), table, k, state, diag)) then
+        call keep_step_structure(deck%cards(i), state)
+        cycle
+      end if
       call dispatch(deck%cards(i), model, state, diag)
       if (diag%is_full()) exit
     end do
@@ -70,8 +75,30 @@ contains
     model%solver_name = 'UMFPACK'
     call model%mesh%init()
     allocate (model%materials(0), model%sections(0), model%amplitudes(0), &
-              model%time_points(0), model%steps(0))
+              model%time_points(0), model%steps(0), model%interactions(0), model%contact_pairs(0))
   end subroutine init_model
+
+  !> After a card with errors: still open or close its step, or mark the step's procedure as
+  !> given, so that one bad *STEP, *STATIC or *END STEP line is reported once instead of
+  !> making every later step keyword an error too ("can only appear inside a step").
+  subroutine keep_step_structure(card, state)
+    type(card_t), intent(in) :: card
+    type(builder_t), intent(inout) :: state
+    type(step_t) :: fresh
+    select case (card%keyword)
+    case ('STEP')
+      if (state%in_step) return
+      state%step = fresh
+      state%step%loc = card%loc
+      state%step%name = 'Step-' // str(size(state%steps) + 1)
+      state%step%period = -1.0_dp
+      state%in_step = .true.
+    case ('STATIC')
+      if (state%in_step) state%step%period = 0.0_dp
+    case ('END STEP')
+      state%in_step = .false.
+    end select
+  end subroutine keep_step_structure
 
   !> Hand a validated card to its handler.
   subroutine dispatch(card, model, state, diag)
@@ -105,6 +132,16 @@ contains
       call handle_density(card, model, state, diag)
     case ('SOLID SECTION')
       call handle_solid_section(card, model, diag)
+    case ('SURFACE INTERACTION')
+      call handle_surface_interaction(card, model, state, diag)
+    case ('SURFACE BEHAVIOR')
+      call handle_surface_behavior(card, model, state, diag)
+    case ('FRICTION')
+      call handle_friction(card, model, state, diag)
+    case ('CONTACT PAIR')
+      call handle_contact_pair(card, model, diag)
+    case ('TIE')
+      call handle_tie(card, model, diag)
     case ('AMPLITUDE')
       call handle_amplitude(card, model, diag)
     case ('TIME POINTS')
@@ -131,6 +168,8 @@ contains
     end select
     if (card%keyword /= 'MATERIAL' .and. card%keyword /= 'ELASTIC' .and. &
         card%keyword /= 'DENSITY') state%material = 0
+    if (card%keyword /= 'SURFACE INTERACTION' .and. card%keyword /= 'SURFACE BEHAVIOR' .and. &
+        card%keyword /= 'FRICTION') state%interaction = 0
   end subroutine dispatch
 
   !> Check a card against its specification: known keyword, right context, known and

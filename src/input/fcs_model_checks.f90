@@ -12,6 +12,8 @@ module fcs_model_checks
 
   !> How many offending entities are named in one message.
   integer, parameter :: MAX_NAMED = 5
+  !> Default normal penalty E_n = DEFAULT_PENALTY_FACTOR * E / h.
+  real(dp), parameter :: DEFAULT_PENALTY_FACTOR = 10.0_dp
 
 contains
 
@@ -26,6 +28,7 @@ contains
     call assign_sections(model, diag)
     call check_materials(model, diag)
     call check_jacobians(model, diag)
+    call resolve_contact(model, diag)
     if (size(model%steps) == 0) then
       call diag%report_plain(model%deck_path // ': the deck defines no step (*STEP ... *END STEP): ' // &
                              'nothing to compute')
@@ -65,8 +68,8 @@ contains
       names = names // merge(', ', '  ', j > 1) // str(model%mesh%element_id(e))
     end do
     call diag%report_plain(model%deck_path // ': ' // str(n_missing) // ' element(s) have no ' // &
-                           '*SOLID SECTION (elements' // names(2:) // merge(', ...', '     ', &
-                           n_missing > MAX_NAMED) // ')')
+                           '*SOLID SECTION (elements' // names(2:) // trim(merge(', ...', '     ', &
+                           n_missing > MAX_NAMED)) // ')')
   end subroutine assign_sections
 
   subroutine check_materials(model, diag)
@@ -80,6 +83,76 @@ contains
       end associate
     end do
   end subroutine check_materials
+
+  !> Penalty defaults of every contact pair: E_n = DEFAULT_PENALTY_FACTOR E / h, with E the
+  !> Young's modulus and h the mean thickness (volume / face area) of the master elements
+  !> (method notes 1.7: alpha E / h with alpha 10..100); E_t = E_n unless given. The tie
+  !> position tolerance defaults to 5% of the mean master face size.
+  subroutine resolve_contact(model, diag)
+    type(model_t), intent(inout) :: model
+    type(diagnostics_t), intent(inout) :: diag
+    integer :: k, j, e, s
+    real(dp) :: thickness, modulus, face_size, volume, area
+    do k = 1, size(model%contact_pairs)
+      associate (pair => model%contact_pairs(k), master => model%mesh%surfaces( &
+                 model%contact_pairs(k)%master_surface))
+        if (size(master%element) == 0) then
+          call diag%report(pair%loc, 'contact pair ' // pair%name // ': the master surface has no faces')
+          cycle
+        end if
+        thickness = 0.0_dp
+        modulus = 0.0_dp
+        face_size = 0.0_dp
+        do j = 1, size(master%element)
+          e = master%element(j)
+          call element_volume_and_face_area(model, e, master%face(j), volume, area)
+          thickness = thickness + volume / area
+          face_size = face_size + sqrt(area)
+          s = model%element_section(e)
+          if (s > 0) modulus = modulus + model%materials(model%sections(s)%material)%youngs_modulus
+        end do
+        pair%master_thickness = thickness / size(master%element)
+        pair%master_modulus = modulus / size(master%element)
+        pair%normal_stiffness = DEFAULT_PENALTY_FACTOR * pair%master_modulus / pair%master_thickness
+        pair%stick_stiffness = pair%normal_stiffness
+        if (pair%interaction > 0) then
+          associate (interaction => model%interactions(pair%interaction))
+            if (interaction%normal_stiffness > 0.0_dp) pair%normal_stiffness = interaction%normal_stiffness
+            pair%stick_stiffness = pair%normal_stiffness
+            if (interaction%stick_stiffness > 0.0_dp) pair%stick_stiffness = interaction%stick_stiffness
+          end associate
+        end if
+        if (pair%tied .and. pair%position_tolerance <= 0.0_dp) &
+          pair%position_tolerance = 0.05_dp * face_size / size(master%element)
+      end associate
+    end do
+  end subroutine resolve_contact
+
+  !> Volume of element e and area of its face f (reference configuration).
+  subroutine element_volume_and_face_area(model, e, f, volume, area)
+    use fcs_mesh, only: hex8_face_nodes
+    use fcs_hex8_shape, only: hex8_jacobian, det3, hex8_gauss_points, N_GAUSS_HEX8
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: e, f
+    real(dp), intent(out) :: volume, area
+    real(dp) :: x(3, 8), points(3, N_GAUSS_HEX8), weights(N_GAUSS_HEX8), xf(3, 4), c(3)
+    integer :: q
+    x = model%mesh%x(:, model%mesh%connectivity(:, e))
+    call hex8_gauss_points(points, weights)
+    volume = 0.0_dp
+    do q = 1, N_GAUSS_HEX8
+      volume = volume + det3(hex8_jacobian(x, points(:, q))) * weights(q)
+    end do
+    xf = model%mesh%x(:, hex8_face_nodes(model%mesh, e, f))
+    c = cross(xf(:, 3) - xf(:, 1), xf(:, 4) - xf(:, 2))
+    area = 0.5_dp * norm2(c)
+  end subroutine element_volume_and_face_area
+
+  pure function cross(a, b) result(c)
+    real(dp), intent(in) :: a(3), b(3)
+    real(dp) :: c(3)
+    c = [a(2) * b(3) - a(3) * b(2), a(3) * b(1) - a(1) * b(3), a(1) * b(2) - a(2) * b(1)]
+  end function cross
 
   !> Inverted or degenerate elements (det J <= 0 at a Gauss point or node).
   subroutine check_jacobians(model, diag)
@@ -99,9 +172,9 @@ contains
     if (n_bad == 0) return
     call diag%report_plain(model%deck_path // ': ' // str(n_bad) // ' element(s) are inverted or ' // &
       'degenerate (Jacobian determinant <= 0): elements ' // names(3:) // &
-      merge(', ...', '     ', n_bad > MAX_NAMED) // '. C3D8 numbering: nodes 1-4 go around ' // &
+      trim(merge(', ...', '     ', n_bad > MAX_NAMED)) // '. C3D8 numbering: nodes 1-4 go around ' // &
       'one face and 5-8 around the opposite face in the same sense, so that 1-2-3-4 seen from ' // &
-      'node 5 is clockwise')
+      'node 5 is counterclockwise')
   end subroutine check_jacobians
 
 end module fcs_model_checks

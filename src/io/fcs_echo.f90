@@ -30,6 +30,14 @@ contains
     write (unit, '(a)') '** model: ' // str(model%mesh%n_nodes) // ' nodes, ' // &
       str(model%mesh%n_elements) // ' elements, ' // str(size(model%materials)) // &
       ' materials, ' // str(size(model%steps)) // ' steps; solver ' // model%solver_name
+    do i = 1, size(model%contact_pairs)
+      associate (pair => model%contact_pairs(i))
+        write (unit, '(a)') '** contact pair ' // pair%name // merge(' (tied)', '       ', pair%tied) // &
+          ': E_n = ' // str(pair%normal_stiffness) // ', E_t = ' // str(pair%stick_stiffness) // &
+          ' [stress/length]; master elements: E = ' // str(pair%master_modulus) // ', mean ' // &
+          'thickness h = ' // str(pair%master_thickness) // ' (default E_n = 10 E / h)'
+      end associate
+    end do
     current_file = ''
     do i = 1, deck%n_cards
       associate (card => deck%cards(i))

@@ -3,6 +3,7 @@
 module fcs_state
   use fcs_kinds, only: dp
   use fcs_hex8_shape, only: N_GAUSS_HEX8
+  use fcs_contact_state, only: contact_state_t
   implicit none
   private
   public :: state_t
@@ -35,6 +36,8 @@ module fcs_state
     real(dp) :: last_r = 1.0_dp
     !> Out-of-balance force norm at the start of the last increment.
     real(dp) :: residual_norm = 0.0_dp
+    !> State of every contact slave node.
+    type(contact_state_t) :: contact
   contains
     procedure :: init => state_init
   end type state_t

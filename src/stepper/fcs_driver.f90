@@ -10,8 +10,9 @@ module fcs_driver
   use fcs_run_options, only: run_options_t
   use fcs_state, only: state_t
   use fcs_loading, only: build_step_loading
-  use fcs_assembly, only: make_materials, element_cliques, assemble_elements
-  use fcs_static_explicit, only: analysis_t, take_increment, increment_record_t
+  use fcs_assembly, only: make_materials, assemble_elements
+  use fcs_static_explicit, only: analysis_t, take_increment, increment_record_t, build_pattern, &
+                                 contact_positions
   use fcs_solver_factory, only: create_linear_solver
   use fcs_results, only: results_file_t
   use fcs_dat_output, only: dat_file_t
@@ -89,21 +90,25 @@ contains
     type(model_t), intent(in) :: model
     type(run_options_t), intent(in) :: options
     type(error_t), allocatable, intent(out) :: err
-    integer, allocatable :: clique_ptr(:), clique_nodes(:)
     integer :: n_state, n
     associate (a => run%analysis)
       call make_materials(model, a%materials, n_state, err)
       if (allocated(err)) return
       a%materials_have_states = n_state > 0
       call a%state%init(model%mesh%x, model%mesh%n_elements, n_state)
-      call element_cliques(model, clique_ptr, clique_nodes)
-      call a%matrix%build(model%mesh%n_nodes, clique_ptr, clique_nodes)
+      call contact_positions(a, model)
+      if (size(model%contact_pairs) > 0) then
+        call a%contact%init(model, a%x_contact, a%state%contact, err)
+        if (allocated(err)) return
+      end if
+      call build_pattern(a, model)
       call create_linear_solver(model%solver_name, a%solver, err)
       if (allocated(err)) return
       n = 3 * model%mesh%n_nodes
       allocate (a%f_int(n), a%f_ext0(n), a%f_ext1(n), a%rhs(n), a%du(n), a%prescribed(n), &
-                a%constrained(n))
+                a%constrained(n), a%f_contact(n), a%du_load(n), a%du_residual(n), a%rhs_residual(n))
       a%f_int = 0.0_dp
+      a%f_contact = 0.0_dp
     end associate
     run%total_time = sum(model%steps(:)%period)
     call run%dat%open(options%job // '.dat', err)
@@ -148,6 +153,7 @@ contains
         if (allocated(err)) return
         call run%log%info('end of step ' // str(k) // ' ("' // model%steps(k)%name // '") at time ' // &
                           str(state%time) // ' after ' // str(state%step_increment) // ' increment(s)')
+        state%step_time = 0.0_dp
       end do
     end associate
   end subroutine run_steps
@@ -190,7 +196,9 @@ contains
         str(state%time, 10) // ' dt ' // str(state%last_increment) // ' r ' // str(record%r) // &
         ' limit ' // event_kind_name(record%limiting%kind) // entity // &
         trim(merge(' (floor)', '        ', record%floored)) // ' events ' // &
-        str(record%n_events_taken) // ' residual ' // str(record%residual_norm) // &
+        str(record%n_events_taken) // trim(merge(' switches ' // str(record%n_switches), &
+        repeat(' ', 10 + len(str(record%n_switches))), record%n_switches > 0)) // &
+        ' residual ' // str(record%residual_norm) // &
         ' (internal force ' // str(record%force_norm) // ')'
       call run%log%detail(trim(line))
       call run%log%progress('time ' // str(state%time) // ' of ' // str(run%total_time) // ', inc ' // &
@@ -224,7 +232,10 @@ contains
       call assemble_elements(model, state, run%analysis%materials, step%nlgeom, &
                              run%analysis%f_int, err)
       if (allocated(err)) return
-      state%reaction = reshape(run%analysis%f_int, shape(state%reaction))
+      run%analysis%f_contact = 0.0_dp
+      if (run%analysis%contact%n_slaves() > 0) call run%analysis%contact%forces( &
+        run%analysis%x_contact, state%contact, run%analysis%f_contact)
+      state%reaction = reshape(run%analysis%f_int - run%analysis%f_contact, shape(state%reaction))
       do i = 1, size(step%outputs)
         if (.not. is_due(model, step, step%outputs(i), state, end_of_step)) cycle
         select case (step%outputs(i)%kind)

@@ -26,10 +26,12 @@ module fcs_static_explicit
   use fcs_rmin_events, only: rmin_collector_t, rmin_event_t, EVENT_STRAIN_LIMIT, &
                              EVENT_ROTATION_LIMIT, EVENT_YIELD, event_kind_name
   use fcs_timer, only: phase_timer_t
+  use fcs_contact_system, only: contact_system_t
+  use fcs_assembly, only: element_cliques
   use fcs_strings, only: str
   implicit none
   private
-  public :: analysis_t, take_increment, increment_record_t
+  public :: analysis_t, take_increment, increment_record_t, build_pattern, contact_positions
 
   !> What one increment did, for the log.
   type :: increment_record_t
@@ -40,7 +42,12 @@ module fcs_static_explicit
     real(dp) :: residual_norm = 0.0_dp
     real(dp) :: force_norm = 0.0_dp
     logical :: floored = .false.
+    !> Contact tangents switched at the start of the increment (stick/slip, re-solved).
+    integer :: n_switches = 0
   end type increment_record_t
+
+  !> Largest number of solves of one increment while contact tangents are switched.
+  integer, parameter :: MAX_STATE_PASSES = 12
 
   !> Working storage of the analysis, allocated once and reused every increment.
   type :: analysis_t
@@ -51,9 +58,19 @@ module fcs_static_explicit
     class(linear_solver_t), allocatable :: solver
     type(step_loading_t) :: loading
     real(dp), allocatable :: f_int(:), f_ext0(:), f_ext1(:), rhs(:), du(:), prescribed(:)
+    !> The two parts of the trial solution: du_load for the load increment over the trial
+    !> time increment (scaled by r), du_residual for the out-of-balance force of the current
+    !> state (applied in full, so that equilibrium errors do not linger); rhs_residual its
+    !> right-hand side.
+    real(dp), allocatable :: du_load(:), du_residual(:), rhs_residual(:)
     logical, allocatable :: constrained(:)
     type(rmin_collector_t) :: collector
     type(phase_timer_t) :: timers
+    !> Node-to-point contact pairs, and their nodal forces (3*n_nodes).
+    type(contact_system_t) :: contact
+    real(dp), allocatable :: f_contact(:)
+    !> Coordinates the contact search and elements use (current positions X + u).
+    real(dp), allocatable :: x_contact(:, :)
   end type analysis_t
 
 contains
@@ -66,26 +83,36 @@ contains
     type(increment_record_t), intent(out) :: record
     type(error_t), allocatable, intent(out) :: err
     real(dp) :: t0, t1, dt, r
+    integer :: pass, n_switched
     associate (step => model%steps(a%state%step), state => a%state)
       t0 = state%step_time
       dt = min(step%max_increment, a%loading%next_breakpoint(t0) - t0)
       t1 = t0 + dt
       record%trial_increment = dt
-      call a%timers%start('assembly')
       call external_forces(a, model, step%nlgeom, t0, t1)
       call prescribed_increments(a, model, t0, t1)
-      call a%matrix%zero()
-      call assemble_elements(model, state, a%materials, step%nlgeom, a%f_int, err, a%matrix)
-      if (allocated(err)) return
-      if (step%nlgeom) call assemble_pressures(model, a%loading, t0, state, .true., a%f_ext0, a%matrix)
-      call a%timers%stop('assembly')
-      a%rhs = a%f_ext1 - a%f_int
-      record%residual_norm = norm2(merge(0.0_dp, a%f_ext0 - a%f_int, a%constrained))
-      record%force_norm = norm2(a%f_int)
-      state%residual_norm = record%residual_norm
-      call a%matrix%apply_dirichlet(a%constrained, a%prescribed, a%rhs)
-      call solve_system(a, err)
-      if (allocated(err)) return
+      if (a%contact%pattern_dirty) call build_pattern(a, model)
+      do pass = 1, MAX_STATE_PASSES
+        call a%timers%start('assembly')
+        call assemble_system(a, model, step, t0, err)
+        call a%timers%stop('assembly')
+        if (allocated(err)) return
+        if (pass == 1) then
+          record%residual_norm = norm2(merge(0.0_dp, a%f_ext0 + a%f_contact - a%f_int, a%constrained))
+          record%force_norm = norm2(a%f_int)
+          state%residual_norm = record%residual_norm
+        end if
+        a%rhs = a%f_ext1 - a%f_ext0
+        a%rhs_residual = merge(0.0_dp, a%f_ext0 + a%f_contact - a%f_int, a%constrained)
+        call a%matrix%apply_dirichlet(a%constrained, a%prescribed, a%rhs)
+        call solve_system(a, err)
+        if (allocated(err)) return
+        if (a%contact%n_slaves() == 0) exit
+        a%du = a%du_residual + a%du_load
+        call a%contact%switch_states(a%x_contact, state%contact, a%du, n_switched)
+        record%n_switches = record%n_switches + n_switched
+        if (n_switched == 0) exit
+      end do
       call a%timers%start('r-minimum')
       call collect_events(a, model, step, err)
       if (allocated(err)) return
@@ -107,7 +134,7 @@ contains
       record%r = r
       call a%timers%stop('r-minimum')
       call a%timers%start('update')
-      a%du = r * a%du
+      a%du = a%du_residual + r * a%du_load
       call update_elements(a, model, step, r, record, err)
       if (allocated(err)) return
       state%u = state%u + reshape(a%du, shape(state%u))
@@ -117,6 +144,10 @@ contains
       else
         state%step_time = t0 + r * dt
       end if
+      if (a%contact%n_slaves() > 0) then
+        call contact_positions(a, model)
+        call a%contact%update(a%x_contact, state%contact, state%step_time - t0, r)
+      end if
       state%time = state%time + (state%step_time - t0)
       state%last_increment = state%step_time - t0
       state%last_r = r
@@ -125,6 +156,46 @@ contains
       call a%timers%stop('update')
     end associate
   end subroutine take_increment
+
+  !> K + K_f + load stiffness and the internal, contact forces on the current state.
+  subroutine assemble_system(a, model, step, t0, err)
+    type(analysis_t), intent(inout) :: a
+    type(model_t), intent(in) :: model
+    type(step_t), intent(in) :: step
+    real(dp), intent(in) :: t0
+    type(error_t), allocatable, intent(out) :: err
+    real(dp), allocatable :: scratch(:)
+    call a%matrix%zero()
+    call assemble_elements(model, a%state, a%materials, step%nlgeom, a%f_int, err, a%matrix)
+    if (allocated(err)) return
+    if (step%nlgeom) then
+      allocate (scratch(size(a%f_int)))
+      scratch = 0.0_dp
+      call assemble_pressures(model, a%loading, t0, a%state, .true., scratch, a%matrix)
+    end if
+    a%f_contact = 0.0_dp
+    if (a%contact%n_slaves() > 0) call a%contact%assemble(a%x_contact, a%state%contact, a%matrix, &
+                                                          a%f_contact, err)
+  end subroutine assemble_system
+
+  !> Sparse pattern from the element cliques and the contact cliques (slave node with the
+  !> nodes of its master face and the neighbouring faces).
+  subroutine build_pattern(a, model)
+    type(analysis_t), intent(inout) :: a
+    type(model_t), intent(in) :: model
+    integer, allocatable :: clique_ptr(:), clique_nodes(:)
+    call element_cliques(model, clique_ptr, clique_nodes)
+    if (a%contact%n_slaves() > 0) call a%contact%cliques(a%state%contact, clique_ptr, clique_nodes)
+    call a%matrix%build(model%mesh%n_nodes, clique_ptr, clique_nodes)
+  end subroutine build_pattern
+
+  !> Current positions X + u for the contact search and elements (also without NLGEOM:
+  !> contact is geometrically nonlinear in any case).
+  subroutine contact_positions(a, model)
+    type(analysis_t), intent(inout) :: a
+    type(model_t), intent(in) :: model
+    a%x_contact = model%mesh%x + a%state%u
+  end subroutine contact_positions
 
   !> f_ext0 = F(t0), f_ext1 = F(t1): concentrated forces and pressures on the current
   !> geometry (the follower load stiffness is added during assembly).
@@ -137,7 +208,7 @@ contains
     a%f_ext1 = 0.0_dp
     call a%loading%force_at(model%amplitudes, t0, a%f_ext0)
     call a%loading%force_at(model%amplitudes, t1, a%f_ext1)
-    if (.not. nlgeom) call assemble_pressures(model, a%loading, t0, a%state, .false., a%f_ext0)
+    call assemble_pressures(model, a%loading, t0, a%state, nlgeom, a%f_ext0)
     call assemble_pressures(model, a%loading, t1, a%state, nlgeom, a%f_ext1)
   end subroutine external_forces
 
@@ -159,21 +230,30 @@ contains
     end do
   end subroutine prescribed_increments
 
-  !> Factorise and solve; a non-finite solution is an error.
+  !> Factorise once and solve for both parts of the trial increment; a non-finite solution is
+  !> an error.
   subroutine solve_system(a, err)
     type(analysis_t), intent(inout) :: a
     type(error_t), allocatable, intent(out) :: err
-    integer :: i
     call a%timers%start('factorisation')
     call a%solver%factor(a%matrix, err)
     call a%timers%stop('factorisation')
     if (allocated(err)) return
     call a%timers%start('solve')
-    call a%solver%solve(a%matrix, a%rhs, a%du, err)
+    call a%solver%solve(a%matrix, a%rhs, a%du_load, err)
+    if (.not. allocated(err)) call a%solver%solve(a%matrix, a%rhs_residual, a%du_residual, err)
     call a%timers%stop('solve')
     if (allocated(err)) return
-    do i = 1, size(a%du)
-      if (.not. (abs(a%du(i)) <= huge(1.0_dp))) then
+    call check_finite(a%du_load, err)
+    if (.not. allocated(err)) call check_finite(a%du_residual, err)
+  end subroutine solve_system
+
+  subroutine check_finite(du, err)
+    real(dp), intent(in) :: du(:)
+    type(error_t), allocatable, intent(out) :: err
+    integer :: i
+    do i = 1, size(du)
+      if (.not. (abs(du(i)) <= huge(1.0_dp))) then
         call fatal_error(err, 'the solution is not finite (NaN or Inf) at node ' // &
           str((i - 1) / 3 + 1) // ', direction ' // str(i - 3 * ((i - 1) / 3)) // &
           ': the system is singular or badly conditioned (an unsupported body, or a penalty ' // &
@@ -181,7 +261,7 @@ contains
         return
       end if
     end do
-  end subroutine solve_system
+  end subroutine check_finite
 
   !> Offer every event and limit of the trial increment to the collector.
   subroutine collect_events(a, model, step, err)
@@ -191,10 +271,13 @@ contains
     type(error_t), allocatable, intent(out) :: err
     type(hex8_geometry_t) :: geo
     real(dp) :: strain(6, N_GAUSS_HEX8), spin(3, 3, N_GAUSS_HEX8), equivalent(N_GAUSS_HEX8)
-    real(dp) :: angle(N_GAUSS_HEX8), du(3, 8), stress_increment(6)
+    real(dp) :: angle(N_GAUSS_HEX8), du(3, 8), stress_increment(6), strain_fixed(6, N_GAUSS_HEX8)
+    real(dp) :: tangent(6, 6), stress_start(6)
     integer :: e, q, s
     logical :: ok, bbar
     call a%collector%reset()
+    if (a%contact%n_slaves() > 0) call a%contact%events(a%x_contact, a%state%contact, a%du_residual, &
+                                                        a%du_load, a%collector)
     if (.not. (step%nlgeom .or. a%materials_have_states)) return
     do e = 1, model%mesh%n_elements
       call hex8_geometry(element_configuration(model, a%state, e, step%nlgeom), geo, ok)
@@ -204,7 +287,7 @@ contains
       end if
       s = model%element_section(e)
       bbar = model%sections(s)%formulation == FORMULATION_BBAR
-      du = element_increment(a%du, model%mesh%connectivity(:, e))
+      du = element_increment(a%du_load, model%mesh%connectivity(:, e))
       call hex8_strain_increments(geo, du, bbar, strain, spin, equivalent, angle)
       if (step%nlgeom) then
         if (maxval(equivalent) > 0.0_dp) call a%collector%offer(step%rmin%max_strain_increment / &
@@ -213,12 +296,15 @@ contains
           maxval(angle), EVENT_ROTATION_LIMIT, e, maxloc(angle, 1))
       end if
       if (.not. a%materials_have_states) cycle
+      du = element_increment(a%du_residual, model%mesh%connectivity(:, e))
+      call hex8_strain_increments(geo, du, bbar, strain_fixed, spin, equivalent, angle)
       associate (material => a%materials(model%sections(s)%material)%m)
         do q = 1, N_GAUSS_HEX8
-          stress_increment = matmul(material%tangent(a%state%stress(:, q, e), &
-                                    a%state%material_state(:, q, e)), strain(:, q))
-          call a%collector%offer(material%event_fraction(a%state%stress(:, q, e), &
-            stress_increment, a%state%material_state(:, q, e)), EVENT_YIELD, e, q)
+          tangent = material%tangent(a%state%stress(:, q, e), a%state%material_state(:, q, e))
+          stress_start = a%state%stress(:, q, e) + matmul(tangent, strain_fixed(:, q))
+          stress_increment = matmul(tangent, strain(:, q))
+          call a%collector%offer(material%event_fraction(stress_start, stress_increment, &
+                                 a%state%material_state(:, q, e)), EVENT_YIELD, e, q)
         end do
       end associate
     end do

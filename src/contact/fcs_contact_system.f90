@@ -1,0 +1,810 @@
+!> The contact system: every node-to-point contact pair of the model (Xing, Mora &
+!> Makinouchi 2003, section 2), with what the stepper needs each increment:
+!>   - `cliques`: slave node + master face nodes for the sparse pattern (the current face and
+!>     its neighbours, so that sliding rarely changes the pattern);
+!>   - `assemble`: contact forces R f and tangents K_f (eqs. 8-10) of every closed node;
+!>   - `events`: the R-minimum fractions of the trial increment at which a node closes
+!>     (gap reaches 0), opens (normal force reaches 0), starts to slip (F = 0, eq. 3), returns
+!>     to stick (slip reverses), or leaves its master segment;
+!>   - `update`: the return mapping of every closed node (eq. 5) on the new configuration,
+!>     segment hand-over while sliding, search for the open nodes, state changes.
+module fcs_contact_system
+  use fcs_kinds, only: dp
+  use fcs_error, only: error_t, fatal_error, input_error
+  use fcs_model, only: model_t, contact_pair_def_t
+  use fcs_mesh, only: mesh_t, hex8_face_nodes, SURFACE_FACES
+  use fcs_contact_geometry, only: segment_point_t, segment_point, project_to_segment
+  use fcs_contact_search, only: face_grid_t, closest_face, XI_TOLERANCE
+  use fcs_contact_element, only: contact_linear_t, contact_linearise, contact_update, &
+                                 contact_update_t, CONTACT_OPEN, CONTACT_STICK, CONTACT_SLIP, &
+                                 CONTACT_TIED
+  use fcs_contact_state, only: contact_state_t
+  use fcs_contact_areas, only: slave_node_areas
+  use fcs_friction_law, only: friction_law_t, friction_derivatives_t
+  use fcs_friction_factory, only: create_friction_law, friction_def_t
+  use fcs_sparse, only: sparse_matrix_t
+  use fcs_rmin_events, only: rmin_collector_t, EVENT_CONTACT_CLOSE, EVENT_CONTACT_OPEN, &
+                             EVENT_STICK_TO_SLIP, EVENT_SEGMENT_CHANGE, &
+                             EVENT_NONE
+  use fcs_sort, only: unique_sorted
+  use fcs_strings, only: str
+  implicit none
+  private
+  public :: contact_system_t, contact_pair_t, pair_totals_t
+
+  !> Gaps within this fraction of the mean master face size count as touching.
+  real(dp), parameter :: GAP_TOLERANCE = 1.0e-8_dp
+  !> Contact points within this distance (natural coordinates) of a segment edge are on it.
+  real(dp), parameter :: SEGMENT_EDGE_TOLERANCE = 1.0e-6_dp
+
+  type :: contact_pair_t
+    character(len=:), allocatable :: name
+    logical :: tied = .false.
+    real(dp) :: normal_stiffness = 0.0_dp
+    real(dp) :: stick_stiffness = 0.0_dp
+    !> Mean master face size; search reach for open nodes; tie position tolerance.
+    real(dp) :: face_size = 0.0_dp
+    real(dp) :: reach = 0.0_dp
+    real(dp) :: position_tolerance = 0.0_dp
+    class(friction_law_t), allocatable :: law
+    !> Master faces (4 global node indices each, outward) and the faces sharing a node with
+    !> each face (itself included): neighbors(neighbor_ptr(f):neighbor_ptr(f+1)-1).
+    integer, allocatable :: face_nodes(:, :)
+    integer, allocatable :: neighbor_ptr(:), neighbors(:)
+    type(face_grid_t) :: grid
+    !> Slave entries of this pair in the contact state: first..last.
+    integer :: first = 1
+    integer :: last = 0
+  end type contact_pair_t
+
+  !> Sums over a pair, for the log and histories.
+  type :: pair_totals_t
+    real(dp) :: normal_force = 0.0_dp
+    real(dp) :: tangential_force(3) = 0.0_dp
+    integer :: n_stick = 0
+    integer :: n_slip = 0
+    integer :: n_open = 0
+    integer :: n_tied = 0
+  end type pair_totals_t
+
+  type :: contact_system_t
+    type(contact_pair_t), allocatable :: pairs(:)
+    !> For each slave entry: its node, pair, tributary area.
+    integer, allocatable :: slave_node(:), slave_pair(:)
+    real(dp), allocatable :: area(:)
+    !> Face each slave's pattern clique was built around (0: none) and whether the pattern
+    !> must be rebuilt before the next assembly.
+    integer, allocatable :: pattern_face(:)
+    logical :: pattern_dirty = .false.
+    !> Each slave's earliest event in the last trial increment (fraction and kind).
+    real(dp), allocatable :: event_r(:)
+    integer, allocatable :: event_kind(:)
+    !> How often each node's stick/slip tangent was switched in the current increment.
+    integer, allocatable :: switches(:)
+  contains
+    procedure :: init => system_init
+    procedure :: n_slaves => system_n_slaves
+    procedure :: cliques => system_cliques
+    procedure :: assemble => system_assemble
+    procedure :: events => system_events
+    procedure :: switch_states => system_switch_states
+    procedure :: update => system_update
+    procedure :: totals => system_totals
+    procedure :: traction => system_traction
+    procedure :: forces => system_forces
+  end type contact_system_t
+
+contains
+
+  pure integer function system_n_slaves(this)
+    class(contact_system_t), intent(in) :: this
+    system_n_slaves = 0
+    if (allocated(this%slave_node)) system_n_slaves = size(this%slave_node)
+  end function system_n_slaves
+
+  !> Set up every pair of the model on coordinates x and find the initial contact state.
+  subroutine system_init(this, model, x, cstate, err)
+    class(contact_system_t), intent(inout) :: this
+    type(model_t), intent(in) :: model
+    real(dp), intent(in) :: x(:, :)
+    type(contact_state_t), intent(inout) :: cstate
+    type(error_t), allocatable, intent(out) :: err
+    integer :: k, n_total
+    integer, allocatable :: slaves(:)
+    real(dp), allocatable :: areas(:)
+    allocate (this%pairs(size(model%contact_pairs)), this%slave_node(0), this%slave_pair(0), &
+              this%area(0))
+    n_total = 0
+    do k = 1, size(model%contact_pairs)
+      call setup_pair(this%pairs(k), model, model%contact_pairs(k), x, err)
+      if (allocated(err)) return
+      call slave_nodes_of(model, model%contact_pairs(k), this%pairs(k), slaves)
+      call slave_node_areas(model%mesh, model%contact_pairs(k)%slave_surface, slaves, areas, err)
+      if (allocated(err)) then
+        err%message = 'contact pair ' // model%contact_pairs(k)%name // ': ' // err%message
+        return
+      end if
+      this%pairs(k)%first = n_total + 1
+      this%pairs(k)%last = n_total + size(slaves)
+      n_total = n_total + size(slaves)
+      this%slave_node = [this%slave_node, slaves]
+      this%slave_pair = [this%slave_pair, spread(k, 1, size(slaves))]
+      this%area = [this%area, areas]
+    end do
+    call cstate%init(n_total)
+    allocate (this%pattern_face(n_total), this%event_r(n_total), this%event_kind(n_total), &
+              this%switches(n_total))
+    this%switches = 0
+    this%pattern_face = 0
+    this%event_r = huge(1.0_dp)
+    this%event_kind = EVENT_NONE
+    call initial_state(this, x, cstate)
+    this%pattern_face = cstate%face
+  end subroutine system_init
+
+  !> Faces, neighbours, penalties, friction law and search grid of one pair.
+  subroutine setup_pair(pair, model, def, x, err)
+    type(contact_pair_t), intent(inout) :: pair
+    type(model_t), intent(in) :: model
+    type(contact_pair_def_t), intent(in) :: def
+    real(dp), intent(in) :: x(:, :)
+    type(error_t), allocatable, intent(out) :: err
+    type(friction_def_t) :: frictionless
+    integer :: f, nf
+    pair%name = def%name
+    pair%tied = def%tied
+    pair%normal_stiffness = def%normal_stiffness
+    pair%stick_stiffness = def%stick_stiffness
+    pair%position_tolerance = def%position_tolerance
+    associate (surface => model%mesh%surfaces(def%master_surface))
+      nf = size(surface%element)
+      allocate (pair%face_nodes(4, nf))
+      do f = 1, nf
+        pair%face_nodes(:, f) = hex8_face_nodes(model%mesh, surface%element(f), surface%face(f))
+      end do
+    end associate
+    pair%face_size = 0.0_dp
+    do f = 1, nf
+      pair%face_size = pair%face_size + 0.5_dp * (norm2(x(:, pair%face_nodes(3, f)) - &
+        x(:, pair%face_nodes(1, f))) + norm2(x(:, pair%face_nodes(4, f)) - x(:, pair%face_nodes(2, f))))
+    end do
+    pair%face_size = pair%face_size / (sqrt(2.0_dp) * nf)
+    pair%reach = pair%face_size
+    call face_neighbours(pair, model%mesh%n_nodes)
+    call pair%grid%build(pair%face_nodes, x, pair%reach)
+    frictionless%law = 'COULOMB'
+    frictionless%mu0 = 0.0_dp
+    if (def%interaction > 0) then
+      if (model%interactions(def%interaction)%has_friction) then
+        call create_friction_law(model%interactions(def%interaction)%friction, pair%law, err)
+        if (allocated(err)) return
+      end if
+    end if
+    if (.not. allocated(pair%law)) call create_friction_law(frictionless, pair%law, err)
+  end subroutine setup_pair
+
+  !> For every face, the faces sharing at least one node with it (itself included).
+  subroutine face_neighbours(pair, n_nodes)
+    type(contact_pair_t), intent(inout) :: pair
+    integer, intent(in) :: n_nodes
+    integer, allocatable :: node_ptr(:), node_faces(:), fill(:), found(:)
+    integer :: f, i, nf, node, j
+    nf = size(pair%face_nodes, 2)
+    allocate (node_ptr(n_nodes + 1))
+    node_ptr = 0
+    do f = 1, nf
+      node_ptr(pair%face_nodes(:, f) + 1) = node_ptr(pair%face_nodes(:, f) + 1) + 1
+    end do
+    node_ptr(1) = 1
+    do i = 1, n_nodes
+      node_ptr(i + 1) = node_ptr(i + 1) + node_ptr(i)
+    end do
+    allocate (node_faces(node_ptr(n_nodes + 1) - 1))
+    fill = node_ptr(1:n_nodes)
+    do f = 1, nf
+      do i = 1, 4
+        node = pair%face_nodes(i, f)
+        node_faces(fill(node)) = f
+        fill(node) = fill(node) + 1
+      end do
+    end do
+    allocate (pair%neighbor_ptr(nf + 1), pair%neighbors(0))
+    pair%neighbor_ptr(1) = 1
+    do f = 1, nf
+      allocate (found(0))
+      do i = 1, 4
+        node = pair%face_nodes(i, f)
+        found = [found, (node_faces(j), j = node_ptr(node), node_ptr(node + 1) - 1)]
+      end do
+      found = unique_sorted(found)
+      pair%neighbors = [pair%neighbors, found]
+      pair%neighbor_ptr(f + 1) = pair%neighbor_ptr(f) + size(found)
+      deallocate (found)
+    end do
+  end subroutine face_neighbours
+
+  !> Slave nodes of a pair: the slave surface's nodes, less those on the master surface.
+  subroutine slave_nodes_of(model, def, pair, slaves)
+    type(model_t), intent(in) :: model
+    type(contact_pair_def_t), intent(in) :: def
+    type(contact_pair_t), intent(in) :: pair
+    integer, allocatable, intent(out) :: slaves(:)
+    integer, allocatable :: all(:), master(:)
+    logical, allocatable :: on_master(:)
+    integer :: i
+    all = model%mesh%surface_node_list(def%slave_surface)
+    master = unique_sorted(reshape(pair%face_nodes, [size(pair%face_nodes)]))
+    allocate (on_master(model%mesh%n_nodes))
+    on_master = .false.
+    on_master(master) = .true.
+    slaves = pack(all, [(.not. on_master(all(i)), i = 1, size(all))])
+  end subroutine slave_nodes_of
+
+  !> Initial search: tied nodes within the position tolerance are tied at their initial gap;
+  !> other nodes are closed (stick) if they already penetrate.
+  subroutine initial_state(this, x, cstate)
+    type(contact_system_t), intent(inout) :: this
+    real(dp), intent(in) :: x(:, :)
+    type(contact_state_t), intent(inout) :: cstate
+    type(segment_point_t) :: p
+    type(contact_update_t) :: u
+    integer :: s, face
+    real(dp) :: gap
+    do s = 1, size(this%slave_node)
+      associate (pair => this%pairs(this%slave_pair(s)))
+        call search(pair, x, x(:, this%slave_node(s)), face, p, gap)
+        cstate%face(s) = face
+        cstate%status(s) = CONTACT_OPEN
+        cstate%mu(s) = pair%law%mu(0.0_dp, 0.0_dp, pair%law%initial_state())
+        cstate%friction_state(s) = pair%law%initial_state()
+        if (face == 0) cycle
+        cstate%xi(:, s) = p%xi
+        cstate%gap(s) = gap
+        if (pair%tied) then
+          if (abs(gap) > pair%position_tolerance) then
+            cstate%face(s) = 0
+            cycle
+          end if
+          cstate%status(s) = CONTACT_TIED
+          cstate%tied_gap(s) = gap
+        else if (gap <= GAP_TOLERANCE * pair%face_size) then
+          u = contact_update(p, gap, p, [0.0_dp, 0.0_dp], CONTACT_STICK, this%area(s), &
+                             pair%normal_stiffness, pair%stick_stiffness, cstate%mu(s), 0.0_dp)
+          cstate%status(s) = CONTACT_STICK
+          cstate%normal_force(s) = u%normal_force
+        end if
+      end associate
+    end do
+  end subroutine initial_state
+
+  !> Global search of one point: grid candidates, then the projection rule.
+  subroutine search(pair, x, xs, face, point, gap)
+    type(contact_pair_t), intent(in) :: pair
+    real(dp), intent(in) :: x(:, :), xs(3)
+    integer, intent(out) :: face
+    type(segment_point_t), intent(out) :: point
+    real(dp), intent(out) :: gap
+    integer, allocatable :: candidates(:)
+    call pair%grid%candidates(xs, candidates)
+    call closest_face(pair%face_nodes, x, candidates, xs, pair%reach, face, point, gap)
+  end subroutine search
+
+  !> Cliques for the sparse pattern: each slave with a face, with the nodes of that face and
+  !> of its neighbours. Appended to clique_ptr/clique_nodes.
+  subroutine system_cliques(this, cstate, clique_ptr, clique_nodes)
+    class(contact_system_t), intent(inout) :: this
+    type(contact_state_t), intent(in) :: cstate
+    integer, allocatable, intent(inout) :: clique_ptr(:), clique_nodes(:)
+    integer, allocatable :: nodes(:)
+    integer :: s, j, f
+    do s = 1, size(this%slave_node)
+      this%pattern_face(s) = cstate%face(s)
+      f = cstate%face(s)
+      if (f == 0) cycle
+      associate (pair => this%pairs(this%slave_pair(s)))
+        nodes = [this%slave_node(s)]
+        do j = pair%neighbor_ptr(f), pair%neighbor_ptr(f + 1) - 1
+          nodes = [nodes, pair%face_nodes(:, pair%neighbors(j))]
+        end do
+      end associate
+      nodes = unique_sorted(nodes)
+      clique_nodes = [clique_nodes, nodes]
+      clique_ptr = [clique_ptr, clique_ptr(size(clique_ptr)) + size(nodes)]
+    end do
+    this%pattern_dirty = .false.
+  end subroutine system_cliques
+
+  !> Linearisation of closed node s on coordinates x.
+  subroutine linearise(this, s, x, cstate, lin)
+    type(contact_system_t), intent(in) :: this
+    integer, intent(in) :: s
+    real(dp), intent(in) :: x(:, :)
+    type(contact_state_t), intent(in) :: cstate
+    type(contact_linear_t), intent(out) :: lin
+    type(segment_point_t) :: p
+    type(friction_derivatives_t) :: fr
+    real(dp) :: xm(3, 4)
+    associate (pair => this%pairs(this%slave_pair(s)))
+      xm = x(:, pair%face_nodes(:, cstate%face(s)))
+      p = segment_point(xm, cstate%xi(:, s))
+      fr = pair%law%evaluate(cstate%normal_force(s) / this%area(s), cstate%slip_rate(s), &
+                             cstate%friction_state(s))
+      fr%mu = cstate%mu(s)
+      call contact_linearise(x(:, this%slave_node(s)), xm, p, cstate%gap(s), cstate%normal_force(s), &
+        cstate%friction(:, s), cstate%status(s), this%area(s), pair%normal_stiffness, &
+        pair%stick_stiffness, fr, max(cstate%trial_norm(s), norm2(cstate%friction(:, s))), 0.0_dp, lin)
+    end associate
+  end subroutine linearise
+
+  !> The 5 nodes of slave s's contact element.
+  pure function element_nodes(this, s, cstate) result(nodes)
+    class(contact_system_t), intent(in) :: this
+    integer, intent(in) :: s
+    type(contact_state_t), intent(in) :: cstate
+    integer :: nodes(5)
+    nodes(1) = this%slave_node(s)
+    nodes(2:5) = this%pairs(this%slave_pair(s))%face_nodes(:, cstate%face(s))
+  end function element_nodes
+
+  !> Add K_f of every closed node to `matrix` and its forces R f to f_contact (3*n_nodes).
+  subroutine system_assemble(this, x, cstate, matrix, f_contact, err)
+    class(contact_system_t), intent(inout) :: this
+    real(dp), intent(in) :: x(:, :)
+    type(contact_state_t), intent(in) :: cstate
+    type(sparse_matrix_t), intent(inout) :: matrix
+    real(dp), intent(inout) :: f_contact(:)
+    type(error_t), allocatable, intent(out) :: err
+    type(contact_linear_t) :: lin
+    integer :: s, a, nodes(5)
+    logical :: missing
+    do s = 1, size(this%slave_node)
+      if (cstate%status(s) == CONTACT_OPEN) cycle
+      call linearise(this, s, x, cstate, lin)
+      nodes = element_nodes(this, s, cstate)
+      call matrix%add_matrix(nodes, lin%stiffness, missing)
+      if (missing) then
+        call fatal_error(err, 'internal error: contact element of node ' // str(nodes(1)) // &
+                         ' is not in the sparse pattern')
+        return
+      end if
+      do a = 1, 5
+        f_contact(3 * nodes(a) - 2:3 * nodes(a)) = f_contact(3 * nodes(a) - 2:3 * nodes(a)) + &
+          lin%force(3 * a - 2:3 * a)
+      end do
+    end do
+  end subroutine system_assemble
+
+  !> Offer the R-minimum events of the trial increment to the collector. The trial path is
+  !> du(r) = du_fixed + r du_scaled (the out-of-balance correction is applied in full, the
+  !> load increment scaled by r); contact quantities are linear in du (their linearisation).
+  subroutine system_events(this, x, cstate, du_fixed, du_scaled, collector)
+    class(contact_system_t), intent(inout) :: this
+    real(dp), intent(in) :: x(:, :), du_fixed(:), du_scaled(:)
+    type(contact_state_t), intent(in) :: cstate
+    type(rmin_collector_t), intent(inout) :: collector
+    type(contact_linear_t) :: lin
+    type(segment_point_t) :: p
+    real(dp) :: due_fixed(15), due_scaled(15), g_start, g_end
+    integer :: s, a, nodes(5)
+    this%event_r = huge(1.0_dp)
+    this%event_kind = EVENT_NONE
+    do s = 1, size(this%slave_node)
+      if (cstate%face(s) == 0 .or. cstate%status(s) == CONTACT_TIED) cycle
+      nodes = element_nodes(this, s, cstate)
+      do a = 1, 5
+        due_fixed(3 * a - 2:3 * a) = du_fixed(3 * nodes(a) - 2:3 * nodes(a))
+        due_scaled(3 * a - 2:3 * a) = du_scaled(3 * nodes(a) - 2:3 * nodes(a))
+      end do
+      if (cstate%status(s) == CONTACT_OPEN) then
+        p = segment_point(x(:, nodes(2:5)), cstate%xi(:, s))
+        g_start = cstate%gap(s) + relative_normal(p, due_fixed)
+        g_end = g_start + relative_normal(p, due_scaled)
+        if (cstate%gap(s) > 0.0_dp .and. g_end < 0.0_dp) &
+          call offer(this, collector, s, crossing(g_start, g_end), EVENT_CONTACT_CLOSE)
+        cycle
+      end if
+      call linearise(this, s, x, cstate, lin)
+      p = segment_point(x(:, nodes(2:5)), cstate%xi(:, s))
+      call closed_node_events(this, s, p, cstate, lin, due_fixed, due_scaled, collector)
+    end do
+  end subroutine system_events
+
+  !> n.(du_s - sum N_I du_I): the gap change for nodal increments due(15).
+  pure real(dp) function relative_normal(p, due)
+    type(segment_point_t), intent(in) :: p
+    real(dp), intent(in) :: due(15)
+    relative_normal = dot_product(p%normal, due(1:3) - matmul(reshape(due(4:15), [3, 4]), p%shape))
+  end function relative_normal
+
+  !> Fraction at which a quantity going linearly from v_start (r = 0) to v_end (r = 1)
+  !> reaches zero (0 if it starts at or beyond zero).
+  pure real(dp) function crossing(v_start, v_end) result(r)
+    real(dp), intent(in) :: v_start, v_end
+    if (v_start * v_end >= 0.0_dp .and. abs(v_start) <= abs(v_end)) then
+      r = 0.0_dp
+    else
+      r = v_start / (v_start - v_end)
+    end if
+  end function crossing
+
+  !> State changes at the very start of the trial increment (r = 0), handled as in
+  !> elastic-plastic unloading (Yamada et al. 1968): a slipping node whose elastic (stick)
+  !> predictor stays inside the Coulomb cone unloads, and a sticking node on the cone whose
+  !> predictor leaves it at once slips; their tangents are switched and the caller solves the
+  !> increment again. Each node switches at most twice per increment (no endless flip-flop).
+  !> `n_switched` counts the switches made.
+  subroutine system_switch_states(this, x, cstate, du, n_switched)
+    class(contact_system_t), intent(inout) :: this
+    real(dp), intent(in) :: x(:, :), du(:)
+    type(contact_state_t), intent(inout) :: cstate
+    integer, intent(out) :: n_switched
+    type(contact_linear_t) :: lin
+    type(segment_point_t) :: p
+    real(dp) :: due(15), fn, dfn, ft(3), dft(3), mu, qa, qb, qc, tolerance
+    integer :: s, a, nodes(5)
+    logical :: on_cone
+    n_switched = 0
+    do s = 1, size(this%slave_node)
+      if (cstate%status(s) /= CONTACT_STICK .and. cstate%status(s) /= CONTACT_SLIP) cycle
+      if (this%switches(s) >= 10) cycle
+      nodes = element_nodes(this, s, cstate)
+      do a = 1, 5
+        due(3 * a - 2:3 * a) = du(3 * nodes(a) - 2:3 * nodes(a))
+      end do
+      call linearise(this, s, x, cstate, lin)
+      p = segment_point(x(:, nodes(2:5)), cstate%xi(:, s))
+      fn = cstate%normal_force(s)
+      dfn = dot_product(lin%dfn, due)
+      ft = cstate%friction(1, s) * p%e(:, 1) + cstate%friction(2, s) * p%e(:, 2)
+      if (norm2(ft) <= 0.0_dp) cycle
+      mu = cstate%mu(s)
+      dft = matmul(lin%dft_stick, due)
+      qa = dot_product(dft, dft) - mu**2 * dfn**2
+      qb = 2.0_dp * (dot_product(ft, dft) - mu**2 * fn * dfn)
+      qc = dot_product(ft, ft) - mu**2 * fn**2
+      tolerance = 1.0e-10_dp * (mu * fn)**2
+      on_cone = abs(qc) <= tolerance .or. qc > 0.0_dp
+      if (cstate%status(s) == CONTACT_SLIP) then
+        if (qc < -tolerance .or. (on_cone .and. (qb < 0.0_dp .or. (qb == 0.0_dp .and. qa < 0.0_dp)))) then
+          cstate%status(s) = CONTACT_STICK
+          this%switches(s) = this%switches(s) + 1
+          n_switched = n_switched + 1
+        end if
+      else if (on_cone .and. (qb > 0.0_dp .or. (qb == 0.0_dp .and. qa > 0.0_dp))) then
+        cstate%status(s) = CONTACT_SLIP
+        cstate%trial_norm(s) = norm2(ft)
+        this%switches(s) = this%switches(s) + 1
+        n_switched = n_switched + 1
+      end if
+    end do
+  end subroutine system_switch_states
+
+  !> Opening, stick-to-slip (the quadratic F(r) = 0 of eq. 3), segment exit, along the
+  !> path du_fixed + r du_scaled.
+  subroutine closed_node_events(this, s, p, cstate, lin, due_fixed, due_scaled, collector)
+    type(contact_system_t), intent(inout) :: this
+    integer, intent(in) :: s
+    type(segment_point_t), intent(in) :: p
+    type(contact_state_t), intent(in) :: cstate
+    type(contact_linear_t), intent(in) :: lin
+    real(dp), intent(in) :: due_fixed(15), due_scaled(15)
+    type(rmin_collector_t), intent(inout) :: collector
+    real(dp) :: fn, dfn, ft(3), dft(3), mu, qa, qb, qc, xi_start(2), dxi(2), r, fn_floor
+    integer :: alpha
+    associate (pair => this%pairs(this%slave_pair(s)))
+      fn = cstate%normal_force(s) + dot_product(lin%dfn, due_fixed)
+      dfn = dot_product(lin%dfn, due_scaled)
+      fn_floor = GAP_TOLERANCE * pair%normal_stiffness * this%area(s) * pair%face_size
+      if (cstate%normal_force(s) > fn_floor .and. fn + dfn < 0.0_dp) &
+        call offer(this, collector, s, crossing(fn, fn + dfn), EVENT_CONTACT_OPEN)
+      ft = cstate%friction(1, s) * p%e(:, 1) + cstate%friction(2, s) * p%e(:, 2) + &
+           matmul(lin%dft_stick, due_fixed)
+      mu = cstate%mu(s)
+      if (cstate%status(s) == CONTACT_STICK) then
+        dft = matmul(lin%dft_stick, due_scaled)
+        qa = dot_product(dft, dft) - mu**2 * dfn**2
+        qb = 2.0_dp * (dot_product(ft, dft) - mu**2 * fn * dfn)
+        qc = dot_product(ft, ft) - mu**2 * fn**2
+        r = cone_crossing(qa, qb, qc, 1.0e-10_dp * (mu * max(fn, 0.0_dp))**2)
+        if (r <= 1.0_dp) call offer(this, collector, s, r, EVENT_STICK_TO_SLIP)
+      end if
+      xi_start = cstate%xi(:, s) + matmul(lin%dxi, due_fixed)
+      dxi = matmul(lin%dxi, due_scaled)
+      do alpha = 1, 2
+        ! A node already on the edge of its segment (nodes on master nodes or edges) changes
+        ! segment by the hand-over rule in the update; no event is needed.
+        if (abs(cstate%xi(alpha, s)) < 1.0_dp - SEGMENT_EDGE_TOLERANCE .and. &
+            abs(xi_start(alpha) + dxi(alpha)) > 1.0_dp) &
+          call offer(this, collector, s, crossing(abs(xi_start(alpha)) - 1.0_dp, &
+                     abs(xi_start(alpha) + dxi(alpha)) - 1.0_dp), EVENT_SEGMENT_CHANGE)
+      end do
+    end associate
+  end subroutine closed_node_events
+
+  !> New contact state on the coordinates x after an increment of duration dt whose
+  !> fraction of the trial increment was r: the return mapping of every closed node (eq. 5),
+  !> segment hand-over, opening, and the search for open nodes. Events whose fractions were
+  !> within r are applied even when round-off leaves the node a hair short of them.
+  subroutine system_update(this, x, cstate, dt, r)
+    class(contact_system_t), intent(inout) :: this
+    real(dp), intent(in) :: x(:, :), dt, r
+    type(contact_state_t), intent(inout) :: cstate
+    integer :: k, s, kind
+    do k = 1, size(this%pairs)
+      if (this%pairs(k)%grid%needs_rebuild(this%pairs(k)%face_nodes, x)) &
+        call this%pairs(k)%grid%build(this%pairs(k)%face_nodes, x, this%pairs(k)%reach)
+    end do
+    do s = 1, size(this%slave_node)
+      kind = EVENT_NONE
+      if (this%event_r(s) <= r * (1.0_dp + 1.0e-9_dp)) kind = this%event_kind(s)
+      select case (cstate%status(s))
+      case (CONTACT_TIED)
+        call update_tied(this, s, x, cstate)
+      case (CONTACT_STICK, CONTACT_SLIP)
+        call update_closed(this, s, x, cstate, dt, kind)
+      case default
+        call update_open(this, s, x, cstate, kind)
+      end select
+      if (cstate%face(s) /= 0) then
+        if (.not. in_pattern(this, s, cstate%face(s))) this%pattern_dirty = .true.
+      end if
+    end do
+    this%event_r = huge(1.0_dp)
+    this%event_kind = EVENT_NONE
+    this%switches = 0
+  end subroutine system_update
+
+  !> True when face f is the face of slave s's pattern clique or one of its neighbours.
+  logical function in_pattern(this, s, f)
+    type(contact_system_t), intent(in) :: this
+    integer, intent(in) :: s, f
+    integer :: centre
+    centre = this%pattern_face(s)
+    in_pattern = .false.
+    if (centre == 0) return
+    associate (pair => this%pairs(this%slave_pair(s)))
+      in_pattern = any(pair%neighbors(pair%neighbor_ptr(centre):pair%neighbor_ptr(centre + 1) - 1) == f)
+    end associate
+  end function in_pattern
+
+  subroutine update_tied(this, s, x, cstate)
+    type(contact_system_t), intent(in) :: this
+    integer, intent(in) :: s
+    real(dp), intent(in) :: x(:, :)
+    type(contact_state_t), intent(inout) :: cstate
+    type(segment_point_t) :: p, p_old
+    type(contact_update_t) :: u
+    real(dp) :: xm(3, 4), gap
+    logical :: converged
+    associate (pair => this%pairs(this%slave_pair(s)))
+      xm = x(:, pair%face_nodes(:, cstate%face(s)))
+      call project_to_segment(xm, x(:, this%slave_node(s)), cstate%xi(:, s), p, gap, converged)
+      if (.not. converged) p = segment_point(xm, cstate%xi(:, s))
+      p_old = segment_point(xm, cstate%xi(:, s))
+      u = contact_update(p, gap, p_old, cstate%friction(:, s), CONTACT_TIED, this%area(s), &
+                         pair%normal_stiffness, pair%stick_stiffness, 0.0_dp, cstate%tied_gap(s))
+      cstate%xi(:, s) = p%xi
+      cstate%gap(s) = gap
+      cstate%normal_force(s) = u%normal_force
+      cstate%friction(:, s) = u%friction
+    end associate
+  end subroutine update_tied
+
+  !> A closed node: follow its contact point (hand-over to a neighbouring face by the search
+  !> rule when it leaves its face), return-map the friction, open it if it separated.
+  subroutine update_closed(this, s, x, cstate, dt, kind)
+    type(contact_system_t), intent(inout) :: this
+    integer, intent(in) :: s, kind
+    real(dp), intent(in) :: x(:, :), dt
+    type(contact_state_t), intent(inout) :: cstate
+    type(segment_point_t) :: p, p_old
+    type(contact_update_t) :: u
+    real(dp) :: xs(3), gap, friction(2), force(3)
+    integer :: face, old_face
+    associate (pair => this%pairs(this%slave_pair(s)))
+      xs = x(:, this%slave_node(s))
+      old_face = cstate%face(s)
+      p_old = segment_point(x(:, pair%face_nodes(:, old_face)), cstate%xi(:, s))
+      call follow(pair, x, xs, old_face, cstate%xi(:, s), face, p, gap)
+      if (face == 0 .or. kind == EVENT_CONTACT_OPEN .or. gap > GAP_TOLERANCE * pair%face_size) then
+        call open_node(cstate, s, face, p, gap)
+        return
+      end if
+      friction = cstate%friction(:, s)
+      if (face /= old_face) then
+        ! Hand-over: keep the friction force vector, expressed in the new face's frame.
+        force = friction(1) * p_old%e(:, 1) + friction(2) * p_old%e(:, 2)
+        friction = matmul(force, p%e)
+        if (norm2(friction) > 0.0_dp) friction = friction * norm2(force) / norm2(friction)
+      end if
+      u = contact_update(p, gap, p_old, friction, cstate%status(s), this%area(s), &
+                         pair%normal_stiffness, pair%stick_stiffness, cstate%mu(s), 0.0_dp)
+      ! A node whose stick-to-slip event was taken has reached the cone up to the
+      ! linearisation error: it slips from now on.
+      if (kind == EVENT_STICK_TO_SLIP) u%status = CONTACT_SLIP
+      cstate%face(s) = face
+      cstate%xi(:, s) = p%xi
+      cstate%gap(s) = gap
+      cstate%status(s) = u%status
+      cstate%normal_force(s) = u%normal_force
+      cstate%friction(:, s) = u%friction
+      cstate%trial_norm(s) = norm2(cstate%friction(:, s)) + pair%stick_stiffness * this%area(s) * &
+                             u%plastic_slip
+      cstate%slip(s) = cstate%slip(s) + u%plastic_slip
+      cstate%slip_rate(s) = 0.0_dp
+      if (dt > 0.0_dp) cstate%slip_rate(s) = u%plastic_slip / dt
+    end associate
+  end subroutine update_closed
+
+  !> Where a closed node's contact point is now: its face if the projection stays on it,
+  !> else the neighbouring face chosen by the search rule (face = 0: nothing in reach).
+  subroutine follow(pair, x, xs, face_old, xi_old, face, p, gap)
+    type(contact_pair_t), intent(in) :: pair
+    real(dp), intent(in) :: x(:, :), xs(3), xi_old(2)
+    integer, intent(in) :: face_old
+    integer, intent(out) :: face
+    type(segment_point_t), intent(out) :: p
+    real(dp), intent(out) :: gap
+    logical :: converged
+    call project_to_segment(x(:, pair%face_nodes(:, face_old)), xs, xi_old, p, gap, converged)
+    face = face_old
+    if (converged .and. maxval(abs(p%xi)) <= 1.0_dp + XI_TOLERANCE) return
+    call closest_face(pair%face_nodes, x, pair%neighbors(pair%neighbor_ptr(face_old): &
+                      pair%neighbor_ptr(face_old + 1) - 1), xs, pair%reach, face, p, gap)
+  end subroutine follow
+
+  subroutine open_node(cstate, s, face, p, gap)
+    type(contact_state_t), intent(inout) :: cstate
+    integer, intent(in) :: s, face
+    type(segment_point_t), intent(in) :: p
+    real(dp), intent(in) :: gap
+    cstate%status(s) = CONTACT_OPEN
+    cstate%face(s) = face
+    cstate%normal_force(s) = 0.0_dp
+    cstate%friction(:, s) = 0.0_dp
+    cstate%trial_norm(s) = 0.0_dp
+    cstate%slip_rate(s) = 0.0_dp
+    if (face == 0) return
+    cstate%xi(:, s) = p%xi
+    cstate%gap(s) = gap
+  end subroutine open_node
+
+  !> An open node: search; it closes if it penetrates or its closing event was taken.
+  subroutine update_open(this, s, x, cstate, kind)
+    type(contact_system_t), intent(in) :: this
+    integer, intent(in) :: s, kind
+    real(dp), intent(in) :: x(:, :)
+    type(contact_state_t), intent(inout) :: cstate
+    type(segment_point_t) :: p
+    type(contact_update_t) :: u
+    real(dp) :: gap
+    integer :: face
+    associate (pair => this%pairs(this%slave_pair(s)))
+      call search(pair, x, x(:, this%slave_node(s)), face, p, gap)
+      call open_node(cstate, s, face, p, gap)
+      if (face == 0) return
+      if (gap < -GAP_TOLERANCE * pair%face_size .or. kind == EVENT_CONTACT_CLOSE) then
+        u = contact_update(p, gap, p, [0.0_dp, 0.0_dp], CONTACT_STICK, this%area(s), &
+                           pair%normal_stiffness, pair%stick_stiffness, cstate%mu(s), 0.0_dp)
+        cstate%status(s) = CONTACT_STICK
+        cstate%normal_force(s) = u%normal_force
+      end if
+    end associate
+  end subroutine update_open
+
+  !> Nodal contact forces R f of every closed node on coordinates x, added to f_contact.
+  subroutine system_forces(this, x, cstate, f_contact)
+    class(contact_system_t), intent(in) :: this
+    real(dp), intent(in) :: x(:, :)
+    type(contact_state_t), intent(in) :: cstate
+    real(dp), intent(inout) :: f_contact(:)
+    real(dp) :: normal(3), pressure, shear(3), f(3)
+    type(segment_point_t) :: p
+    integer :: s, a, nodes(5)
+    do s = 1, size(this%slave_node)
+      if (cstate%status(s) == CONTACT_OPEN .or. cstate%face(s) == 0) cycle
+      call this%traction(s, x, cstate, normal, pressure, shear)
+      f = (pressure * normal + shear) * this%area(s)
+      nodes = element_nodes(this, s, cstate)
+      p = segment_point(x(:, nodes(2:5)), cstate%xi(:, s))
+      f_contact(3 * nodes(1) - 2:3 * nodes(1)) = f_contact(3 * nodes(1) - 2:3 * nodes(1)) + f
+      do a = 2, 5
+        f_contact(3 * nodes(a) - 2:3 * nodes(a)) = f_contact(3 * nodes(a) - 2:3 * nodes(a)) - &
+          p%shape(a - 1) * f
+      end do
+    end do
+  end subroutine system_forces
+
+  !> Totals of pair k: normal and tangential forces, counts by state.
+  function system_totals(this, k, x, cstate) result(t)
+    class(contact_system_t), intent(in) :: this
+    integer, intent(in) :: k
+    real(dp), intent(in) :: x(:, :)
+    type(contact_state_t), intent(in) :: cstate
+    type(pair_totals_t) :: t
+    real(dp) :: traction(3), normal(3), pressure, shear(3)
+    integer :: s
+    do s = this%pairs(k)%first, this%pairs(k)%last
+      select case (cstate%status(s))
+      case (CONTACT_STICK)
+        t%n_stick = t%n_stick + 1
+      case (CONTACT_SLIP)
+        t%n_slip = t%n_slip + 1
+      case (CONTACT_TIED)
+        t%n_tied = t%n_tied + 1
+      case default
+        t%n_open = t%n_open + 1
+      end select
+      call this%traction(s, x, cstate, normal, pressure, shear)
+      traction = shear
+      t%normal_force = t%normal_force + pressure * this%area(s)
+      t%tangential_force = t%tangential_force + traction * this%area(s)
+    end do
+  end function system_totals
+
+  !> Contact tractions of slave s: master normal, pressure f_n/A (positive in compression)
+  !> and shear traction vector f_t/A on the slave node.
+  subroutine system_traction(this, s, x, cstate, normal, pressure, shear)
+    class(contact_system_t), intent(in) :: this
+    integer, intent(in) :: s
+    real(dp), intent(in) :: x(:, :)
+    type(contact_state_t), intent(in) :: cstate
+    real(dp), intent(out) :: normal(3), pressure, shear(3)
+    type(segment_point_t) :: p
+    normal = 0.0_dp
+    pressure = 0.0_dp
+    shear = 0.0_dp
+    if (cstate%face(s) == 0) return
+    p = segment_point(x(:, this%pairs(this%slave_pair(s))%face_nodes(:, cstate%face(s))), cstate%xi(:, s))
+    normal = p%normal
+    if (cstate%status(s) == CONTACT_OPEN) return
+    pressure = cstate%normal_force(s) / this%area(s)
+    shear = (cstate%friction(1, s) * p%e(:, 1) + cstate%friction(2, s) * p%e(:, 2)) / this%area(s)
+  end subroutine system_traction
+
+  !> First r in [0, 1] where the friction force reaches the Coulomb cone,
+  !> F(r) = |f_t + r df_t|^2 - mu^2 (f_n + r df_n)^2 = a r^2 + b r + c = 0 (eq. 3), for a
+  !> stick node (c <= 0 inside the cone). A node on the cone (|c| <= tolerance) slips now if
+  !> F grows (b > 0), otherwise only where F comes back to zero. > 1: no crossing.
+  pure real(dp) function cone_crossing(a, b, c, tolerance) result(r)
+    real(dp), intent(in) :: a, b, c, tolerance
+    real(dp) :: disc, r1, r2, q
+    r = 2.0_dp
+    if (abs(c) <= tolerance .or. c > 0.0_dp) then
+      if (b > 0.0_dp .or. (b == 0.0_dp .and. a > 0.0_dp)) then
+        r = 0.0_dp
+      else if (a > 0.0_dp) then
+        r = -b / a
+      end if
+      return
+    end if
+    if (abs(a) <= tiny(1.0_dp)) then
+      if (b > 0.0_dp) r = -c / b
+      return
+    end if
+    disc = b * b - 4.0_dp * a * c
+    if (disc < 0.0_dp) return
+    q = -0.5_dp * (b + sign(sqrt(disc), b))
+    r1 = q / a
+    r2 = huge(1.0_dp)
+    if (q /= 0.0_dp) r2 = c / q
+    if (r1 >= 0.0_dp) r = min(r, r1)
+    if (r2 >= 0.0_dp) r = min(r, r2)
+  end function cone_crossing
+
+  subroutine offer(this, collector, s, r, kind)
+    type(contact_system_t), intent(inout) :: this
+    type(rmin_collector_t), intent(inout) :: collector
+    integer, intent(in) :: s, kind
+    real(dp), intent(in) :: r
+    real(dp) :: rr
+    rr = max(0.0_dp, r)
+    if (rr > 1.0_dp) return
+    call collector%offer(rr, kind, this%slave_node(s), s)
+    if (rr < this%event_r(s)) then
+      this%event_r(s) = rr
+      this%event_kind(s) = kind
+    end if
+  end subroutine offer
+
+end module fcs_contact_system

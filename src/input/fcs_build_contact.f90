@@ -1,0 +1,227 @@
+!> Model builder, contact keywords: *SURFACE INTERACTION, *SURFACE BEHAVIOR, *FRICTION,
+!> *CONTACT PAIR, *TIE (with their CalculiX meaning; method notes 1.2-1.3).
+module fcs_build_contact
+  use fcs_kinds, only: dp
+  use fcs_deck_lexer, only: card_t
+  use fcs_deck_fields, only: param_upper, param_value, line_real, line_optional_real
+  use fcs_diagnostics, only: diagnostics_t, source_loc_t
+  use fcs_builder_state, only: builder_t
+  use fcs_mesh, only: SURFACE_FACES
+  use fcs_model, only: model_t, interaction_def_t, contact_pair_def_t
+  use fcs_strings, only: to_upper, str, parse_real
+  implicit none
+  private
+  public :: handle_surface_interaction, handle_surface_behavior, handle_friction
+  public :: handle_contact_pair, handle_tie
+
+contains
+
+  !> *SURFACE INTERACTION, NAME=.
+  subroutine handle_surface_interaction(card, model, state, diag)
+    type(card_t), intent(in) :: card
+    type(model_t), intent(inout) :: model
+    type(builder_t), intent(inout) :: state
+    type(diagnostics_t), intent(inout) :: diag
+    type(interaction_def_t) :: interaction
+    integer :: k
+    interaction%name = param_upper(card, 'NAME')
+    interaction%loc = card%loc
+    do k = 1, size(model%interactions)
+      if (model%interactions(k)%name == interaction%name) then
+        call diag%report(card%loc, '*SURFACE INTERACTION: ' // interaction%name // ' is defined twice')
+        state%interaction = 0
+        return
+      end if
+    end do
+    model%interactions = [model%interactions, interaction]
+    state%interaction = size(model%interactions)
+  end subroutine handle_surface_interaction
+
+  logical function has_interaction(card, state, diag) result(ok)
+    type(card_t), intent(in) :: card
+    type(builder_t), intent(in) :: state
+    type(diagnostics_t), intent(inout) :: diag
+    ok = state%interaction > 0
+    if (.not. ok) call diag%report(card%loc, '*' // card%keyword // ' must follow a ' // &
+                                   '*SURFACE INTERACTION line')
+  end function has_interaction
+
+  !> *SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR|TIED: slope E_n.
+  subroutine handle_surface_behavior(card, model, state, diag)
+    type(card_t), intent(in) :: card
+    type(model_t), intent(inout) :: model
+    type(builder_t), intent(in) :: state
+    type(diagnostics_t), intent(inout) :: diag
+    real(dp) :: slope, extra
+    integer :: i
+    if (.not. has_interaction(card, state, diag)) return
+    associate (line => card%lines(1))
+      if (card%n_lines /= 1 .or. size(line%fields) > 3) then
+        call diag%report(line%loc, '*SURFACE BEHAVIOR: expected one line: slope[, sigma_inf, c0]')
+        return
+      end if
+      if (.not. line_real(line, 1, slope, 'slope', 'SURFACE BEHAVIOR', diag)) return
+      if (slope <= 0.0_dp) then
+        call diag%report(line%loc, '*SURFACE BEHAVIOR: the slope (penalty stiffness E_n) must be positive')
+        return
+      end if
+      do i = 2, size(line%fields)
+        if (.not. line_optional_real(line, i, extra, 0.0_dp, 'value', 'SURFACE BEHAVIOR', diag)) return
+        if (extra /= 0.0_dp) then
+          call diag%report(line%loc, '*SURFACE BEHAVIOR: sigma_inf and c0 (CalculiX''s tension ' // &
+                           'at large clearance) are not used by fcs3d; leave them 0 or absent')
+          return
+        end if
+      end do
+    end associate
+    associate (interaction => model%interactions(state%interaction))
+      interaction%normal_stiffness = slope
+      interaction%tied = param_upper(card, 'PRESSURE-OVERCLOSURE') == 'TIED'
+    end associate
+  end subroutine handle_surface_behavior
+
+  !> *FRICTION: mu, stick slope.
+  subroutine handle_friction(card, model, state, diag)
+    type(card_t), intent(in) :: card
+    type(model_t), intent(inout) :: model
+    type(builder_t), intent(in) :: state
+    type(diagnostics_t), intent(inout) :: diag
+    real(dp) :: mu, stick
+    if (.not. has_interaction(card, state, diag)) return
+    associate (line => card%lines(1))
+      if (card%n_lines /= 1 .or. size(line%fields) > 2) then
+        call diag%report(line%loc, '*FRICTION: expected one line: mu[, stick slope]')
+        return
+      end if
+      if (.not. line_real(line, 1, mu, 'friction coefficient', 'FRICTION', diag)) return
+      if (.not. line_optional_real(line, 2, stick, 0.0_dp, 'stick slope', 'FRICTION', diag)) return
+      if (mu < 0.0_dp) then
+        call diag%report(line%loc, '*FRICTION: the friction coefficient must not be negative')
+        return
+      end if
+      if (stick < 0.0_dp .or. (size(line%fields) == 2 .and. stick == 0.0_dp)) then
+        call diag%report(line%loc, '*FRICTION: the stick slope E_t must be positive')
+        return
+      end if
+    end associate
+    associate (interaction => model%interactions(state%interaction))
+      if (interaction%has_friction) then
+        call diag%report(card%loc, '*FRICTION: interaction ' // interaction%name // ' already has friction')
+        return
+      end if
+      interaction%has_friction = .true.
+      interaction%friction%law = param_upper(card, 'LAW')
+      interaction%friction%mu0 = mu
+      interaction%friction%loc = card%loc
+      interaction%stick_stiffness = stick
+    end associate
+  end subroutine handle_friction
+
+  !> *CONTACT PAIR, INTERACTION=: slave surface, master surface.
+  subroutine handle_contact_pair(card, model, diag)
+    type(card_t), intent(in) :: card
+    type(model_t), intent(inout) :: model
+    type(diagnostics_t), intent(inout) :: diag
+    type(contact_pair_def_t) :: pair
+    integer :: k, i
+    pair%loc = card%loc
+    do k = 1, size(model%interactions)
+      if (model%interactions(k)%name == param_upper(card, 'INTERACTION')) pair%interaction = k
+    end do
+    if (pair%interaction == 0) then
+      call diag%report(card%loc, '*CONTACT PAIR: interaction "' // param_value(card, 'INTERACTION') // &
+                       '" is not defined (define it with *SURFACE INTERACTION first)')
+      return
+    end if
+    do i = 1, card%n_lines
+      if (.not. pair_surfaces(card, i, model, diag, pair)) cycle
+      pair%name = param_upper(card, 'NAME')
+      if (len(pair%name) == 0) pair%name = model%mesh%surfaces(pair%slave_surface)%name // '-' // &
+                                           model%mesh%surfaces(pair%master_surface)%name
+      if (card%n_lines > 1 .and. card%find_param('NAME') > 0) pair%name = pair%name // '-' // str(i)
+      pair%tied = model%interactions(pair%interaction)%tied
+      call add_pair(model, pair, card%lines(i)%loc, diag)
+    end do
+  end subroutine handle_contact_pair
+
+  !> *TIE, NAME=: slave surface, master surface.
+  subroutine handle_tie(card, model, diag)
+    type(card_t), intent(in) :: card
+    type(model_t), intent(inout) :: model
+    type(diagnostics_t), intent(inout) :: diag
+    type(contact_pair_def_t) :: pair
+    logical :: ok
+    integer :: i
+    pair%loc = card%loc
+    pair%tied = .true.
+    pair%interaction = 0
+    if (card%find_param('POSITION TOLERANCE') > 0) then
+      call parse_real(param_value(card, 'POSITION TOLERANCE'), pair%position_tolerance, ok)
+      if (pair%position_tolerance <= 0.0_dp) then
+        call diag%report(card%loc, '*TIE: POSITION TOLERANCE must be positive')
+        return
+      end if
+    end if
+    do i = 1, card%n_lines
+      if (.not. pair_surfaces(card, i, model, diag, pair)) cycle
+      pair%name = param_upper(card, 'NAME')
+      if (card%n_lines > 1) pair%name = pair%name // '-' // str(i)
+      call add_pair(model, pair, card%lines(i)%loc, diag)
+    end do
+  end subroutine handle_tie
+
+  !> The slave and master surfaces of data line i.
+  logical function pair_surfaces(card, i, model, diag, pair) result(ok)
+    type(card_t), intent(in) :: card
+    integer, intent(in) :: i
+    type(model_t), intent(in) :: model
+    type(diagnostics_t), intent(inout) :: diag
+    type(contact_pair_def_t), intent(inout) :: pair
+    ok = .false.
+    associate (line => card%lines(i))
+      if (size(line%fields) /= 2) then
+        call diag%report(line%loc, '*' // card%keyword // ': expected slave surface, master surface')
+        return
+      end if
+      pair%slave_surface = model%mesh%find_surface(to_upper(line%fields(1)%s))
+      pair%master_surface = model%mesh%find_surface(to_upper(line%fields(2)%s))
+      if (pair%slave_surface == 0) then
+        call diag%report(line%loc, '*' // card%keyword // ': slave surface "' // line%fields(1)%s // &
+                         '" is not defined')
+        return
+      end if
+      if (pair%master_surface == 0) then
+        call diag%report(line%loc, '*' // card%keyword // ': master surface "' // line%fields(2)%s // &
+                         '" is not defined')
+        return
+      end if
+      if (model%mesh%surfaces(pair%master_surface)%kind /= SURFACE_FACES) then
+        call diag%report(line%loc, '*' // card%keyword // ': master surface "' // line%fields(2)%s // &
+                         '" must be element-face based (the master segments are element faces)')
+        return
+      end if
+      if (pair%slave_surface == pair%master_surface) then
+        call diag%report(line%loc, '*' // card%keyword // ': a surface cannot be in contact with ' // &
+                         'itself (self-contact is not supported)')
+        return
+      end if
+    end associate
+    ok = .true.
+  end function pair_surfaces
+
+  subroutine add_pair(model, pair, loc, diag)
+    type(model_t), intent(inout) :: model
+    type(contact_pair_def_t), intent(in) :: pair
+    type(source_loc_t), intent(in) :: loc
+    type(diagnostics_t), intent(inout) :: diag
+    integer :: k
+    do k = 1, size(model%contact_pairs)
+      if (model%contact_pairs(k)%name == pair%name) then
+        call diag%report(loc, 'contact pair ' // pair%name // ' is defined twice')
+        return
+      end if
+    end do
+    model%contact_pairs = [model%contact_pairs, pair]
+  end subroutine add_pair
+
+end module fcs_build_contact

@@ -1,0 +1,141 @@
+!> Unit tests of the node-to-point contact element: closest-point projection, and the
+!> consistent tangent K_f = -dF/du (Xing, Mora & Makinouchi 2003, eqs. 6-9) against central
+!> finite differences of the return-mapping update, on a warped (twisted) master segment, with
+!> a gap, for stick, slip and tied nodes.
+program test_fcs_contact_element
+  use fcs_kinds, only: dp
+  use fcs_test_assertions, only: test_suite_t
+  use fcs_contact_geometry, only: segment_point_t, segment_point, project_to_segment
+  use fcs_contact_element, only: contact_linear_t, contact_linearise, contact_update, &
+                                 contact_update_t, CONTACT_STICK, CONTACT_SLIP, CONTACT_TIED
+  use fcs_friction_law, only: friction_derivatives_t
+  implicit none
+  type(test_suite_t) :: suite
+  real(dp), parameter :: AREA = 0.7_dp, EN = 300.0_dp, ET = 200.0_dp, MU = 0.4_dp
+  suite%name = 'contact_element'
+  call test_projection(suite)
+  call test_tangent(suite, CONTACT_STICK, 'stick')
+  call test_tangent(suite, CONTACT_SLIP, 'slip')
+  call test_tangent(suite, CONTACT_TIED, 'tied')
+  call test_return_mapping(suite)
+  call suite%report()
+
+contains
+
+  !> A warped, tilted master segment and a slave node slightly penetrating it.
+  subroutine configuration(xm, xs)
+    real(dp), intent(out) :: xm(3, 4), xs(3)
+    xm = reshape([0.0_dp, 0.0_dp, 0.0_dp, 2.0_dp, 0.1_dp, 0.2_dp, 2.1_dp, 1.9_dp, -0.15_dp, &
+                  -0.1_dp, 2.0_dp, 0.1_dp], [3, 4])
+    xs = [0.9_dp, 1.1_dp, 0.0_dp]
+  end subroutine configuration
+
+  subroutine test_projection(suite)
+    type(test_suite_t), intent(inout) :: suite
+    real(dp) :: xm(3, 4), xs(3), gap
+    type(segment_point_t) :: p
+    logical :: converged
+    call configuration(xm, xs)
+    call project_to_segment(xm, xs, [0.0_dp, 0.0_dp], p, gap, converged)
+    call suite%check(converged, 'projection converges')
+    call suite%close_to(dot_product(xs - p%x, p%a(:, 1)), 0.0_dp, 1.0e-12_dp, 'orthogonal to a1', floor=1.0_dp)
+    call suite%close_to(dot_product(xs - p%x, p%a(:, 2)), 0.0_dp, 1.0e-12_dp, 'orthogonal to a2', floor=1.0_dp)
+    call suite%close_to(abs(gap), norm2(xs - p%x), 1.0e-12_dp, '|gap| = distance')
+    call suite%check(gap < 0.0_dp, 'slave penetrates (negative gap)')
+  end subroutine test_projection
+
+  !> Nodal forces after moving the 5 nodes by du (the stepper's update, eq. 5).
+  function forces_after(xm, xs, xi0, ft0, status, du, tied_gap) result(f)
+    real(dp), intent(in) :: xm(3, 4), xs(3), xi0(2), ft0(2), du(15), tied_gap
+    integer, intent(in) :: status
+    real(dp) :: f(15)
+    real(dp) :: xm_new(3, 4), xs_new(3), gap, total(3)
+    type(segment_point_t) :: p, p_old
+    type(contact_update_t) :: u
+    logical :: converged
+    integer :: i
+    xs_new = xs + du(1:3)
+    xm_new = xm + reshape(du(4:15), [3, 4])
+    call project_to_segment(xm_new, xs_new, xi0, p, gap, converged)
+    p_old = segment_point(xm_new, xi0)
+    u = contact_update(p, gap, p_old, ft0, status, AREA, EN, ET, MU, tied_gap)
+    total = u%normal_force * p%normal + u%friction(1) * p%e(:, 1) + u%friction(2) * p%e(:, 2)
+    f(1:3) = total
+    do i = 1, 4
+      f(3 * i + 1:3 * i + 3) = -p%shape(i) * total
+    end do
+  end function forces_after
+
+  subroutine test_tangent(suite, status, label)
+    type(test_suite_t), intent(inout) :: suite
+    integer, intent(in) :: status
+    character(len=*), intent(in) :: label
+    real(dp) :: xm(3, 4), xs(3), gap, fn, ft(2), v(15), fd(15), eps, trial_norm, tied_gap
+    real(dp) :: ft_returned(2)
+    type(segment_point_t) :: p
+    type(contact_linear_t) :: lin
+    type(friction_derivatives_t) :: fr
+    logical :: converged
+    call configuration(xm, xs)
+    call project_to_segment(xm, xs, [0.0_dp, 0.0_dp], p, gap, converged)
+    tied_gap = 0.0_dp
+    fn = EN * AREA * (-gap)
+    ft = [0.3_dp, -0.2_dp] * MU * fn
+    trial_norm = norm2(ft)
+    if (status == CONTACT_SLIP) then
+      ! Start outside the cone, so that small perturbations keep slipping (smooth response).
+      ft = [0.9_dp, -0.6_dp] * MU * fn
+      trial_norm = norm2(ft)
+    end if
+    if (status == CONTACT_TIED) tied_gap = 0.5_dp * gap
+    fr%mu = MU
+    ! The linearisation is taken at the returned force (on the cone for slip).
+    ft_returned = ft
+    if (status == CONTACT_SLIP) ft_returned = MU * fn * ft / trial_norm
+    call contact_linearise(xs, xm, p, gap, fn, ft_returned, status, AREA, EN, ET, fr, trial_norm, &
+                           0.0_dp, lin)
+    if (status == CONTACT_TIED) then
+      ! The tied normal force is measured from tied_gap.
+      call contact_linearise(xs, xm, p, gap, -EN * AREA * (gap - tied_gap), ft, status, AREA, EN, ET, &
+                             fr, trial_norm, 0.0_dp, lin)
+    end if
+    call random_number(v)
+    v = v - 0.5_dp
+    eps = 1.0e-6_dp
+    fd = (forces_after(xm, xs, p%xi, ft, status, eps * v, tied_gap) - &
+          forces_after(xm, xs, p%xi, ft, status, -eps * v, tied_gap)) / (2 * eps)
+    ! Central differences of a smooth map: truncation O(eps^2), round-off ~1e-16/eps; 1e-7.
+    call suite%close_array(matmul(lin%stiffness, v), -fd, 1.0e-7_dp, 'K_f = -dF/du, ' // label)
+    ! Physics, not only consistency: the slave's tangential stiffness resists its motion
+    ! (E_t A along e_1 for stick and tied; for slip only across the slip direction).
+    if (status /= CONTACT_SLIP) then
+      call suite%close_to(dot_product(p%e(:, 1), matmul(lin%stiffness(1:3, 1:3), p%e(:, 1))), &
+                          ET * AREA, 0.05_dp, 'stick stiffness along e1 is +E_t A, ' // label)
+    end if
+    call suite%check(dot_product(p%normal, matmul(lin%stiffness(1:3, 1:3), p%normal)) > 0.0_dp, &
+                     'normal stiffness is positive, ' // label)
+  end subroutine test_tangent
+
+  !> Return mapping: a large tangential trial lands on the cone; the slip is its excess / E_t A.
+  subroutine test_return_mapping(suite)
+    type(test_suite_t), intent(inout) :: suite
+    real(dp) :: xm(3, 4), xs(3), gap
+    type(segment_point_t) :: p, p_old
+    type(contact_update_t) :: u
+    logical :: converged
+    call configuration(xm, xs)
+    call project_to_segment(xm, xs, [0.0_dp, 0.0_dp], p, gap, converged)
+    p_old = segment_point(xm, p%xi + [0.1_dp, 0.0_dp])
+    u = contact_update(p, gap, p_old, [0.0_dp, 0.0_dp], CONTACT_STICK, AREA, EN, ET, MU, 0.0_dp)
+    call suite%check(u%status == CONTACT_SLIP, 'large tangential motion slips')
+    call suite%close_to(norm2(u%friction), MU * u%normal_force, 1.0e-14_dp, '|f_t| = mu f_n on slip')
+    call suite%close_to(u%plastic_slip, norm2(p%x - p_old%x) - MU * u%normal_force / (ET * AREA), &
+                        1.0e-12_dp, 'plastic slip = total - elastic')
+    p_old = segment_point(xm, p%xi + [1.0e-7_dp, 0.0_dp])
+    u = contact_update(p, gap, p_old, [0.0_dp, 0.0_dp], CONTACT_STICK, AREA, EN, ET, MU, 0.0_dp)
+    call suite%check(u%status == CONTACT_STICK, 'small tangential motion sticks')
+    u = contact_update(p, -gap, p_old, [0.0_dp, 0.0_dp], CONTACT_STICK, AREA, EN, ET, MU, 0.0_dp)
+    call suite%check(u%normal_force == 0.0_dp, 'positive gap: no normal force (open)')
+  end subroutine test_return_mapping
+
+end program test_fcs_contact_element
