@@ -30,6 +30,9 @@ module fcs_contact_state
     real(dp), allocatable :: friction_state(:)
     !> Tied pairs: the gap at which the node was tied.
     real(dp), allocatable :: tied_gap(:)
+    !> Relative tangential displacement of the slave over the master accumulated while in
+    !> contact (elastic + slip), as a vector [length].
+    real(dp), allocatable :: tangential_displacement(:, :)
   contains
     procedure :: init => contact_state_init
   end type contact_state_t
@@ -42,7 +45,7 @@ contains
     this%n = n
     allocate (this%status(n), this%face(n), this%xi(2, n), this%gap(n), this%normal_force(n), &
               this%friction(2, n), this%trial_norm(n), this%slip(n), this%slip_rate(n), this%mu(n), &
-              this%friction_state(n), this%tied_gap(n))
+              this%friction_state(n), this%tied_gap(n), this%tangential_displacement(3, n))
     this%status = 0
     this%face = 0
     this%xi = 0.0_dp
@@ -55,6 +58,7 @@ contains
     this%mu = 0.0_dp
     this%friction_state = 0.0_dp
     this%tied_gap = 0.0_dp
+    this%tangential_displacement = 0.0_dp
   end subroutine contact_state_init
 
 end module fcs_contact_state

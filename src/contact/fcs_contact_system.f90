@@ -92,6 +92,7 @@ module fcs_contact_system
     procedure :: totals => system_totals
     procedure :: traction => system_traction
     procedure :: forces => system_forces
+    procedure :: local_values => system_local_values
   end type contact_system_t
 
 contains
@@ -587,6 +588,7 @@ contains
       cstate%gap(s) = gap
       cstate%normal_force(s) = u%normal_force
       cstate%friction(:, s) = u%friction
+      cstate%tangential_displacement(:, s) = cstate%tangential_displacement(:, s) + u%slip_vector
     end associate
   end subroutine update_tied
 
@@ -631,6 +633,7 @@ contains
       cstate%trial_norm(s) = norm2(cstate%friction(:, s)) + pair%stick_stiffness * this%area(s) * &
                              u%plastic_slip
       cstate%slip(s) = cstate%slip(s) + u%plastic_slip
+      cstate%tangential_displacement(:, s) = cstate%tangential_displacement(:, s) + u%slip_vector
       cstate%slip_rate(s) = 0.0_dp
       if (dt > 0.0_dp) cstate%slip_rate(s) = u%plastic_slip / dt
     end associate
@@ -664,6 +667,7 @@ contains
     cstate%friction(:, s) = 0.0_dp
     cstate%trial_norm(s) = 0.0_dp
     cstate%slip_rate(s) = 0.0_dp
+    cstate%tangential_displacement(:, s) = 0.0_dp
     if (face == 0) return
     cstate%xi(:, s) = p%xi
     cstate%gap(s) = gap
@@ -691,6 +695,25 @@ contains
       end if
     end associate
   end subroutine update_open
+
+  !> Values of slave s in the local frame of its master face, as CalculiX prints them:
+  !> relative displacement (normal = gap, tangential components of the accumulated
+  !> tangential displacement on e_1, e_2) and stresses (pressure, shear components f_m / A).
+  subroutine system_local_values(this, s, x, cstate, displacement, stress)
+    class(contact_system_t), intent(in) :: this
+    integer, intent(in) :: s
+    real(dp), intent(in) :: x(:, :)
+    type(contact_state_t), intent(in) :: cstate
+    real(dp), intent(out) :: displacement(3), stress(3)
+    type(segment_point_t) :: p
+    displacement = 0.0_dp
+    stress = 0.0_dp
+    if (cstate%face(s) == 0) return
+    p = segment_point(x(:, this%pairs(this%slave_pair(s))%face_nodes(:, cstate%face(s))), cstate%xi(:, s))
+    displacement = [cstate%gap(s), matmul(cstate%tangential_displacement(:, s), p%e)]
+    if (cstate%status(s) == CONTACT_OPEN) return
+    stress = [cstate%normal_force(s), cstate%friction(:, s)] / this%area(s)
+  end subroutine system_local_values
 
   !> Nodal contact forces R f of every closed node on coordinates x, added to f_contact.
   subroutine system_forces(this, x, cstate, f_contact)

@@ -6,7 +6,8 @@ module fcs_build_output
   use fcs_builder_state, only: builder_t
   use fcs_build_step, only: find_time_points
   use fcs_model, only: model_t, output_request_t, OUTPUT_NODE_PRINT, OUTPUT_EL_PRINT, &
-                       OUTPUT_NODE_FILE, OUTPUT_EL_FILE, TOTALS_NO, TOTALS_YES, TOTALS_ONLY
+                       OUTPUT_NODE_FILE, OUTPUT_EL_FILE, OUTPUT_CONTACT_PRINT, OUTPUT_CONTACT_FILE, &
+                       TOTALS_NO, TOTALS_YES, TOTALS_ONLY
   use fcs_strings, only: string_t, to_upper, parse_int, join_strings
   implicit none
   private
@@ -39,6 +40,9 @@ contains
     case ('NODE FILE')
       request%kind = OUTPUT_NODE_FILE
       allowed = [string_t('U'), string_t('RF')]
+    case ('CONTACT PRINT', 'CONTACT FILE')
+      request%kind = merge(OUTPUT_CONTACT_PRINT, OUTPUT_CONTACT_FILE, card%keyword == 'CONTACT PRINT')
+      allowed = [string_t('CDIS'), string_t('CSTR'), string_t('CDISP'), string_t('CSTRESS')]
     case default
       request%kind = OUTPUT_EL_FILE
       allowed = [string_t('S'), string_t('E')]
@@ -89,6 +93,8 @@ contains
                            join_strings(allowed, ', '))
           cycle
         end if
+        if (name == 'CDISP') name = 'CDIS'
+        if (name == 'CSTRESS') name = 'CSTR'
         variables = [variables, string_t(name)]
       end do
     end do

@@ -265,6 +265,18 @@ contains
             'increments (0: only at the end of the step and at the time points).'), &
           p('TIME POINTS', PARAM_NAME, description='Print at these times.')], &
          data_required=.true.), &
+      kw('CONTACT PRINT', CONTEXT_STEP, 'CalculiX', 'Print the state of every closed contact ' // &
+         'node to <job>.dat in CalculiX''s layout.', 'CDIS (relative contact displacement: ' // &
+         'normal gap, tangential components), CSTR (contact pressure and shear traction ' // &
+         'components); CDISP, CSTRESS are accepted as aliases.', &
+         [p('FREQUENCY', PARAM_INTEGER, default='0', description='Also print every N ' // &
+            'increments (0: only at the end of the step and at the time points).'), &
+          p('TIME POINTS', PARAM_NAME, description='Print at these times.')], &
+         data_required=.true.), &
+      kw('CONTACT FILE', CONTEXT_STEP, 'CalculiX', 'As *NODE FILE, for contact variables ' // &
+         '(every frame holds the contact fields of every pair).', 'CDIS, CSTR, ...', &
+         [p('FREQUENCY', PARAM_INTEGER, default='0', description='Also write every N increments.'), &
+          p('TIME POINTS', PARAM_NAME, description='Write at these times.')]), &
       kw('NODE FILE', CONTEXT_STEP, 'CalculiX', 'Request result frames in <job>.h5/.xdmf. ' // &
          'Every frame holds all fields (displacement, reactions, stresses, Mises stress); ' // &
          'the variables listed are checked, not used to select.', 'U, RF, ...', &

@@ -14,6 +14,7 @@ module fcs_model
   public :: friction_def_t, interaction_def_t, contact_pair_def_t
   public :: BC_DISPLACEMENT, BC_VELOCITY, FORMULATION_FULL, FORMULATION_BBAR
   public :: OUTPUT_NODE_PRINT, OUTPUT_EL_PRINT, OUTPUT_NODE_FILE, OUTPUT_EL_FILE
+  public :: OUTPUT_CONTACT_PRINT, OUTPUT_CONTACT_FILE
   public :: TOTALS_NO, TOTALS_YES, TOTALS_ONLY
 
   !> Kinds of prescribed degree-of-freedom conditions.
@@ -22,7 +23,7 @@ module fcs_model
   integer, parameter :: FORMULATION_FULL = 1, FORMULATION_BBAR = 2
   !> Output request kinds.
   integer, parameter :: OUTPUT_NODE_PRINT = 1, OUTPUT_EL_PRINT = 2, OUTPUT_NODE_FILE = 3, &
-                        OUTPUT_EL_FILE = 4
+                        OUTPUT_EL_FILE = 4, OUTPUT_CONTACT_PRINT = 5, OUTPUT_CONTACT_FILE = 6
   !> *NODE PRINT, TOTALS=.
   integer, parameter :: TOTALS_NO = 0, TOTALS_YES = 1, TOTALS_ONLY = 2
 

@@ -160,7 +160,7 @@ contains
       call handle_cload(card, model, state, diag)
     case ('DSLOAD')
       call handle_dsload(card, model, state, diag)
-    case ('NODE PRINT', 'EL PRINT', 'NODE FILE', 'EL FILE')
+    case ('NODE PRINT', 'EL PRINT', 'NODE FILE', 'EL FILE', 'CONTACT PRINT', 'CONTACT FILE')
       call handle_output_request(card, model, state, diag)
     case default
       call diag%report(card%loc, '*' // card%keyword // ': internal error: no handler ' // &

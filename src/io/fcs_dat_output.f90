@@ -11,6 +11,9 @@ module fcs_dat_output
   use fcs_model, only: model_t, output_request_t, TOTALS_NO, TOTALS_ONLY
   use fcs_sort, only: argsort_integers
   use fcs_hex8_shape, only: N_GAUSS_HEX8
+  use fcs_contact_system, only: contact_system_t
+  use fcs_contact_state, only: contact_state_t
+  use fcs_contact_element, only: CONTACT_OPEN
   implicit none
   private
   public :: dat_file_t
@@ -22,6 +25,7 @@ module fcs_dat_output
     procedure :: close => dat_close
     procedure :: node_print => dat_node_print
     procedure :: el_print => dat_el_print
+    procedure :: contact_print => dat_contact_print
   end type dat_file_t
 
 contains
@@ -130,6 +134,43 @@ contains
     end associate
     flush (this%unit)
   end subroutine dat_el_print
+
+  !> *CONTACT PRINT: CDIS and/or CSTR of every closed contact node (all pairs), as CalculiX
+  !> prints them ("for all contact elements").
+  subroutine dat_contact_print(this, model, request, time, contact, cstate, x)
+    class(dat_file_t), intent(inout) :: this
+    type(model_t), intent(in) :: model
+    type(output_request_t), intent(in) :: request
+    real(dp), intent(in) :: time, x(:, :)
+    type(contact_system_t), intent(in) :: contact
+    type(contact_state_t), intent(in) :: cstate
+    integer, allocatable :: order(:)
+    real(dp) :: displacement(3), stress(3)
+    integer :: v, i, s
+    order = argsort_integers(model%mesh%node_id(contact%slave_node))
+    do v = 1, size(request%variables)
+      write (this%unit, '(a)') ''
+      if (request%variables(v)%s == 'CDIS') then
+        write (this%unit, '(a,e14.7)') ' relative contact displacement (slave node,normal,tang1,' // &
+          'tang2) for all contact elements and time', time
+      else
+        write (this%unit, '(a,e14.7)') ' contact stress (slave node,press,tang1,tang2) for all ' // &
+          'contact elements and time', time
+      end if
+      write (this%unit, '(a)') ''
+      do i = 1, size(order)
+        s = order(i)
+        if (cstate%status(s) == CONTACT_OPEN) cycle
+        call contact%local_values(s, x, cstate, displacement, stress)
+        if (request%variables(v)%s == 'CDIS') then
+          write (this%unit, '(i10,3es14.6)') model%mesh%node_id(contact%slave_node(s)), displacement
+        else
+          write (this%unit, '(i10,3es14.6)') model%mesh%node_id(contact%slave_node(s)), stress
+        end if
+      end do
+    end do
+    flush (this%unit)
+  end subroutine dat_contact_print
 
   subroutine header(unit, title, set_name, time)
     integer, intent(in) :: unit

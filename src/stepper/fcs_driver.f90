@@ -5,7 +5,7 @@ module fcs_driver
   use fcs_error, only: error_t, fatal_error, add_context
   use fcs_deck_lexer, only: deck_t
   use fcs_model, only: model_t, step_t, output_request_t, OUTPUT_NODE_PRINT, OUTPUT_EL_PRINT, &
-                       OUTPUT_NODE_FILE, OUTPUT_EL_FILE
+                       OUTPUT_NODE_FILE, OUTPUT_EL_FILE, OUTPUT_CONTACT_PRINT, OUTPUT_CONTACT_FILE
   use fcs_model_builder, only: build_model
   use fcs_run_options, only: run_options_t
   use fcs_state, only: state_t
@@ -14,7 +14,8 @@ module fcs_driver
   use fcs_static_explicit, only: analysis_t, take_increment, increment_record_t, build_pattern, &
                                  contact_positions
   use fcs_solver_factory, only: create_linear_solver
-  use fcs_results, only: results_file_t
+  use fcs_results, only: results_file_t, GRID_POINTS
+  use fcs_contact_system, only: pair_totals_t
   use fcs_dat_output, only: dat_file_t
   use fcs_echo, only: write_echo
   use fcs_log, only: logger_t, format_duration
@@ -116,8 +117,98 @@ contains
     call run%results%create(options%job, model%mesh%node_id, model%mesh%x, model%mesh%element_id, &
                             model%mesh%connectivity, err)
     if (allocated(err)) return
+    call define_contact_grids(run, err)
+    if (allocated(err)) return
     call write_frame(run, model, err)
   end subroutine setup
+
+  !> One point grid per contact pair (its slave nodes) in the results.
+  subroutine define_contact_grids(run, err)
+    type(run_t), intent(inout) :: run
+    type(error_t), allocatable, intent(out) :: err
+    integer :: k, m, i
+    associate (contact => run%analysis%contact)
+      if (.not. allocated(contact%pairs)) return
+      do k = 1, size(contact%pairs)
+        m = contact%pairs(k)%last - contact%pairs(k)%first + 1
+        call run%results%define_surface_grid('contact_' // contact%pairs(k)%name, GRID_POINTS, &
+                                             reshape([(i, i = 0, m - 1)], [1, m]), err)
+        if (allocated(err)) return
+      end do
+    end associate
+  end subroutine define_contact_grids
+
+  !> Contact fields of every pair for the current frame.
+  subroutine write_contact_fields(run, err)
+    type(run_t), intent(inout) :: run
+    type(error_t), allocatable, intent(out) :: err
+    real(dp), allocatable :: values(:, :), shear(:, :)
+    real(dp) :: normal(3), pressure, traction(3)
+    character(len=:), allocatable :: grid
+    integer :: k, s, j, first, last
+    associate (contact => run%analysis%contact, cstate => run%analysis%state%contact, &
+               x => run%analysis%x_contact)
+      if (.not. allocated(contact%pairs)) return
+      do k = 1, size(contact%pairs)
+        first = contact%pairs(k)%first
+        last = contact%pairs(k)%last
+        grid = 'contact_' // contact%pairs(k)%name
+        call run%results%write_surface_coordinates(grid, x(:, contact%slave_node(first:last)), err)
+        if (allocated(err)) return
+        allocate (values(7, last - first + 1), shear(3, last - first + 1))
+        do s = first, last
+          j = s - first + 1
+          call contact%traction(s, x, cstate, normal, pressure, traction)
+          values(:, j) = [real(cstate%status(s), dp), cstate%gap(s), pressure, norm2(traction), &
+                          cstate%slip(s), cstate%slip_rate(s), cstate%mu(s)]
+          if (cstate%face(s) == 0) values(2, j) = 0.0_dp
+          shear(:, j) = traction
+        end do
+        call write_field('status', 1)
+        call write_field('gap', 2)
+        call write_field('pressure', 3)
+        call write_field('shear_magnitude', 4)
+        call write_field('slip', 5)
+        call write_field('slip_rate', 6)
+        call write_field('mu', 7)
+        if (.not. allocated(err)) call run%results%write_surface_field(grid, 'shear', shear, err)
+        if (allocated(err)) return
+        deallocate (values, shear)
+      end do
+    end associate
+  contains
+    subroutine write_field(name, row)
+      character(len=*), intent(in) :: name
+      integer, intent(in) :: row
+      if (allocated(err)) return
+      call run%results%write_surface_field(grid, name, values(row:row, :), err)
+    end subroutine write_field
+  end subroutine write_contact_fields
+
+  !> One log line per contact pair: states and total forces.
+  subroutine log_contact_totals(run, detail_only)
+    type(run_t), intent(inout) :: run
+    logical, intent(in) :: detail_only
+    type(pair_totals_t) :: t
+    character(len=:), allocatable :: line
+    integer :: k
+    associate (contact => run%analysis%contact)
+      if (.not. allocated(contact%pairs)) return
+      do k = 1, size(contact%pairs)
+        t = contact%totals(k, run%analysis%x_contact, run%analysis%state%contact)
+        line = '  contact ' // contact%pairs(k)%name // ': ' // str(t%n_stick) // ' stick, ' // &
+          str(t%n_slip) // ' slip, ' // str(t%n_open) // ' open, ' // str(t%n_tied) // ' tied; ' // &
+          'normal force ' // str(t%normal_force) // ', tangential force (' // &
+          str(t%tangential_force(1)) // ', ' // str(t%tangential_force(2)) // ', ' // &
+          str(t%tangential_force(3)) // ')'
+        if (detail_only) then
+          call run%log%detail(line)
+        else
+          call run%log%info(line)
+        end if
+      end do
+    end associate
+  end subroutine log_contact_totals
 
   !> All steps, increment by increment.
   subroutine run_steps(run, model, err)
@@ -153,6 +244,7 @@ contains
         if (allocated(err)) return
         call run%log%info('end of step ' // str(k) // ' ("' // model%steps(k)%name // '") at time ' // &
                           str(state%time) // ' after ' // str(state%step_increment) // ' increment(s)')
+        call log_contact_totals(run, .false.)
         state%step_time = 0.0_dp
       end do
     end associate
@@ -222,7 +314,7 @@ contains
       do i = 1, size(step%outputs)
         if (.not. is_due(model, step, step%outputs(i), state, end_of_step)) cycle
         select case (step%outputs(i)%kind)
-        case (OUTPUT_NODE_FILE, OUTPUT_EL_FILE)
+        case (OUTPUT_NODE_FILE, OUTPUT_EL_FILE, OUTPUT_CONTACT_FILE)
           need_frame = .true.
         case default
           need_print = .true.
@@ -243,6 +335,9 @@ contains
           call run%dat%node_print(model, step%outputs(i), state%time, state%u, state%reaction)
         case (OUTPUT_EL_PRINT)
           call run%dat%el_print(model, step%outputs(i), state%time, state%stress, state%strain)
+        case (OUTPUT_CONTACT_PRINT)
+          call run%dat%contact_print(model, step%outputs(i), state%time, run%analysis%contact, &
+                                     state%contact, run%analysis%x_contact)
         end select
       end do
       if (need_frame) call write_frame(run, model, err)
@@ -303,7 +398,9 @@ contains
       if (.not. allocated(err)) call run%results%write_cell('mises', cell_mises, err)
       if (.not. allocated(err)) call run%results%write_integration_points('stress', state%stress, err)
       if (.not. allocated(err)) call run%results%write_integration_points('strain', state%strain, err)
+      if (.not. allocated(err)) call write_contact_fields(run, err)
       if (.not. allocated(err)) call run%results%end_frame(err)
+      call log_contact_totals(run, .true.)
     end associate
   end subroutine write_frame
 

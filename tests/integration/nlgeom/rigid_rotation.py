@@ -174,7 +174,7 @@ def check(job, steps, spacing, tolerance):
         theta = 90.0 if angle == '90 + hold' else angle
         expected = rotation(theta) @ sigma1 @ rotation(theta).T
         error = np.abs(tensor(s) - expected).max() / scale
-        label = '%s degrees' % angle
+        label = ('%g degrees' % angle) if angle != '90 + hold' else '90 degrees + hold'
         # The tolerance: 0.5 % of the stress.
         checker.check(error <= tolerance, '%s: sigma = R sigma_1 R^T within %.1f %% of '
                       '|sigma_1| (max difference %.2e)' % (label, 100 * tolerance, error))
@@ -197,9 +197,10 @@ def check(job, steps, spacing, tolerance):
     final = np.abs(tensor(mean[-1]) - expected).max() / scale
     checker.check(final <= 1e-5, 'after the hold: sigma = R(90) sigma_1 R(90)^T '
                   '(max difference %.2e <= 1e-5)' % final)
-    rotation_records = [r for r in records if r['step'] == steps]
-    print('     %d increments in the rotation step; limits %s' % (
-        len(rotation_records), sorted(set(r['limit'] for r in rotation_records))))
+    start, end = (offset + rotation_time(steps, a) for a in (0.0, 90.0))
+    rotating = [r for r in records if start + 1e-12 < r['time'] <= end + 1e-12]
+    print('     %d increments from 0 to 90 degrees; limiting criteria %s' % (
+        len(rotating), sorted(set(r['limit'] for r in rotating))))
     checker.finish()
 
 
