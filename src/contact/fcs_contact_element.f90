@@ -23,14 +23,39 @@
 module fcs_contact_element
   use fcs_kinds, only: dp
   use fcs_contact_geometry, only: segment_point_t, segment_point, cross3
-  use fcs_friction_law, only: friction_derivatives_t
+  use fcs_friction_law, only: friction_law_t, friction_derivatives_t
   implicit none
   private
   public :: contact_linear_t, contact_linearise, contact_update, contact_update_t
+  public :: contact_node_t, contact_params_t
   public :: CONTACT_OPEN, CONTACT_STICK, CONTACT_SLIP, CONTACT_TIED, contact_status_name
 
   !> Contact states of a slave node.
   integer, parameter :: CONTACT_OPEN = 0, CONTACT_STICK = 1, CONTACT_SLIP = 2, CONTACT_TIED = 3
+  !> The rate-weakening part of the slip tangent is limited to -MAX_WEAKENING E_t A (the
+  !> tangent only; the update is exact), so that one increment's tangent stays invertible.
+  real(dp), parameter :: MAX_WEAKENING = 0.5_dp
+  !> Iterations allowed for the implicit rate-dependent return mapping.
+  integer, parameter :: RETURN_MAX_ITERATIONS = 200
+
+  !> The penalties and the tributary area of one slave node.
+  type :: contact_params_t
+    real(dp) :: area = 0.0_dp
+    !> E_n, E_t [stress/length].
+    real(dp) :: normal_stiffness = 0.0_dp
+    real(dp) :: stick_stiffness = 0.0_dp
+  end type contact_params_t
+
+  !> The state of one slave node at the start of an increment.
+  type :: contact_node_t
+    integer :: status = CONTACT_OPEN
+    real(dp) :: normal_force = 0.0_dp
+    real(dp) :: friction(2) = 0.0_dp
+    !> |f^tr| of the last return mapping (for the slip tangent).
+    real(dp) :: trial_norm = 0.0_dp
+    real(dp) :: friction_state = 0.0_dp
+    real(dp) :: tied_gap = 0.0_dp
+  end type contact_node_t
 
   !> Derivatives of the contact quantities with respect to the 15 nodal displacements.
   type :: contact_linear_t
@@ -51,35 +76,86 @@ module fcs_contact_element
   !> Result of updating one contact node over an increment.
   type :: contact_update_t
     integer :: status = CONTACT_OPEN
-    real(dp) :: xi(2) = 0.0_dp
-    real(dp) :: gap = 0.0_dp
     real(dp) :: normal_force = 0.0_dp
     real(dp) :: friction(2) = 0.0_dp
     !> Tangential relative motion of the increment (vector) and its irreversible part.
     real(dp) :: slip_vector(3) = 0.0_dp
     real(dp) :: plastic_slip = 0.0_dp
+    real(dp) :: trial_norm = 0.0_dp
+    !> Friction coefficient, slip rate and friction state at the end of the increment.
     real(dp) :: mu = 0.0_dp
+    real(dp) :: slip_rate = 0.0_dp
+    real(dp) :: friction_state = 0.0_dp
   end type contact_update_t
 
 contains
 
   !> Linearisation of a closed (stick, slip or tied) contact node at the current state.
-  !> xs, xm: slave and master coordinates; p: the contact point; gap: current gap;
-  !> fn: normal force; ft(2): friction components; status; area; en, et: penalties
-  !> [stress/length]; fr: mu and its derivatives at the current state; trial_norm: |f^tr|
-  !> for slip (>= mu fn); rate_factor: d(slip rate)/d(slip) = 1/dt (0: no rate term).
-  pure subroutine contact_linearise(xs, xm, p, gap, fn, ft, status, area, en, et, fr, trial_norm, &
-                                    rate_factor, lin)
-    real(dp), intent(in) :: xs(3), xm(3, 4), gap, fn, ft(2), area, en, et, trial_norm, rate_factor
+  !> x5(3,5): slave then the 4 master nodes; p: the contact point; gap: current gap; node:
+  !> its state (normal force, friction components, status, |f^tr|); params: area, E_n, E_t;
+  !> fr: mu and its derivatives at the current state; dt: the time increment the rate term
+  !> of eq. (6) refers to (0: no rate term).
+  !>
+  !> Slip (eqs. 5-6): along the slip direction eta the force is f_n mu(V), V = dlambda/dt
+  !> with dlambda the plastic slip, so with k_v = f_n dmu/dV / dt the consistent response is
+  !> d(f_n mu) = E_t A / (E_t A + k_v) [ (mu + f_n dmu/dp / A) df_n - k_v eta.ds ]
+  !> (a spring E_t A in series with the rate term; k_v = 0 gives the rate-independent cone);
+  !> across eta the stiffness is mu f_n E_t A / |f^tr| (I - eta eta).
+  pure subroutine contact_linearise(x5, p, gap, node, params, fr, dt, lin)
+    real(dp), intent(in) :: x5(3, 5), gap, dt
     type(segment_point_t), intent(in) :: p
-    integer, intent(in) :: status
+    type(contact_node_t), intent(in) :: node
+    type(contact_params_t), intent(in) :: params
     type(friction_derivatives_t), intent(in) :: fr
     type(contact_linear_t), intent(out) :: lin
-    real(dp) :: dut(3, 15), da(3, 15, 2), dat(3, 15, 2), dn(3, 15), de(3, 15, 2), rhs(2, 15)
-    real(dp) :: amat(2, 2), det, h12, eta(2), eta_vec(3), ft_vec(3), f(3), factor, proj(3, 3)
-    real(dp) :: dmu(15)
+    real(dp) :: dn(3, 15), de(3, 15, 2), eta(2), eta_vec(3), ft_vec(3), f(3), factor
+    real(dp) :: k_t, k_v, series, mu_eff
+    integer :: i
+    call contact_kinematics(p, gap, lin, dn, de)
+    k_t = params%stick_stiffness * params%area
+    lin%dfn = -params%normal_stiffness * params%area * lin%dgap
+    ft_vec = node%friction(1) * p%e(:, 1) + node%friction(2) * p%e(:, 2)
+    lin%dft_stick = node%friction(1) * de(:, :, 1) + node%friction(2) * de(:, :, 2) - k_t * lin%dslip
+    select case (node%status)
+    case (CONTACT_SLIP)
+      eta = node%friction / max(norm2(node%friction), tiny(1.0_dp))
+      eta_vec = eta(1) * p%e(:, 1) + eta(2) * p%e(:, 2)
+      factor = fr%mu * node%normal_force / max(node%trial_norm, tiny(1.0_dp))
+      k_v = 0.0_dp
+      if (dt > 0.0_dp) k_v = max(node%normal_force * fr%dmu_drate / dt, -MAX_WEAKENING * k_t)
+      series = k_t / (k_t + k_v)
+      mu_eff = fr%mu + node%normal_force * fr%dmu_dpressure / params%area
+      lin%df = outer(eta_vec, series * (mu_eff * lin%dfn - k_v * matmul(eta_vec, lin%dslip))) &
+               - factor * k_t * matmul(identity3() - outer3(p%normal, p%normal) &
+                                       - outer3(eta_vec, eta_vec), lin%dslip) &
+               + fr%mu * node%normal_force * (eta(1) * de(:, :, 1) + eta(2) * de(:, :, 2))
+    case default
+      lin%df = lin%dft_stick
+    end select
+    lin%df = lin%df + outer(p%normal, lin%dfn) + node%normal_force * dn
+    ! Nodal forces F = R f and K = -dF/du; dF_I = -N_I df - (dN_I/dxi . dxi) f.
+    f = node%normal_force * p%normal + ft_vec
+    lin%force(1:3) = f
+    lin%stiffness(1:3, :) = -lin%df
+    do i = 1, 4
+      lin%force(3 * i + 1:3 * i + 3) = -p%shape(i) * f
+      lin%stiffness(3 * i + 1:3 * i + 3, :) = p%shape(i) * lin%df + &
+        outer(f, p%dshape(1, i) * lin%dxi(1, :) + p%dshape(2, i) * lin%dxi(2, :))
+    end do
+  end subroutine contact_linearise
+
+  !> Derivatives of the contact point's geometry: the gap, the natural coordinates of the
+  !> contact point (A dxi = a.du~ + g n.delta a, A = m - g h, h_12 = n.x_,12: the metric and
+  !> curvature terms of eq. 9), the slip vector a_alpha dxi^alpha, the normal
+  !> (delta n = -a^alpha (n.delta a_alpha)) and the frame (e1 = a1/|a1|, e2 = n x e1), with
+  !> delta a_alpha = sum dN_I/dxi_alpha du_I + x_,ab dxi^b at the moving point.
+  pure subroutine contact_kinematics(p, gap, lin, dn, de)
+    type(segment_point_t), intent(in) :: p
+    real(dp), intent(in) :: gap
+    type(contact_linear_t), intent(inout) :: lin
+    real(dp), intent(out) :: dn(3, 15), de(3, 15, 2)
+    real(dp) :: dut(3, 15), da(3, 15, 2), dat(3, 15, 2), rhs(2, 15), amat(2, 2), det, h12, proj(3, 3)
     integer :: i, alpha
-    ! du~ = du_s - sum N_I du_I and delta a_alpha at fixed xi.
     dut = 0.0_dp
     da = 0.0_dp
     do i = 1, 3
@@ -93,7 +169,6 @@ contains
     do i = 1, 4
       call put_diag(dut, i + 1, -p%shape(i))
     end do
-    ! Contact point: A dxi = a.du~ + g n.delta a, A = m - g h (h_12 = n.x_,12).
     h12 = dot_product(p%normal, p%twist)
     amat = p%metric
     amat(1, 2) = amat(1, 2) - gap * h12
@@ -104,10 +179,8 @@ contains
     end do
     lin%dxi(1, :) = (amat(2, 2) * rhs(1, :) - amat(1, 2) * rhs(2, :)) / det
     lin%dxi(2, :) = (amat(1, 1) * rhs(2, :) - amat(2, 1) * rhs(1, :)) / det
-    ! Total change of the base vectors at the moving point: delta a_alpha + x_,ab dxi^b.
     dat(:, :, 1) = da(:, :, 1) + outer(p%twist, lin%dxi(2, :))
     dat(:, :, 2) = da(:, :, 2) + outer(p%twist, lin%dxi(1, :))
-    ! Normal: delta n = -a^alpha (n.delta a_alpha); frame: e1 = a1/|a1|, e2 = n x e1.
     dn = -outer(p%dual(:, 1), matmul(p%normal, dat(:, :, 1))) &
          - outer(p%dual(:, 2), matmul(p%normal, dat(:, :, 2)))
     proj = identity3() - outer3(p%e(:, 1), p%e(:, 1))
@@ -115,70 +188,110 @@ contains
     de(:, :, 2) = -matmul(skew(p%e(:, 1)), dn) + matmul(skew(p%normal), de(:, :, 1))
     lin%dgap = matmul(p%normal, dut)
     lin%dslip = outer(p%a(:, 1), lin%dxi(1, :)) + outer(p%a(:, 2), lin%dxi(2, :))
-    lin%dfn = -en * area * lin%dgap
-    ft_vec = ft(1) * p%e(:, 1) + ft(2) * p%e(:, 2)
-    lin%dft_stick = ft(1) * de(:, :, 1) + ft(2) * de(:, :, 2) - et * area * lin%dslip
-    select case (status)
-    case (CONTACT_SLIP)
-      eta = ft / max(norm2(ft), tiny(1.0_dp))
-      eta_vec = eta(1) * p%e(:, 1) + eta(2) * p%e(:, 2)
-      factor = fr%mu * fn / max(trial_norm, tiny(1.0_dp))
-      ! Slip rate V = |slip| / dt with the slip opposite to the force direction eta.
-      dmu = fr%dmu_dpressure * lin%dfn / area - fr%dmu_drate * rate_factor * matmul(eta_vec, lin%dslip)
-      lin%df = outer(eta_vec, fr%mu * lin%dfn + fn * dmu) &
-               - factor * et * area * matmul(identity3() - outer3(p%normal, p%normal) &
-                                             - outer3(eta_vec, eta_vec), lin%dslip) &
-               + fr%mu * fn * (eta(1) * de(:, :, 1) + eta(2) * de(:, :, 2))
-    case default
-      lin%df = lin%dft_stick
-    end select
-    lin%df = lin%df + outer(p%normal, lin%dfn) + fn * dn
-    ! Nodal forces F = R f and K = -dF/du; dF_I = -N_I df - (dN_I/dxi . dxi) f.
-    f = fn * p%normal + ft_vec
-    lin%force(1:3) = f
-    lin%stiffness(1:3, :) = -lin%df
-    do i = 1, 4
-      lin%force(3 * i + 1:3 * i + 3) = -p%shape(i) * f
-      lin%stiffness(3 * i + 1:3 * i + 3, :) = p%shape(i) * lin%df + &
-        outer(f, p%dshape(1, i) * lin%dxi(1, :) + p%dshape(2, i) * lin%dxi(2, :))
-    end do
-  end subroutine contact_linearise
+  end subroutine contact_kinematics
 
-  !> Return mapping of one closed contact node over an increment (eq. 5): new contact point
-  !> `p_new` (already projected), the old point `p_old` evaluated on the new master
-  !> coordinates (for the slip vector), the old friction components `ft_old`, and mu.
-  !> Tied nodes keep a bilateral normal spring about `tied_gap` and never slip. Whether a
-  !> node with zero normal force is open is decided by the caller (fcs_contact_system).
-  pure function contact_update(p_new, gap_new, p_old_on_new, ft_old, status_old, area, en, et, mu, &
-                               tied_gap) result(out)
+  !> Return mapping of one closed contact node over an increment of duration dt (eq. 5):
+  !> new contact point `p_new` (already projected) with gap `gap_new`, the old point
+  !> `p_old_on_new` evaluated on the new master coordinates (the slip vector is their
+  !> difference), the node's old state, the friction law. The elastic trial
+  !> f^tr = f_old - E_t A ds is inside the cone |f| <= mu(p, 0, phi) f_n (stick) or is
+  !> returned to it: the plastic slip dlambda solves
+  !>   |f^tr| - E_t A dlambda = f_n mu(p, dlambda/dt, phi(dlambda))
+  !> (rate and state evaluated at the end of the increment, the state evolved over it at
+  !> the constant slip rate dlambda/dt; a rate-independent law gives dlambda directly).
+  !> Tied nodes keep a bilateral normal spring about their tied gap and never slip. Whether
+  !> a node with zero normal force is open is decided by the caller (fcs_contact_system).
+  pure function contact_update(p_new, gap_new, p_old_on_new, node, params, law, dt) result(out)
     type(segment_point_t), intent(in) :: p_new, p_old_on_new
-    real(dp), intent(in) :: gap_new, ft_old(2), area, en, et, mu, tied_gap
-    integer, intent(in) :: status_old
+    real(dp), intent(in) :: gap_new, dt
+    type(contact_node_t), intent(in) :: node
+    type(contact_params_t), intent(in) :: params
+    class(friction_law_t), intent(in) :: law
     type(contact_update_t) :: out
-    real(dp) :: trial(2), norm_trial
-    out%xi = p_new%xi
-    out%gap = gap_new
+    real(dp) :: trial(2), k_t, pressure, mu_static, state_static
+    k_t = params%stick_stiffness * params%area
     out%slip_vector = p_new%x - p_old_on_new%x
-    out%mu = mu
     ! The frictional force on the slave opposes its motion relative to the master (eq. 4).
-    trial = ft_old - et * area * matmul(out%slip_vector, p_new%e)
-    if (status_old == CONTACT_TIED) then
+    trial = node%friction - k_t * matmul(out%slip_vector, p_new%e)
+    out%trial_norm = norm2(trial)
+    out%friction_state = node%friction_state
+    if (node%status == CONTACT_TIED) then
       out%status = CONTACT_TIED
-      out%normal_force = -en * area * (gap_new - tied_gap)
+      out%normal_force = -params%normal_stiffness * params%area * (gap_new - node%tied_gap)
       out%friction = trial
       return
     end if
-    out%normal_force = en * area * max(0.0_dp, -gap_new)
-    norm_trial = norm2(trial)
-    if (norm_trial <= mu * out%normal_force) then
+    out%normal_force = params%normal_stiffness * params%area * max(0.0_dp, -gap_new)
+    pressure = out%normal_force / params%area
+    state_static = law%evolve_state(node%friction_state, 0.0_dp, max(dt, 0.0_dp))
+    mu_static = law%mu(pressure, 0.0_dp, state_static)
+    if (out%trial_norm <= mu_static * out%normal_force) then
       out%status = CONTACT_STICK
       out%friction = trial
-    else
-      out%status = CONTACT_SLIP
-      out%friction = mu * out%normal_force * trial / norm_trial
-      out%plastic_slip = (norm_trial - mu * out%normal_force) / (et * area)
+      out%mu = mu_static
+      out%friction_state = state_static
+      return
     end if
+    out%status = CONTACT_SLIP
+    call return_to_cone(out%trial_norm, out%normal_force, pressure, k_t, law, node%friction_state, &
+                        dt, out%plastic_slip, out%mu, out%friction_state)
+    out%friction = out%mu * out%normal_force * trial / out%trial_norm
+    if (dt > 0.0_dp) out%slip_rate = out%plastic_slip / dt
   end function contact_update
+
+  !> Plastic slip of a slipping node: the root in (0, |f^tr|/k_t] of
+  !> g(l) = |f^tr| - k_t l - f_n mu(p, l/dt, phi(l)), by the Illinois variant of regula
+  !> falsi (g(0) > 0 > g(|f^tr|/k_t) bracket a root; no derivatives of the state update are
+  !> needed). With dt = 0 the rate is taken as zero.
+  pure subroutine return_to_cone(trial_norm, fn, pressure, k_t, law, state_old, dt, slip, mu, state)
+    real(dp), intent(in) :: trial_norm, fn, pressure, k_t, state_old, dt
+    class(friction_law_t), intent(in) :: law
+    real(dp), intent(out) :: slip, mu, state
+    real(dp) :: lo, hi, g_lo, g_hi, x, g
+    integer :: iteration, side
+    lo = 0.0_dp
+    hi = trial_norm / k_t
+    g_lo = residual(lo)
+    g_hi = residual(hi)
+    side = 0
+    x = hi
+    do iteration = 1, RETURN_MAX_ITERATIONS
+      if (g_hi >= 0.0_dp .or. g_lo <= 0.0_dp) exit
+      x = (lo * g_hi - hi * g_lo) / (g_hi - g_lo)
+      g = residual(x)
+      if (abs(g) <= 1.0e-13_dp * trial_norm .or. hi - lo <= 1.0e-15_dp * hi) exit
+      if (g > 0.0_dp) then
+        lo = x
+        g_lo = g
+        if (side == 1) g_hi = 0.5_dp * g_hi
+        side = 1
+      else
+        hi = x
+        g_hi = g
+        if (side == -1) g_lo = 0.5_dp * g_lo
+        side = -1
+      end if
+    end do
+    slip = x
+    call evaluate(slip, mu, state)
+  contains
+    pure real(dp) function residual(l)
+      real(dp), intent(in) :: l
+      real(dp) :: m, st
+      call evaluate(l, m, st)
+      residual = trial_norm - k_t * l - fn * m
+    end function residual
+    pure subroutine evaluate(l, m, st)
+      real(dp), intent(in) :: l
+      real(dp), intent(out) :: m, st
+      real(dp) :: rate
+      rate = 0.0_dp
+      if (dt > 0.0_dp) rate = l / dt
+      st = law%evolve_state(state_old, rate, max(dt, 0.0_dp))
+      if (law%n_state() == 0 .and. dt <= 0.0_dp) st = state_old
+      m = law%mu(pressure, rate, st)
+    end subroutine evaluate
+  end subroutine return_to_cone
 
   pure function contact_status_name(status) result(name)
     integer, intent(in) :: status

@@ -16,8 +16,8 @@ module fcs_contact_system
   use fcs_contact_geometry, only: segment_point_t, segment_point, project_to_segment
   use fcs_contact_search, only: face_grid_t, closest_face, XI_TOLERANCE
   use fcs_contact_element, only: contact_linear_t, contact_linearise, contact_update, &
-                                 contact_update_t, CONTACT_OPEN, CONTACT_STICK, CONTACT_SLIP, &
-                                 CONTACT_TIED
+                                 contact_update_t, contact_node_t, contact_params_t, CONTACT_OPEN, &
+                                 CONTACT_STICK, CONTACT_SLIP, CONTACT_TIED
   use fcs_contact_state, only: contact_state_t
   use fcs_contact_areas, only: slave_node_areas
   use fcs_friction_law, only: friction_law_t, friction_derivatives_t
@@ -269,14 +269,38 @@ contains
           cstate%status(s) = CONTACT_TIED
           cstate%tied_gap(s) = gap
         else if (gap <= GAP_TOLERANCE * pair%face_size) then
-          u = contact_update(p, gap, p, [0.0_dp, 0.0_dp], CONTACT_STICK, this%area(s), &
-                             pair%normal_stiffness, pair%stick_stiffness, cstate%mu(s), 0.0_dp)
+          u = contact_update(p, gap, p, node_of(cstate, s, CONTACT_STICK), params_of(this, s), &
+                             pair%law, 0.0_dp)
           cstate%status(s) = CONTACT_STICK
           cstate%normal_force(s) = u%normal_force
+          cstate%mu(s) = u%mu
         end if
       end associate
     end do
   end subroutine initial_state
+
+  !> The kernel's view of slave s (status as given).
+  pure function node_of(cstate, s, status) result(node)
+    type(contact_state_t), intent(in) :: cstate
+    integer, intent(in) :: s, status
+    type(contact_node_t) :: node
+    node%status = status
+    node%normal_force = cstate%normal_force(s)
+    node%friction = cstate%friction(:, s)
+    node%trial_norm = max(cstate%trial_norm(s), norm2(cstate%friction(:, s)))
+    node%friction_state = cstate%friction_state(s)
+    node%tied_gap = cstate%tied_gap(s)
+  end function node_of
+
+  !> Area and penalties of slave s.
+  pure function params_of(this, s) result(params)
+    type(contact_system_t), intent(in) :: this
+    integer, intent(in) :: s
+    type(contact_params_t) :: params
+    params%area = this%area(s)
+    params%normal_stiffness = this%pairs(this%slave_pair(s))%normal_stiffness
+    params%stick_stiffness = this%pairs(this%slave_pair(s))%stick_stiffness
+  end function params_of
 
   !> Global search of one point: grid candidates, then the projection rule.
   subroutine search(pair, x, xs, face, point, gap)
@@ -315,25 +339,26 @@ contains
     this%pattern_dirty = .false.
   end subroutine system_cliques
 
-  !> Linearisation of closed node s on coordinates x.
-  subroutine linearise(this, s, x, cstate, lin)
+  !> Linearisation of closed node s on coordinates x; dt is the trial time increment the
+  !> rate term of the friction law refers to.
+  subroutine linearise(this, s, x, cstate, dt, lin)
     type(contact_system_t), intent(in) :: this
     integer, intent(in) :: s
-    real(dp), intent(in) :: x(:, :)
+    real(dp), intent(in) :: x(:, :), dt
     type(contact_state_t), intent(in) :: cstate
     type(contact_linear_t), intent(out) :: lin
     type(segment_point_t) :: p
     type(friction_derivatives_t) :: fr
-    real(dp) :: xm(3, 4)
+    real(dp) :: x5(3, 5)
     associate (pair => this%pairs(this%slave_pair(s)))
-      xm = x(:, pair%face_nodes(:, cstate%face(s)))
-      p = segment_point(xm, cstate%xi(:, s))
+      x5(:, 1) = x(:, this%slave_node(s))
+      x5(:, 2:5) = x(:, pair%face_nodes(:, cstate%face(s)))
+      p = segment_point(x5(:, 2:5), cstate%xi(:, s))
       fr = pair%law%evaluate(cstate%normal_force(s) / this%area(s), cstate%slip_rate(s), &
                              cstate%friction_state(s))
       fr%mu = cstate%mu(s)
-      call contact_linearise(x(:, this%slave_node(s)), xm, p, cstate%gap(s), cstate%normal_force(s), &
-        cstate%friction(:, s), cstate%status(s), this%area(s), pair%normal_stiffness, &
-        pair%stick_stiffness, fr, max(cstate%trial_norm(s), norm2(cstate%friction(:, s))), 0.0_dp, lin)
+      call contact_linearise(x5, p, cstate%gap(s), node_of(cstate, s, cstate%status(s)), &
+                             params_of(this, s), fr, dt, lin)
     end associate
   end subroutine linearise
 
@@ -348,9 +373,9 @@ contains
   end function element_nodes
 
   !> Add K_f of every closed node to `matrix` and its forces R f to f_contact (3*n_nodes).
-  subroutine system_assemble(this, x, cstate, matrix, f_contact, err)
+  subroutine system_assemble(this, x, cstate, dt, matrix, f_contact, err)
     class(contact_system_t), intent(inout) :: this
-    real(dp), intent(in) :: x(:, :)
+    real(dp), intent(in) :: x(:, :), dt
     type(contact_state_t), intent(in) :: cstate
     type(sparse_matrix_t), intent(inout) :: matrix
     real(dp), intent(inout) :: f_contact(:)
@@ -360,7 +385,7 @@ contains
     logical :: missing
     do s = 1, size(this%slave_node)
       if (cstate%status(s) == CONTACT_OPEN) cycle
-      call linearise(this, s, x, cstate, lin)
+      call linearise(this, s, x, cstate, dt, lin)
       nodes = element_nodes(this, s, cstate)
       call matrix%add_matrix(nodes, lin%stiffness, missing)
       if (missing) then
@@ -404,7 +429,7 @@ contains
           call offer(this, collector, s, crossing(g_start, g_end), EVENT_CONTACT_CLOSE)
         cycle
       end if
-      call linearise(this, s, x, cstate, lin)
+      call linearise(this, s, x, cstate, 0.0_dp, lin)
       p = segment_point(x(:, nodes(2:5)), cstate%xi(:, s))
       call closed_node_events(this, s, p, cstate, lin, due_fixed, due_scaled, collector)
     end do
@@ -452,7 +477,7 @@ contains
       do a = 1, 5
         due(3 * a - 2:3 * a) = du(3 * nodes(a) - 2:3 * nodes(a))
       end do
-      call linearise(this, s, x, cstate, lin)
+      call linearise(this, s, x, cstate, 0.0_dp, lin)
       p = segment_point(x(:, nodes(2:5)), cstate%xi(:, s))
       fn = cstate%normal_force(s)
       dfn = dot_product(lin%dfn, due)
@@ -582,8 +607,8 @@ contains
       call project_to_segment(xm, x(:, this%slave_node(s)), cstate%xi(:, s), p, gap, converged)
       if (.not. converged) p = segment_point(xm, cstate%xi(:, s))
       p_old = segment_point(xm, cstate%xi(:, s))
-      u = contact_update(p, gap, p_old, cstate%friction(:, s), CONTACT_TIED, this%area(s), &
-                         pair%normal_stiffness, pair%stick_stiffness, 0.0_dp, cstate%tied_gap(s))
+      u = contact_update(p, gap, p_old, node_of(cstate, s, CONTACT_TIED), params_of(this, s), &
+                         pair%law, 0.0_dp)
       cstate%xi(:, s) = p%xi
       cstate%gap(s) = gap
       cstate%normal_force(s) = u%normal_force
@@ -601,6 +626,7 @@ contains
     type(contact_state_t), intent(inout) :: cstate
     type(segment_point_t) :: p, p_old
     type(contact_update_t) :: u
+    type(contact_node_t) :: node
     real(dp) :: xs(3), gap, friction(2), force(3)
     integer :: face, old_face
     associate (pair => this%pairs(this%slave_pair(s)))
@@ -619,8 +645,9 @@ contains
         friction = matmul(force, p%e)
         if (norm2(friction) > 0.0_dp) friction = friction * norm2(force) / norm2(friction)
       end if
-      u = contact_update(p, gap, p_old, friction, cstate%status(s), this%area(s), &
-                         pair%normal_stiffness, pair%stick_stiffness, cstate%mu(s), 0.0_dp)
+      node = node_of(cstate, s, cstate%status(s))
+      node%friction = friction
+      u = contact_update(p, gap, p_old, node, params_of(this, s), pair%law, dt)
       ! A node whose stick-to-slip event was taken has reached the cone up to the
       ! linearisation error: it slips from now on.
       if (kind == EVENT_STICK_TO_SLIP) u%status = CONTACT_SLIP
@@ -630,12 +657,12 @@ contains
       cstate%status(s) = u%status
       cstate%normal_force(s) = u%normal_force
       cstate%friction(:, s) = u%friction
-      cstate%trial_norm(s) = norm2(cstate%friction(:, s)) + pair%stick_stiffness * this%area(s) * &
-                             u%plastic_slip
+      cstate%trial_norm(s) = u%trial_norm
       cstate%slip(s) = cstate%slip(s) + u%plastic_slip
       cstate%tangential_displacement(:, s) = cstate%tangential_displacement(:, s) + u%slip_vector
-      cstate%slip_rate(s) = 0.0_dp
-      if (dt > 0.0_dp) cstate%slip_rate(s) = u%plastic_slip / dt
+      cstate%slip_rate(s) = u%slip_rate
+      cstate%mu(s) = u%mu
+      cstate%friction_state(s) = u%friction_state
     end associate
   end subroutine update_closed
 
@@ -688,10 +715,11 @@ contains
       call open_node(cstate, s, face, p, gap)
       if (face == 0) return
       if (gap < -GAP_TOLERANCE * pair%face_size .or. kind == EVENT_CONTACT_CLOSE) then
-        u = contact_update(p, gap, p, [0.0_dp, 0.0_dp], CONTACT_STICK, this%area(s), &
-                           pair%normal_stiffness, pair%stick_stiffness, cstate%mu(s), 0.0_dp)
+        u = contact_update(p, gap, p, node_of(cstate, s, CONTACT_STICK), params_of(this, s), &
+                           pair%law, 0.0_dp)
         cstate%status(s) = CONTACT_STICK
         cstate%normal_force(s) = u%normal_force
+        cstate%mu(s) = u%mu
       end if
     end associate
   end subroutine update_open

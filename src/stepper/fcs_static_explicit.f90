@@ -94,7 +94,7 @@ contains
       if (a%contact%pattern_dirty) call build_pattern(a, model)
       do pass = 1, MAX_STATE_PASSES
         call a%timers%start('assembly')
-        call assemble_system(a, model, step, t0, err)
+        call assemble_system(a, model, step, t0, dt, err)
         call a%timers%stop('assembly')
         if (allocated(err)) return
         if (pass == 1) then
@@ -158,11 +158,11 @@ contains
   end subroutine take_increment
 
   !> K + K_f + load stiffness and the internal, contact forces on the current state.
-  subroutine assemble_system(a, model, step, t0, err)
+  subroutine assemble_system(a, model, step, t0, dt, err)
     type(analysis_t), intent(inout) :: a
     type(model_t), intent(in) :: model
     type(step_t), intent(in) :: step
-    real(dp), intent(in) :: t0
+    real(dp), intent(in) :: t0, dt
     type(error_t), allocatable, intent(out) :: err
     real(dp), allocatable :: scratch(:)
     call a%matrix%zero()
@@ -174,8 +174,8 @@ contains
       call assemble_pressures(model, a%loading, t0, a%state, .true., scratch, a%matrix)
     end if
     a%f_contact = 0.0_dp
-    if (a%contact%n_slaves() > 0) call a%contact%assemble(a%x_contact, a%state%contact, a%matrix, &
-                                                          a%f_contact, err)
+    if (a%contact%n_slaves() > 0) call a%contact%assemble(a%x_contact, a%state%contact, dt, &
+                                                          a%matrix, a%f_contact, err)
   end subroutine assemble_system
 
   !> Sparse pattern from the element cliques and the contact cliques (slave node with the

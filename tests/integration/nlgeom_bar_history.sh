@@ -4,7 +4,7 @@
 # amplitude (the displacement is its exact integral); reactions (*NODE PRINT, TOTALS=ONLY) and
 # displacements at *TIME POINTS within 1e-6 (linear) and, with NLGEOM and strains < 2.5e-6,
 # within 1e-5; the .dat header times are the requested ones. nlgeom/bar_history.py.
-# The multi-step form of the issue is tests/pending/nlgeom_bar_history_steps.sh.
+# The multi-step form of the issue is nlgeom_bar_history_steps.sh.
 # By hand: FCS3D=$PWD/bin/fcs3d sh -c 'cd $(mktemp -d) && sh '$PWD'/tests/integration/nlgeom_bar_history.sh'
 set -u
 tests=$(cd "$(dirname "$0")/.." && pwd)

@@ -4,7 +4,7 @@
 # (pre-stretch, hold, rotate, hold): the stress rotates with the body (s_xx and s_yy swap) and
 # the Mises stress is unchanged, within the issue's 0.5 %; the rotation itself is exact to 1e-5.
 # Deck and checks: nlgeom/rigid_rotation.py (its doc string explains the chord and the lag).
-# The two-step form of the issue is tests/pending/nlgeom_rigid_rotation_two_steps.sh.
+# The two-step form of the issue is nlgeom_rigid_rotation_two_steps.sh.
 # By hand: FCS3D=$PWD/bin/fcs3d sh -c 'cd $(mktemp -d) && sh '$PWD'/tests/integration/nlgeom_rigid_rotation.sh'
 set -u
 tests=$(cd "$(dirname "$0")/.." && pwd)

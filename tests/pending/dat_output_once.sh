@@ -1,6 +1,6 @@
 #!/bin/sh
 # PENDING (not run by `make test`): every *NODE PRINT / *EL PRINT block and every result frame
-# is written once per time. Fails at fbf1617: a request that is due on the last increment of a
+# is written once per time. Fails at fbf1617 and b2c7e0d: a request due on the last increment of a
 # step (a time point equal to the step end, or FREQUENCY) is printed by increment_outputs after
 # that increment and again by the end-of-step call (fcs_driver run_steps ->
 # increment_outputs(..., .true.)), so job.dat holds two identical blocks at the step end

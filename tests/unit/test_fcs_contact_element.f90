@@ -7,17 +7,24 @@ program test_fcs_contact_element
   use fcs_test_assertions, only: test_suite_t
   use fcs_contact_geometry, only: segment_point_t, segment_point, project_to_segment
   use fcs_contact_element, only: contact_linear_t, contact_linearise, contact_update, &
-                                 contact_update_t, CONTACT_STICK, CONTACT_SLIP, CONTACT_TIED
-  use fcs_friction_law, only: friction_derivatives_t
+                                 contact_update_t, contact_node_t, contact_params_t, &
+                                 CONTACT_STICK, CONTACT_SLIP, CONTACT_TIED
+  use fcs_friction_law, only: friction_derivatives_t, friction_law_t
+  use fcs_coulomb, only: coulomb_t
+  use fcs_test_friction_laws, only: log_rate_law_t
   implicit none
   type(test_suite_t) :: suite
   real(dp), parameter :: AREA = 0.7_dp, EN = 300.0_dp, ET = 200.0_dp, MU = 0.4_dp
+  type(contact_params_t), parameter :: PARAMS = contact_params_t(AREA, EN, ET)
+  type(coulomb_t), parameter :: COULOMB = coulomb_t(mu0=MU)
   suite%name = 'contact_element'
   call test_projection(suite)
   call test_tangent(suite, CONTACT_STICK, 'stick')
   call test_tangent(suite, CONTACT_SLIP, 'slip')
   call test_tangent(suite, CONTACT_TIED, 'tied')
   call test_return_mapping(suite)
+  call test_rate_tangent(suite, log_rate_law_t(c=0.02_dp), 'rate strengthening')
+  call test_rate_tangent(suite, log_rate_law_t(c=-0.003_dp), 'rate weakening')
   call suite%report()
 
 contains
@@ -58,7 +65,8 @@ contains
     xm_new = xm + reshape(du(4:15), [3, 4])
     call project_to_segment(xm_new, xs_new, xi0, p, gap, converged)
     p_old = segment_point(xm_new, xi0)
-    u = contact_update(p, gap, p_old, ft0, status, AREA, EN, ET, MU, tied_gap)
+    u = contact_update(p, gap, p_old, contact_node_t(status, 0.0_dp, ft0, 0.0_dp, 0.0_dp, tied_gap), &
+                       PARAMS, COULOMB, 1.0_dp)
     total = u%normal_force * p%normal + u%friction(1) * p%e(:, 1) + u%friction(2) * p%e(:, 2)
     f(1:3) = total
     do i = 1, 4
@@ -92,13 +100,10 @@ contains
     ! The linearisation is taken at the returned force (on the cone for slip).
     ft_returned = ft
     if (status == CONTACT_SLIP) ft_returned = MU * fn * ft / trial_norm
-    call contact_linearise(xs, xm, p, gap, fn, ft_returned, status, AREA, EN, ET, fr, trial_norm, &
-                           0.0_dp, lin)
-    if (status == CONTACT_TIED) then
-      ! The tied normal force is measured from tied_gap.
-      call contact_linearise(xs, xm, p, gap, -EN * AREA * (gap - tied_gap), ft, status, AREA, EN, ET, &
-                             fr, trial_norm, 0.0_dp, lin)
-    end if
+    if (status == CONTACT_TIED) fn = -EN * AREA * (gap - tied_gap)
+    call contact_linearise(reshape([xs, xm], [3, 5]), p, gap, &
+                           contact_node_t(status, fn, ft_returned, trial_norm, 0.0_dp, tied_gap), &
+                           PARAMS, fr, 0.0_dp, lin)
     call random_number(v)
     v = v - 0.5_dp
     eps = 1.0e-6_dp
@@ -126,16 +131,79 @@ contains
     call configuration(xm, xs)
     call project_to_segment(xm, xs, [0.0_dp, 0.0_dp], p, gap, converged)
     p_old = segment_point(xm, p%xi + [0.1_dp, 0.0_dp])
-    u = contact_update(p, gap, p_old, [0.0_dp, 0.0_dp], CONTACT_STICK, AREA, EN, ET, MU, 0.0_dp)
+    u = contact_update(p, gap, p_old, stick_node(), PARAMS, COULOMB, 1.0_dp)
     call suite%check(u%status == CONTACT_SLIP, 'large tangential motion slips')
     call suite%close_to(norm2(u%friction), MU * u%normal_force, 1.0e-14_dp, '|f_t| = mu f_n on slip')
     call suite%close_to(u%plastic_slip, norm2(p%x - p_old%x) - MU * u%normal_force / (ET * AREA), &
                         1.0e-12_dp, 'plastic slip = total - elastic')
     p_old = segment_point(xm, p%xi + [1.0e-7_dp, 0.0_dp])
-    u = contact_update(p, gap, p_old, [0.0_dp, 0.0_dp], CONTACT_STICK, AREA, EN, ET, MU, 0.0_dp)
+    u = contact_update(p, gap, p_old, stick_node(), PARAMS, COULOMB, 1.0_dp)
     call suite%check(u%status == CONTACT_STICK, 'small tangential motion sticks')
-    u = contact_update(p, -gap, p_old, [0.0_dp, 0.0_dp], CONTACT_STICK, AREA, EN, ET, MU, 0.0_dp)
+    u = contact_update(p, -gap, p_old, stick_node(), PARAMS, COULOMB, 1.0_dp)
     call suite%check(u%normal_force == 0.0_dp, 'positive gap: no normal force (open)')
   end subroutine test_return_mapping
+
+  !> Forces after moving the nodes by du, with a rate-dependent law and time increment dt.
+  function rate_forces_after(xm, xs, xi0, node, law, dt, du) result(f)
+    real(dp), intent(in) :: xm(3, 4), xs(3), xi0(2), dt, du(15)
+    type(contact_node_t), intent(in) :: node
+    class(log_rate_law_t), intent(in) :: law
+    real(dp) :: f(15)
+    type(contact_update_t) :: u
+    type(segment_point_t) :: p, p_old
+    real(dp) :: xm_new(3, 4), xs_new(3), gap, total(3)
+    logical :: converged
+    integer :: i
+    xs_new = xs + du(1:3)
+    xm_new = xm + reshape(du(4:15), [3, 4])
+    call project_to_segment(xm_new, xs_new, xi0, p, gap, converged)
+    p_old = segment_point(xm_new, xi0)
+    u = contact_update(p, gap, p_old, node, PARAMS, law, dt)
+    total = u%normal_force * p%normal + u%friction(1) * p%e(:, 1) + u%friction(2) * p%e(:, 2)
+    f(1:3) = total
+    do i = 1, 4
+      f(3 * i + 1:3 * i + 3) = -p%shape(i) * total
+    end do
+  end function rate_forces_after
+
+  !> The slip tangent with a rate-dependent law (eq. 6 with dmu/dV: a spring E_t A in series
+  !> with the rate term) against finite differences of the implicit return mapping.
+  subroutine test_rate_tangent(suite, law, label)
+    type(test_suite_t), intent(inout) :: suite
+    type(log_rate_law_t), intent(in) :: law
+    character(len=*), intent(in) :: label
+    real(dp) :: xm(3, 4), xs(3), gap, v(15), fd(15), eps, dt
+    type(segment_point_t) :: p
+    type(contact_node_t) :: start, linear_node
+    type(contact_update_t) :: u0
+    type(contact_linear_t) :: lin
+    type(friction_derivatives_t) :: fr
+    logical :: converged
+    call configuration(xm, xs)
+    call project_to_segment(xm, xs, [0.0_dp, 0.0_dp], p, gap, converged)
+    dt = 0.5_dp
+    start = contact_node_t(CONTACT_SLIP, 0.0_dp, [0.9_dp, -0.6_dp] * MU * EN * AREA * (-gap), &
+                           0.0_dp, 0.0_dp, 0.0_dp)
+    ! The state reached by the update with no further motion is the linearisation point.
+    u0 = contact_update(p, gap, p, start, PARAMS, law, dt)
+    call suite%check(u0%status == CONTACT_SLIP .and. u0%slip_rate > 0.0_dp, 'slips at a rate, ' // label)
+    call suite%close_to(u0%mu, law%mu(0.0_dp, u0%slip_rate, 0.0_dp), 1.0e-12_dp, &
+                        'returned mu = mu(slip rate), ' // label)
+    fr = law%evaluate(u0%normal_force / AREA, u0%slip_rate, 0.0_dp)
+    linear_node = contact_node_t(CONTACT_SLIP, u0%normal_force, u0%friction, u0%trial_norm, 0.0_dp, 0.0_dp)
+    call contact_linearise(reshape([xs, xm], [3, 5]), p, gap, linear_node, PARAMS, fr, dt, lin)
+    call random_number(v)
+    v = v - 0.5_dp
+    eps = 1.0e-6_dp
+    fd = (rate_forces_after(xm, xs, p%xi, start, law, dt, eps * v) - &
+          rate_forces_after(xm, xs, p%xi, start, law, dt, -eps * v)) / (2 * eps)
+    ! The implicit return mapping converges to 1e-13 relative; central differences 1e-6.
+    call suite%close_array(matmul(lin%stiffness, v), -fd, 1.0e-6_dp, 'rate-dependent slip tangent, ' // label)
+  end subroutine test_rate_tangent
+
+  pure function stick_node() result(node)
+    type(contact_node_t) :: node
+    node%status = CONTACT_STICK
+  end function stick_node
 
 end program test_fcs_contact_element

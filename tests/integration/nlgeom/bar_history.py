@@ -161,7 +161,8 @@ def check(job, steps, nlgeom, scale):
             print('     bar %s t = %-9.7g u = %+.6e  RF = %+.6e  E A u / L = %+.6e' % (
                 suffix[1], t, urows[0, 1], rows[0, 0], stiffness * u))
         checker.check(worst_force <= tolerance, 'bar %s: reaction history = E A u(t)/L within '
-                      '%.0e of its largest value (worst %.2e)' % (suffix[1], tolerance, worst_force))
+                      '%.0e of its largest value (worst %.2e)'
+                      % (suffix[1], tolerance, worst_force))
         checker.check(worst_u <= tolerance, 'bar %s: end displacement history = u(t) within %.0e '
                       '(worst %.2e)' % (suffix[1], tolerance, worst_u))
         checker.check(lateral <= 1e-9, 'bar %s: no lateral reaction on the end (%.1e)'

@@ -133,7 +133,7 @@ def unique_times(blocks):
     """The blocks with the first of any repeated time only. fcs3d at fbf1617 prints a block
     twice when an output request is due on the last increment of a step (a time point at the
     step end, or FREQUENCY) and again at the end of the step; tests/pending/dat_output_once.sh
-    tests that separately, so that the numerical tests do not depend on it."""
+    tests that separately (still failing at b2c7e0d), so the numerical tests do not depend on it."""
     seen = set()
     out = []
     for block in blocks:

@@ -186,7 +186,8 @@ def check(job, steps, spacing, tolerance):
                              tolerance)
         if angle != '90 + hold':
             checker.check(error <= 1.1 * predicted, '%s: offset %.2e within the predictor '
-                          'estimate C:(nu/(1-nu) dtheta^2 e_z e_z) = %.2e' % (label, error, predicted))
+                          'estimate C:(nu/(1-nu) dtheta^2 e_z e_z) = %.2e'
+                          % (label, error, predicted))
     # Objectivity: from 30 to 90 degrees the offset is constant and rotates about z with the
     # stress, so sigma(90) = R(60) sigma(30) R(60)^T exactly (600 increments at 0.1 degree).
     q = rotation(60.0)

@@ -1,0 +1,294 @@
+// fault_bend.geo: the fault-bend model of Xing, Mora & Makinouchi (ICCS 2003), section 3:
+// a 300 x 300 x 50 mm plate cut by a fault bent by 5.6 degrees at its centre E, meshed as TWO
+// independent blocks of 8-node hexahedra (the fault faces of the two blocks share no nodes).
+//
+//   gmsh -3 -format msh41 fault_bend.geo -o fault_bend.msh                     (default mesh)
+//   gmsh -3 -format msh41 -setnumber h_fault 5 -setnumber h_far 12 \
+//        -setnumber layers 5 fault_bend.geo -o fault_bend.msh                   (finer)
+//   gmsh -3 -format msh41 -setnumber bend_angle 0 fault_bend.geo -o flat.msh   (flat fault)
+//
+// What the paper gives and what is assumed: /work/shared/reference/fault_bend_model.md and
+// doc/validation/fault_bend.md. Every assumed quantity is a variable below (-setnumber).
+//
+// Plan view (x right, y up, z = 0 .. thickness out of the page), default geometry:
+//
+//     (0,300) +-------------------------------G-----+ (300,300)      A: face y = 300
+//             |        UPPER (upper-left)   /        |                B: face x = 300
+//             |                           F          |                X0: x = 0, Y0: y = 0,
+//             |                         /            |                Z0: z = 0
+//             |                       E (150,150)    |
+//             |                     /                |
+//             |                   /   LOWER          |
+//             |                 D     (lower-right)  |
+//             C---------------/                      |
+//       (0,14)|                                      |
+//       (0,0) +--------------------------------------+ (300,0)
+//
+// The trace runs from C (on x = 0) through D, E, F to G (on y = 300). The half D-E leaves E
+// towards x = 0 at fault_angle - bend_angle/2 to the x axis, the half E-F leaves E towards
+// y = 300 at fault_angle + bend_angle/2. C-D and F-G (each tied_length long, measured along
+// the trace) are the tied segments; D-E and E-F carry the friction law.
+//
+// Built-in kernel with Geometry.AutoCoherence = 0: the fault points and curves are defined
+// twice, once for each block, so gmsh does not merge them and each block is meshed on its own.
+//
+// Mesh: each block's x-y face is meshed with quadrangles (Frontal-Delaunay for quads, blossom
+// recombination) and extruded through the thickness in `layers` layers of hexahedra.
+// Along the fault the node spacing is uniform on each segment: about h_fault on the upper
+// (slave) side and h_fault * lower_fault_factor on the lower (master) side, so with
+// lower_fault_factor = 1 (default) the fault nodes of the two sides coincide in position (they
+// are still distinct nodes), and with any other factor they do not match. Away from the fault
+// the in-plane size grows linearly from h_fault to h_far over the distance h_grading.
+//
+// Physical groups (fcs3d set and surface names are the upper-cased names):
+//   volumes  UPPER, LOWER                               element sets (and node sets)
+//   surfaces A (y = 300, parts of both blocks), B (x = 300), X0 (x = 0, both blocks),
+//            Y0 (y = 0), Z0 (z = 0, both blocks)         element-face surfaces and node sets
+//            CD_UPPER, CD_LOWER, DE_UPPER, DE_LOWER,
+//            EF_UPPER, EF_LOWER, FG_UPPER, FG_LOWER      the two sides of each fault segment
+// When the trace ends exactly at a corner (bend_angle = 0 with fault_angle = 45: C = (0,0),
+// G = (300,300)) the lower block has no face on x = 0 or y = 300; X0 and A then hold only the
+// upper block's faces.
+
+Geometry.AutoCoherence = 0;
+
+// ---------------------------------------------------------------- parameters (-setnumber)
+If (!Exists(bend_angle))
+  bend_angle = 5.6;       // degrees; 0 gives the flat fault
+EndIf
+If (!Exists(fault_angle))
+  fault_angle = 45;       // degrees, mean direction of the trace from the x axis
+EndIf
+If (!Exists(xE))
+  xE = 150;               // mm, the bend E
+EndIf
+If (!Exists(yE))
+  yE = 150;
+EndIf
+If (!Exists(tied_length))
+  tied_length = 30;       // mm, length of C-D and of F-G along the trace
+EndIf
+If (!Exists(width))
+  width = 300;            // mm, plate size in x
+EndIf
+If (!Exists(height))
+  height = 300;           // mm, plate size in y
+EndIf
+If (!Exists(thickness))
+  thickness = 50;         // mm, plate size in z
+EndIf
+If (!Exists(h_fault))
+  h_fault = 10;           // mm, in-plane element size along the fault (upper side)
+EndIf
+If (!Exists(lower_fault_factor))
+  lower_fault_factor = 1; // lower (master) side spacing = h_fault * this factor
+EndIf
+If (!Exists(h_far))
+  h_far = 25;             // mm, in-plane element size far from the fault
+EndIf
+If (!Exists(h_grading))
+  h_grading = 60;         // mm, distance from the fault over which the size grows to h_far
+EndIf
+If (!Exists(layers))
+  layers = 3;             // elements through the thickness
+EndIf
+
+// ---------------------------------------------------------------- the fault trace
+a1 = (fault_angle - bend_angle / 2) * Pi / 180;   // direction of D-E (E towards C, reversed)
+a2 = (fault_angle + bend_angle / 2) * Pi / 180;   // direction of E-F
+xC = 0;
+yC = yE - xE * Tan(a1);
+yG = height;
+xG = xE + (height - yE) / Tan(a2);
+length_CE = xE / Cos(a1);
+length_EG = (height - yE) / Sin(a2);
+eps = 1e-6 * width;
+If (yC < -eps || yC > height - eps)
+  Error("fault_bend.geo: the trace meets x = 0 at y = %g, outside the plate (0, %g)", yC, height);
+  Exit;
+EndIf
+If (xG < eps || xG > width + eps)
+  Error("fault_bend.geo: the trace meets y = %g at x = %g, outside the plate (0, %g)", height, xG, width);
+  Exit;
+EndIf
+If (tied_length <= 0 || tied_length >= length_CE || tied_length >= length_EG)
+  Error("fault_bend.geo: tied_length %g must be positive and shorter than C-E (%g) and E-G (%g)", tied_length, length_CE, length_EG);
+  Exit;
+EndIf
+If (layers < 1 || h_fault <= 0 || h_far <= 0 || lower_fault_factor <= 0 || h_grading <= 0)
+  Error("fault_bend.geo: layers, h_fault, h_far, h_grading and lower_fault_factor must be positive");
+  Exit;
+EndIf
+yC = (yC < eps) ? 0 : yC;              // snap to the corner within round-off
+xG = (xG > width - eps) ? width : xG;
+corner_C = (yC == 0);                  // C at (0, 0): the lower block has no x = 0 face
+corner_G = (xG == width);              // G at (width, height): no y = height face either
+xD = xC + tied_length * Cos(a1);
+yD = yC + tied_length * Sin(a1);
+xF = xG - tied_length * Cos(a2);
+yF = yG - tied_length * Sin(a2);
+length_CD = tied_length;
+length_DE = length_CE - tied_length;
+length_EF = length_EG - tied_length;
+length_FG = tied_length;
+Printf("fault_bend.geo: C (%g, %g)  D (%g, %g)  E (%g, %g)  F (%g, %g)  G (%g, %g)", xC, yC, xD, yD, xE, yE, xF, yF, xG, yG);
+
+// Node counts along the segments (uniform spacing, at least one element per segment).
+n_CD_u = Ceil(length_CD / h_fault - 1e-9) + 1;
+n_DE_u = Ceil(length_DE / h_fault - 1e-9) + 1;
+n_EF_u = Ceil(length_EF / h_fault - 1e-9) + 1;
+n_FG_u = Ceil(length_FG / h_fault - 1e-9) + 1;
+h_lower = h_fault * lower_fault_factor;
+n_CD_l = Ceil(length_CD / h_lower - 1e-9) + 1;
+n_DE_l = Ceil(length_DE / h_lower - 1e-9) + 1;
+n_EF_l = Ceil(length_EF / h_lower - 1e-9) + 1;
+n_FG_l = Ceil(length_FG / h_lower - 1e-9) + 1;
+
+// ---------------------------------------------------------------- upper-left block
+// Boundary, counter-clockwise: C D E F G (fault), G -> (0, height) (face A), -> C (face X0).
+Point(1) = {xC, yC, 0, h_fault};
+Point(2) = {xD, yD, 0, h_fault};
+Point(3) = {xE, yE, 0, h_fault};
+Point(4) = {xF, yF, 0, h_fault};
+Point(5) = {xG, yG, 0, h_fault};
+Point(6) = {0, height, 0, h_far};
+Line(1) = {1, 2};   // C-D
+Line(2) = {2, 3};   // D-E
+Line(3) = {3, 4};   // E-F
+Line(4) = {4, 5};   // F-G
+Line(5) = {5, 6};   // y = height
+Line(6) = {6, 1};   // x = 0
+Curve Loop(1) = {1, 2, 3, 4, 5, 6};
+Plane Surface(1) = {1};
+Transfinite Curve{1} = n_CD_u;
+Transfinite Curve{2} = n_DE_u;
+Transfinite Curve{3} = n_EF_u;
+Transfinite Curve{4} = n_FG_u;
+
+// ---------------------------------------------------------------- lower-right block
+// Boundary, counter-clockwise: (0,0) -> (width,0) (Y0) -> (width,height) (B) -> G (A)
+// -> F -> E -> D -> C (fault, reversed) -> (0,0) (X0). Corner points coinciding with C or G
+// are left out.
+Point(11) = {xC, yC, 0, h_lower};
+Point(12) = {xD, yD, 0, h_lower};
+Point(13) = {xE, yE, 0, h_lower};
+Point(14) = {xF, yF, 0, h_lower};
+Point(15) = {xG, yG, 0, h_lower};
+Point(16) = {width, 0, 0, h_far};
+If (!corner_C)
+  Point(17) = {0, 0, 0, h_far};
+EndIf
+If (!corner_G)
+  Point(18) = {width, height, 0, h_far};
+EndIf
+Line(11) = {12, 11};   // D-C
+Line(12) = {13, 12};   // E-D
+Line(13) = {14, 13};   // F-E
+Line(14) = {15, 14};   // G-F
+Transfinite Curve{11} = n_CD_l;
+Transfinite Curve{12} = n_DE_l;
+Transfinite Curve{13} = n_EF_l;
+Transfinite Curve{14} = n_FG_l;
+// lower_loop[] lists the curves; lower_role[] says what each one is:
+// 1 Y0, 2 B, 3 A, 4 X0, 10 + k fault segment k (1 C-D, 2 D-E, 3 E-F, 4 F-G).
+If (corner_C)
+  Line(15) = {11, 16};   // y = 0, from C = (0,0)
+  lower_loop[] = {15};
+  lower_role[] = {1};
+Else
+  Line(15) = {17, 16};   // y = 0
+  lower_loop[] = {15};
+  lower_role[] = {1};
+EndIf
+If (corner_G)
+  Line(16) = {16, 15};   // x = width, up to G = (width, height)
+  lower_loop[] += {16};
+  lower_role[] += {2};
+Else
+  Line(16) = {16, 18};   // x = width
+  Line(17) = {18, 15};   // y = height, from the corner to G
+  lower_loop[] += {16, 17};
+  lower_role[] += {2, 3};
+EndIf
+lower_loop[] += {14, 13, 12, 11};
+lower_role[] += {14, 13, 12, 11};
+If (!corner_C)
+  Line(18) = {11, 17};   // x = 0, from C down to the corner
+  lower_loop[] += {18};
+  lower_role[] += {4};
+EndIf
+Curve Loop(2) = {lower_loop[]};
+Plane Surface(2) = {2};
+
+// ---------------------------------------------------------------- 2D mesh size and algorithm
+// Size grows with the distance from the fault (both blocks' fault curves).
+Field[1] = Distance;
+Field[1].CurvesList = {1, 2, 3, 4, 11, 12, 13, 14};
+Field[1].NumPointsPerCurve = 200;
+Field[2] = Threshold;
+Field[2].InField = 1;
+Field[2].SizeMin = h_fault;
+Field[2].SizeMax = h_far;
+Field[2].DistMin = 0;
+Field[2].DistMax = h_grading;
+Background Field = 2;
+Mesh.MeshSizeFromPoints = 0;
+Mesh.MeshSizeExtendFromBoundary = 0;
+Mesh.MeshSizeFromCurvature = 0;
+Mesh.Algorithm = 8;                // Frontal-Delaunay for quads
+Mesh.RecombinationAlgorithm = 1;   // blossom
+Mesh.Smoothing = 5;
+Recombine Surface{1, 2};
+
+// ---------------------------------------------------------------- extrusion through z
+// Extrude returns: [0] the top surface, [1] the volume, [2 + i] the surface swept by the
+// i-th curve of the base surface's loop (in the loop's order).
+upper[] = Extrude {0, 0, thickness} { Surface{1}; Layers{layers}; Recombine; };
+lower[] = Extrude {0, 0, thickness} { Surface{2}; Layers{layers}; Recombine; };
+
+Physical Volume("UPPER") = {upper[1]};
+Physical Volume("LOWER") = {lower[1]};
+Physical Surface("Z0") = {1, 2};
+// Upper block: loop {C-D, D-E, E-F, F-G, y = height, x = 0}.
+Physical Surface("CD_UPPER") = {upper[2]};
+Physical Surface("DE_UPPER") = {upper[3]};
+Physical Surface("EF_UPPER") = {upper[4]};
+Physical Surface("FG_UPPER") = {upper[5]};
+face_A[] = {upper[6]};
+face_X0[] = {upper[7]};
+// Lower block: by the roles recorded with its loop.
+For i In {0 : #lower_loop[] - 1}
+  s = lower[2 + i];
+  If (lower_role[i] == 1)
+    face_Y0[] = {s};
+  EndIf
+  If (lower_role[i] == 2)
+    face_B[] = {s};
+  EndIf
+  If (lower_role[i] == 3)
+    face_A[] += {s};
+  EndIf
+  If (lower_role[i] == 4)
+    face_X0[] += {s};
+  EndIf
+  If (lower_role[i] == 11)
+    face_CD_l = s;
+  EndIf
+  If (lower_role[i] == 12)
+    face_DE_l = s;
+  EndIf
+  If (lower_role[i] == 13)
+    face_EF_l = s;
+  EndIf
+  If (lower_role[i] == 14)
+    face_FG_l = s;
+  EndIf
+EndFor
+Physical Surface("CD_LOWER") = {face_CD_l};
+Physical Surface("DE_LOWER") = {face_DE_l};
+Physical Surface("EF_LOWER") = {face_EF_l};
+Physical Surface("FG_LOWER") = {face_FG_l};
+Physical Surface("A") = {face_A[]};
+Physical Surface("B") = {face_B[]};
+Physical Surface("X0") = {face_X0[]};
+Physical Surface("Y0") = {face_Y0[]};
