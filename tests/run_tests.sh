@@ -26,7 +26,7 @@ record() { # name status(0 pass, 77 skip, other fail) [detail]
 
 echo "== unit tests"
 for t in "$UNIT_DIR"/test_*; do
-  [ -x "$t" ] || continue
+  [ -f "$t" ] && [ -x "$t" ] || continue
   name=$(basename "$t")
   out=$(cd "$work" && timeout 600 "$t" 2>&1); status=$?
   record "unit/$name" "$status" "$(printf '%s\n' "$out" | grep -E 'FAIL|Error|error' | head -20)"

@@ -29,10 +29,13 @@
 // y = 300 at fault_angle + bend_angle/2. C-D and F-G (each tied_length long, measured along
 // the trace) are the tied segments; D-E and E-F carry the friction law.
 //
-// Built-in kernel with Geometry.AutoCoherence = 0: the fault points and curves are defined
-// twice, once for each block, so gmsh does not merge them and each block is meshed on its own.
+// Built-in kernel. The fault points and curves are defined twice, once for each block. gmsh
+// merges coincident entities after an extrusion (Geometry.AutoCoherence), so the lower block
+// is built and extruded at z + z_build_offset, and moved down to its place with
+// Geometry.AutoCoherence = 0 once both blocks are extruded: the two blocks then share no
+// point, curve or node, and each is meshed on its own.
 //
-// Mesh: each block's x-y face is meshed with quadrangles (Frontal-Delaunay for quads, blossom
+// Mesh: each block's x-y face is meshed with quadrangles (Frontal-Delaunay, blossom full-quad
 // recombination) and extruded through the thickness in `layers` layers of hexahedra.
 // Along the fault the node spacing is uniform on each segment: about h_fault on the upper
 // (slave) side and h_fault * lower_fault_factor on the lower (master) side, so with
@@ -49,8 +52,6 @@
 // When the trace ends exactly at a corner (bend_angle = 0 with fault_angle = 45: C = (0,0),
 // G = (300,300)) the lower block has no face on x = 0 or y = 300; X0 and A then hold only the
 // upper block's faces.
-
-Geometry.AutoCoherence = 0;
 
 // ---------------------------------------------------------------- parameters (-setnumber)
 If (!Exists(bend_angle))
@@ -133,16 +134,91 @@ length_EF = length_EG - tied_length;
 length_FG = tied_length;
 Printf("fault_bend.geo: C (%g, %g)  D (%g, %g)  E (%g, %g)  F (%g, %g)  G (%g, %g)", xC, yC, xD, yD, xE, yE, xF, yF, xG, yG);
 
-// Node counts along the segments (uniform spacing, at least one element per segment).
-n_CD_u = Ceil(length_CD / h_fault - 1e-9) + 1;
-n_DE_u = Ceil(length_DE / h_fault - 1e-9) + 1;
-n_EF_u = Ceil(length_EF / h_fault - 1e-9) + 1;
-n_FG_u = Ceil(length_FG / h_fault - 1e-9) + 1;
+// ---------------------------------------------------------------- 1D mesh (every curve)
+// Every boundary curve of both blocks gets a prescribed, even number of segments: the
+// full-quad recombination below meshes each face with twice the size and splits every element
+// (a triangle into three quadrangles, a quadrangle into four), which needs the 1D meshes to be
+// divisible by two. The fault segments are divided uniformly; an outer curve that touches the
+// fault at one end is graded geometrically from h_fault there to about h_far at its other end.
+
+// GradedCount: in g_length, g_fine, g_coarse; out g_n (even number of segments), g_q (ratio
+// between consecutive segment lengths, >= 1, growing from the fine end).
+Macro GradedCount
+  If (g_length <= g_coarse || g_coarse <= g_fine)
+    g_n = Ceil(g_length / g_fine - 1e-9);
+    g_q = 1;
+  Else
+    g_q = (g_length - g_fine) / (g_length - g_coarse);
+    g_n = Round(Log(g_coarse / g_fine) / Log(g_q)) + 1;
+  EndIf
+  g_n = 2 * Ceil(g_n / 2 - 1e-9);
+  If (g_n < 2)
+    g_n = 2;
+  EndIf
+Return
+
+// UniformCount: in g_length, g_fine; out g_n (even number of segments of at most g_fine).
+Macro UniformCount
+  g_n = 2 * Ceil(g_length / g_fine / 2 - 1e-9);
+  If (g_n < 2)
+    g_n = 2;
+  EndIf
+Return
+
 h_lower = h_fault * lower_fault_factor;
-n_CD_l = Ceil(length_CD / h_lower - 1e-9) + 1;
-n_DE_l = Ceil(length_DE / h_lower - 1e-9) + 1;
-n_EF_l = Ceil(length_EF / h_lower - 1e-9) + 1;
-n_FG_l = Ceil(length_FG / h_lower - 1e-9) + 1;
+g_fine = h_fault;
+g_length = length_CD;
+Call UniformCount;
+n_CD_u = g_n;
+g_length = length_DE;
+Call UniformCount;
+n_DE_u = g_n;
+g_length = length_EF;
+Call UniformCount;
+n_EF_u = g_n;
+g_length = length_FG;
+Call UniformCount;
+n_FG_u = g_n;
+g_fine = h_lower;
+g_length = length_CD;
+Call UniformCount;
+n_CD_l = g_n;
+g_length = length_DE;
+Call UniformCount;
+n_DE_l = g_n;
+g_length = length_EF;
+Call UniformCount;
+n_EF_l = g_n;
+g_length = length_FG;
+Call UniformCount;
+n_FG_l = g_n;
+// Upper block: y = height from G to (0, height); x = 0 from (0, height) to C.
+g_fine = h_fault;
+g_coarse = h_far;
+g_length = xG;
+Call GradedCount;
+n_top_u = g_n;
+q_top_u = g_q;
+g_length = height - yC;
+Call GradedCount;
+n_left_u = g_n;
+q_left_u = g_q;
+// Lower block: y = 0 from (0, 0) (or C) to (width, 0); x = width from (width, 0) to
+// (width, height) (or G); the short pieces of y = height and x = 0 next to G and C.
+g_length = width;
+Call GradedCount;
+n_bottom_l = g_n;
+q_bottom_l = g_q;
+g_length = yG;
+Call GradedCount;
+n_right_l = g_n;
+q_right_l = g_q;
+g_length = width - xG;
+Call UniformCount;
+n_top_l = g_n;
+g_length = yC;
+Call UniformCount;
+n_left_l = g_n;
 
 // ---------------------------------------------------------------- upper-left block
 // Boundary, counter-clockwise: C D E F G (fault), G -> (0, height) (face A), -> C (face X0).
@@ -160,46 +236,50 @@ Line(5) = {5, 6};   // y = height
 Line(6) = {6, 1};   // x = 0
 Curve Loop(1) = {1, 2, 3, 4, 5, 6};
 Plane Surface(1) = {1};
-Transfinite Curve{1} = n_CD_u;
-Transfinite Curve{2} = n_DE_u;
-Transfinite Curve{3} = n_EF_u;
-Transfinite Curve{4} = n_FG_u;
+Transfinite Curve{1} = n_CD_u + 1;
+Transfinite Curve{2} = n_DE_u + 1;
+Transfinite Curve{3} = n_EF_u + 1;
+Transfinite Curve{4} = n_FG_u + 1;
+Transfinite Curve{5} = n_top_u + 1 Using Progression q_top_u;
+Transfinite Curve{6} = n_left_u + 1 Using Progression 1 / q_left_u;
 
 // ---------------------------------------------------------------- lower-right block
+// Built at z = z_build_offset (see the head of the file), moved to z = 0 after extrusion.
 // Boundary, counter-clockwise: (0,0) -> (width,0) (Y0) -> (width,height) (B) -> G (A)
 // -> F -> E -> D -> C (fault, reversed) -> (0,0) (X0). Corner points coinciding with C or G
 // are left out.
-Point(11) = {xC, yC, 0, h_lower};
-Point(12) = {xD, yD, 0, h_lower};
-Point(13) = {xE, yE, 0, h_lower};
-Point(14) = {xF, yF, 0, h_lower};
-Point(15) = {xG, yG, 0, h_lower};
-Point(16) = {width, 0, 0, h_far};
+z_build_offset = 1024;   // a power of two: z + 1024 - 1024 is exact for z = 0 and thickness
+zl = z_build_offset;
+Point(11) = {xC, yC, zl, h_lower};
+Point(12) = {xD, yD, zl, h_lower};
+Point(13) = {xE, yE, zl, h_lower};
+Point(14) = {xF, yF, zl, h_lower};
+Point(15) = {xG, yG, zl, h_lower};
+Point(16) = {width, 0, zl, h_far};
 If (!corner_C)
-  Point(17) = {0, 0, 0, h_far};
+  Point(17) = {0, 0, zl, h_far};
 EndIf
 If (!corner_G)
-  Point(18) = {width, height, 0, h_far};
+  Point(18) = {width, height, zl, h_far};
 EndIf
 Line(11) = {12, 11};   // D-C
 Line(12) = {13, 12};   // E-D
 Line(13) = {14, 13};   // F-E
 Line(14) = {15, 14};   // G-F
-Transfinite Curve{11} = n_CD_l;
-Transfinite Curve{12} = n_DE_l;
-Transfinite Curve{13} = n_EF_l;
-Transfinite Curve{14} = n_FG_l;
+Transfinite Curve{11} = n_CD_l + 1;
+Transfinite Curve{12} = n_DE_l + 1;
+Transfinite Curve{13} = n_EF_l + 1;
+Transfinite Curve{14} = n_FG_l + 1;
 // lower_loop[] lists the curves; lower_role[] says what each one is:
 // 1 Y0, 2 B, 3 A, 4 X0, 10 + k fault segment k (1 C-D, 2 D-E, 3 E-F, 4 F-G).
 If (corner_C)
   Line(15) = {11, 16};   // y = 0, from C = (0,0)
-  lower_loop[] = {15};
-  lower_role[] = {1};
 Else
   Line(15) = {17, 16};   // y = 0
-  lower_loop[] = {15};
-  lower_role[] = {1};
 EndIf
+Transfinite Curve{15} = n_bottom_l + 1 Using Progression q_bottom_l;
+lower_loop[] = {15};
+lower_role[] = {1};
 If (corner_G)
   Line(16) = {16, 15};   // x = width, up to G = (width, height)
   lower_loop[] += {16};
@@ -207,13 +287,16 @@ If (corner_G)
 Else
   Line(16) = {16, 18};   // x = width
   Line(17) = {18, 15};   // y = height, from the corner to G
+  Transfinite Curve{17} = n_top_l + 1;
   lower_loop[] += {16, 17};
   lower_role[] += {2, 3};
 EndIf
+Transfinite Curve{16} = n_right_l + 1 Using Progression 1 / q_right_l;
 lower_loop[] += {14, 13, 12, 11};
 lower_role[] += {14, 13, 12, 11};
 If (!corner_C)
   Line(18) = {11, 17};   // x = 0, from C down to the corner
+  Transfinite Curve{18} = n_left_l + 1;
   lower_loop[] += {18};
   lower_role[] += {4};
 EndIf
@@ -221,7 +304,8 @@ Curve Loop(2) = {lower_loop[]};
 Plane Surface(2) = {2};
 
 // ---------------------------------------------------------------- 2D mesh size and algorithm
-// Size grows with the distance from the fault (both blocks' fault curves).
+// Inside the faces the size grows with the distance from the fault (both blocks' fault
+// curves, at their final place): h_fault on the fault, h_far from the distance h_grading on.
 Field[1] = Distance;
 Field[1].CurvesList = {1, 2, 3, 4, 11, 12, 13, 14};
 Field[1].NumPointsPerCurve = 200;
@@ -235,8 +319,12 @@ Background Field = 2;
 Mesh.MeshSizeFromPoints = 0;
 Mesh.MeshSizeExtendFromBoundary = 0;
 Mesh.MeshSizeFromCurvature = 0;
-Mesh.Algorithm = 8;                // Frontal-Delaunay for quads
-Mesh.RecombinationAlgorithm = 1;   // blossom
+// Frontal-Delaunay triangles, recombined into quadrangles, full-quad (see the 1D mesh above).
+// Debian's gmsh 4.8.4 has no blossom matching, so plain recombination leaves triangles
+// (prisms after the extrusion, which fcs3d does not read); Mesh.Algorithm = 8
+// (Frontal-Delaunay for quads) crashes on this geometry.
+Mesh.Algorithm = 6;
+Mesh.RecombinationAlgorithm = 3;
 Mesh.Smoothing = 5;
 Recombine Surface{1, 2};
 
@@ -245,6 +333,8 @@ Recombine Surface{1, 2};
 // i-th curve of the base surface's loop (in the loop's order).
 upper[] = Extrude {0, 0, thickness} { Surface{1}; Layers{layers}; Recombine; };
 lower[] = Extrude {0, 0, thickness} { Surface{2}; Layers{layers}; Recombine; };
+Geometry.AutoCoherence = 0;   // keep the two blocks apart when the lower one moves down
+Translate {0, 0, -z_build_offset} { Volume{lower[1]}; }
 
 Physical Volume("UPPER") = {upper[1]};
 Physical Volume("LOWER") = {lower[1]};

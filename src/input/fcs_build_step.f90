@@ -57,8 +57,13 @@ contains
     logical :: ok
     integer :: i
     v = [1.0_dp, 1.0_dp, -1.0_dp, -1.0_dp]
+    if (state%step%has_procedure) then
+      call diag%report(card%loc, '*STATIC: the step already has a *STATIC (one per step)')
+      return
+    end if
     ! The step has a procedure even if its values are bad: no second error at *END STEP.
-    state%step%period = 0.0_dp
+    state%step%has_procedure = .true.
+    state%step%period = 1.0_dp
     if (card%n_lines > 1) then
       call diag%report(card%lines(2)%loc, '*STATIC: expected one data line')
       return
@@ -123,20 +128,26 @@ contains
     type(diagnostics_t), intent(inout) :: diag
     real(dp) :: strain, rotation, tolerance
     logical :: ok
+    integer :: n_before
+    if (state%step%has_rmin) then
+      call diag%report(card%loc, '*RMIN: the step already has a *RMIN (one per step)')
+      return
+    end if
+    state%step%has_rmin = .true.
+    n_before = diag%count
     call parse_real(param_value(card, 'MAX STRAIN INCREMENT'), strain, ok)
     call parse_real(param_value(card, 'MAX ROTATION INCREMENT'), rotation, ok)
     call parse_real(param_value(card, 'EVENT TOLERANCE'), tolerance, ok)
-    if (strain <= 0.0_dp .or. strain > 0.1_dp) then
+    if (strain <= 0.0_dp .or. strain > 0.1_dp) &
       call diag%report(card%loc, '*RMIN: MAX STRAIN INCREMENT must lie in (0, 0.1]')
-    else if (rotation <= 0.0_dp .or. rotation > 10.0_dp) then
+    if (rotation <= 0.0_dp .or. rotation > 10.0_dp) &
       call diag%report(card%loc, '*RMIN: MAX ROTATION INCREMENT must lie in (0, 10] degrees')
-    else if (tolerance < 0.0_dp .or. tolerance > 0.5_dp) then
+    if (tolerance < 0.0_dp .or. tolerance > 0.5_dp) &
       call diag%report(card%loc, '*RMIN: EVENT TOLERANCE must lie in [0, 0.5]')
-    else
-      state%step%rmin%max_strain_increment = strain
-      state%step%rmin%max_rotation_increment = rotation * acos(-1.0_dp) / 180.0_dp
-      state%step%rmin%event_tolerance = tolerance
-    end if
+    if (diag%count > n_before) return
+    state%step%rmin%max_strain_increment = strain
+    state%step%rmin%max_rotation_increment = rotation * acos(-1.0_dp) / 180.0_dp
+    state%step%rmin%event_tolerance = tolerance
   end subroutine handle_rmin
 
   !> *END STEP: close the step with the complete condition lists.
@@ -144,7 +155,7 @@ contains
     type(card_t), intent(in) :: card
     type(builder_t), intent(inout) :: state
     type(diagnostics_t), intent(inout) :: diag
-    if (state%step%period < 0.0_dp) then
+    if (.not. state%step%has_procedure) then
       call diag%report(card%loc, '*END STEP: step "' // state%step%name // '" has no procedure ' // &
                        '(add *STATIC after *STEP)')
     end if

@@ -111,6 +111,9 @@ module fcs_model
     real(dp) :: min_increment = 1.0e-5_dp
     real(dp) :: max_increment = 1.0_dp
     type(rmin_settings_t) :: rmin
+    !> Whether *STATIC and *RMIN were given in the step (each at most once).
+    logical :: has_procedure = .false.
+    logical :: has_rmin = .false.
     type(dof_condition_t), allocatable :: boundary(:)
     type(dof_condition_t), allocatable :: loads(:)
     type(face_load_t), allocatable :: pressures(:)

@@ -67,6 +67,27 @@ contains
     if (diag%has_errors()) call diag%to_error(err)
   end subroutine build_model
 
+  !> After an invalid *STEP, *STATIC or *END STEP card, keep track of the step structure as
+  !> if it had been valid, so that one error does not cause a cascade of follow-on errors.
+  subroutine recover_step_structure(keyword, state)
+    character(len=*), intent(in) :: keyword
+    type(builder_t), intent(inout) :: state
+    select case (keyword)
+    case ('STEP')
+      if (.not. state%in_step) then
+        state%in_step = .true.
+        state%step%name = 'Step-' // str(size(state%steps) + 1)
+        state%step%period = -1.0_dp
+        state%step%has_procedure = .false.
+      end if
+    case ('STATIC')
+      state%step%period = 1.0_dp
+      state%step%has_procedure = .true.
+    case ('END STEP')
+      state%in_step = .false.
+    end select
+  end subroutine recover_step_structure
+
   subroutine init_model(model, path)
     type(model_t), intent(inout) :: model
     character(len=*), intent(in) :: path

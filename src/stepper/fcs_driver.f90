@@ -309,6 +309,8 @@ contains
     logical :: need_frame, need_print
     integer :: i
     associate (step => model%steps(run%analysis%state%step), state => run%analysis%state)
+      ! Output due on the last increment of a step is written once, by the end-of-step call.
+      if (.not. end_of_step .and. state%step_time >= step%period * (1.0_dp - 1.0e-12_dp)) return
       need_frame = end_of_step
       need_print = .false.
       do i = 1, size(step%outputs)

@@ -86,7 +86,9 @@ contains
     integer :: pass, n_switched
     associate (step => model%steps(a%state%step), state => a%state)
       t0 = state%step_time
-      dt = min(step%max_increment, a%loading%next_breakpoint(t0) - t0)
+      dt = step%max_increment
+      if (state%step_increment == 0) dt = step%initial_increment
+      dt = min(dt, a%loading%next_breakpoint(t0) - t0)
       t1 = t0 + dt
       record%trial_increment = dt
       call external_forces(a, model, step%nlgeom, t0, t1)
@@ -332,7 +334,7 @@ contains
     type(error_t), allocatable, intent(out) :: err
     type(hex8_geometry_t) :: geo
     real(dp) :: strain(6, N_GAUSS_HEX8), spin(3, 3, N_GAUSS_HEX8), equivalent(N_GAUSS_HEX8)
-    real(dp) :: angle(N_GAUSS_HEX8), du(3, 8), x(3, 8)
+    real(dp) :: angle(N_GAUSS_HEX8), du(3, 8), x(3, 8), updated(6), increment(6)
     integer :: e, q, s
     logical :: ok, bbar, nlgeom
     nlgeom = step%nlgeom
@@ -350,12 +352,21 @@ contains
       call hex8_strain_increments(geo, du, bbar, strain, spin, equivalent, angle)
       associate (material => a%materials(model%sections(s)%material)%m)
         do q = 1, N_GAUSS_HEX8
+          updated = a%state%stress(:, q, e)
+          call material%update(updated, strain(:, q), a%state%material_state(:, q, e))
           if (nlgeom) then
-            a%state%stress(:, q, e) = hex8_rotate_stress(a%state%stress(:, q, e), spin(:, :, q))
-            a%state%strain(:, q, e) = rotate_strain(a%state%strain(:, q, e), spin(:, :, q))
+            ! Half of the constitutive increment before the rotation, half after: the
+            ! midpoint form of the Hughes-Winget update, second order in the increment and
+            ! still exact under rigid rotation (the increment is zero then).
+            increment = updated - a%state%stress(:, q, e)
+            a%state%stress(:, q, e) = hex8_rotate_stress(a%state%stress(:, q, e) + 0.5_dp * increment, &
+                                                         spin(:, :, q)) + 0.5_dp * increment
+            a%state%strain(:, q, e) = rotate_strain(a%state%strain(:, q, e) + 0.5_dp * strain(:, q), &
+                                                    spin(:, :, q)) + 0.5_dp * strain(:, q)
+          else
+            a%state%stress(:, q, e) = updated
+            a%state%strain(:, q, e) = a%state%strain(:, q, e) + strain(:, q)
           end if
-          call material%update(a%state%stress(:, q, e), strain(:, q), a%state%material_state(:, q, e))
-          a%state%strain(:, q, e) = a%state%strain(:, q, e) + strain(:, q)
         end do
       end associate
     end do

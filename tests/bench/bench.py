@@ -73,7 +73,7 @@ def fcs3d_phases(log_path):
             match = re.match(r"\s+(assembly|factorisation|solve|output)\s*: (.*)$", line)
             if match:
                 phases[match.group(1)] = duration(match.group(2))
-            match = re.search(r"peak memory ([\d.]+) MiB", line)
+            match = re.search(r"peak memory ([\d.Ee+-]+) MiB", line)
             if match:
                 phases["log_peak"] = float(match.group(1))
     return phases

@@ -3,9 +3,10 @@
 # load, meshes 10x1x1, 20x2x2 and 40x4x4, FORMULATION=FULL and BBAR, against Timoshenko beam
 # theory with Cowper's shear coefficient (tests/tools/cantilever.py). Asserts:
 #   - on the finest mesh (40x4x4) with BBAR the tip deflection is within 2% of the theory
-#     (it is -1.4%; the bound. The limit of mesh refinement is itself about -0.5%
-#     from the beam formula: the fully clamped root face restrains the Poisson contraction and
-#     warping that beam theory ignores, see doc/validation/cantilever.md);
+#     (it is -1.4%; the bound is the issue's. Refinement converges from below to a limit a
+#     fraction of a percent under the beam formula, -0.74% at 160x16x16: the fully clamped
+#     root face restrains the Poisson contraction and warping that beam theory ignores; see
+#     doc/validation/cantilever.md);
 #   - the error shrinks with every refinement, for both formulations;
 #   - SKYLINE and UMFPACK displacements agree to 1e-10 relative on every mesh (round-off of
 #     two factorisations of the same matrix; measured about 1e-12).

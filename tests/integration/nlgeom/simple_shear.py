@@ -13,7 +13,7 @@ deformation is homogeneous simple shear x = X + gamma Y. Output: *EL PRINT S at 
 Closed form (hypoelastic sigma^J = C:D under simple shear at a constant rate; Dienes 1979,
 method notes section 4): s12 = G sin(gamma), s11 = -s22 = G (1 - cos(gamma)), s33 = s13 = s23 = 0.
 
-`check` also replays the Hughes-Winget update sigma <- Q sigma Q^T + C:dD,
+`check` also replays the midpoint Hughes-Winget update sigma <- Q (sigma + C:dD/2) Q^T + C:dD/2,
 Q = (I - W/2)^-1 (I + W/2), with the increments fcs3d logged (job.log times): for simple shear
 the increment gradient on the mid-increment configuration is exactly dgamma e1 x e2, so this
 replay is the exact discrete answer of the algorithm and fcs3d must match it to printing
@@ -77,7 +77,9 @@ def hughes_winget_replay(gamma_steps):
         d = 0.5 * (h + h.T)
         w = 0.5 * (h - h.T)
         q = np.linalg.solve(np.eye(3) - 0.5 * w, np.eye(3) + 0.5 * w)
-        sigma = q @ sigma @ q.T + lam * np.trace(d) * np.eye(3) + 2.0 * SHEAR_MODULUS * d
+        # Midpoint form used by fcs3d: half of C:dD before the rotation, half after.
+        increment = lam * np.trace(d) * np.eye(3) + 2.0 * SHEAR_MODULUS * d
+        sigma = q @ (sigma + 0.5 * increment) @ q.T + 0.5 * increment
         history.append(np.array([sigma[0, 0], sigma[1, 1], sigma[2, 2], sigma[0, 1],
                                  sigma[0, 2], sigma[1, 2]]))
     return history
