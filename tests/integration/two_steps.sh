@@ -1,13 +1,13 @@
 #!/bin/sh
-# PENDING (not run by `make test`; see tests/pending/README.md): a two-step deck (the classic
+# A two-step deck (the classic
 # two-material bar; step 2 replaces the load with *CLOAD, OP=NEW) through CalculiX and fcs3d,
 # job.dat compared as in tests/integration/calculix_compare.sh. Fails today: fcs3d skips
 # every step after the first. Run from a scratch directory:
-#   FCS3D=$PWD/bin/fcs3d sh -c 'cd $(mktemp -d) && sh '$PWD'/tests/pending/two_steps.sh'
+#   FCS3D=$PWD/bin/fcs3d sh -c 'cd $(mktemp -d) && sh '$PWD'/tests/integration/two_steps.sh'
 set -u
 here=$(cd "$(dirname "$0")/../.." && pwd)
 command -v ccx >/dev/null 2>&1 || { echo "ccx not installed"; exit 77; }
-cp "$here/tests/pending/two_steps.inp" "$here/tests/decks/classic/include_sets_mesh.inc" . || exit 1
+cp "$here/tests/data/classic/two_steps.inp" "$here/tests/decks/classic/include_sets_mesh.inc" . || exit 1
 OMP_NUM_THREADS=1 ccx two_steps > two_steps.ccx.log 2>&1 || { tail -5 two_steps.ccx.log; exit 1; }
 mkdir -p fcs3d
 "$FCS3D" -q -o fcs3d two_steps.inp || exit 1

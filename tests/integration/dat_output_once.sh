@@ -1,5 +1,5 @@
 #!/bin/sh
-# PENDING (not run by `make test`): every *NODE PRINT / *EL PRINT block and every result frame
+# every *NODE PRINT / *EL PRINT block and every result frame
 # is written once per time. Fails at fbf1617 and b2c7e0d: a request due on the last increment of a
 # step (a time point equal to the step end, or FREQUENCY) is printed by increment_outputs after
 # that increment and again by the end-of-step call (fcs_driver run_steps ->
@@ -7,7 +7,7 @@
 # (CalculiX prints one), and job.h5/.xdmf two frames at the same time (the end-of-step frame is
 # written unconditionally). Post-processing that reads histories sees the last point twice.
 # Deck and check: tests/integration/nlgeom/output_once.py. Move to tests/integration/ when fixed.
-# By hand: FCS3D=$PWD/bin/fcs3d sh -c 'cd $(mktemp -d) && sh '$PWD'/tests/pending/dat_output_once.sh'
+# By hand: FCS3D=$PWD/bin/fcs3d sh -c 'cd $(mktemp -d) && sh '$PWD'/tests/integration/dat_output_once.sh'
 set -u
 tests=$(cd "$(dirname "$0")/.." && pwd)
 py=${PYTHON:-/usr/bin/python3}
