@@ -1,8 +1,8 @@
 #!/bin/sh
 # A two-step deck (the classic
 # two-material bar; step 2 replaces the load with *CLOAD, OP=NEW) through CalculiX and fcs3d,
-# job.dat compared as in tests/integration/calculix_compare.sh. Fails today: fcs3d skips
-# every step after the first. Run from a scratch directory:
+# job.dat compared as in tests/integration/calculix_compare.sh (once failed: fcs3d skipped
+# every step after the first). Run from a scratch directory:
 #   FCS3D=$PWD/bin/fcs3d sh -c 'cd $(mktemp -d) && sh '$PWD'/tests/integration/two_steps.sh'
 set -u
 here=$(cd "$(dirname "$0")/../.." && pwd)
