@@ -82,7 +82,7 @@ If (!Exists(h_fault))
   h_fault = 10;           // mm, in-plane element size along the fault (upper side)
 EndIf
 If (!Exists(lower_fault_factor))
-  lower_fault_factor = 1; // lower (master) side spacing = h_fault * this factor
+  lower_fault_factor = 1.25; // lower (master) side spacing = h_fault * this factor
 EndIf
 If (!Exists(h_far))
   h_far = 25;             // mm, in-plane element size far from the fault

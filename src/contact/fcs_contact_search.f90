@@ -28,8 +28,9 @@ module fcs_contact_search
     real(dp) :: margin = 0.0_dp
     integer :: dims(3) = 1
     integer, allocatable :: cell_ptr(:), faces(:)
-    !> Coordinates of the face nodes when the grid was built (to know when to rebuild).
-    real(dp), allocatable :: built_x(:, :)
+    !> Coordinates of the face nodes (3, 4, n_faces) when the grid was built: to know when to
+    !> rebuild, and to rebuild the same grid after a restart.
+    real(dp), allocatable :: built_x(:, :, :)
   contains
     procedure :: build => grid_build
     procedure :: candidates => grid_candidates
@@ -38,22 +39,21 @@ module fcs_contact_search
 
 contains
 
-  !> Build the grid for faces face_nodes(4, nf) at coordinates x(3, n_nodes); faces are found
-  !> for points within `margin` of their bounding box.
-  subroutine grid_build(this, face_nodes, x, margin)
+  !> Build the grid for faces with node coordinates face_x(3, 4, nf); faces are found for
+  !> points within `margin` of their bounding box.
+  subroutine grid_build(this, face_x, margin)
     class(face_grid_t), intent(inout) :: this
-    integer, intent(in) :: face_nodes(:, :)
-    real(dp), intent(in) :: x(:, :)
+    real(dp), intent(in) :: face_x(:, :, :)
     real(dp), intent(in) :: margin
-    real(dp) :: lo(3), hi(3), box_lo(3, size(face_nodes, 2)), box_hi(3, size(face_nodes, 2))
+    real(dp) :: lo(3), hi(3), box_lo(3, size(face_x, 3)), box_hi(3, size(face_x, 3))
     integer :: f, nf, i, j, k, c, ilo(3), ihi(3)
     integer, allocatable :: count(:), fill(:)
-    nf = size(face_nodes, 2)
+    nf = size(face_x, 3)
     this%margin = margin
     this%cell_size = tiny(1.0_dp)
     do f = 1, nf
-      box_lo(:, f) = minval(x(:, face_nodes(:, f)), dim=2) - margin
-      box_hi(:, f) = maxval(x(:, face_nodes(:, f)), dim=2) + margin
+      box_lo(:, f) = minval(face_x(:, :, f), dim=2) - margin
+      box_hi(:, f) = maxval(face_x(:, :, f), dim=2) + margin
       this%cell_size = max(this%cell_size, maxval(box_hi(:, f) - box_lo(:, f)))
     end do
     lo = minval(box_lo, dim=2)
@@ -97,19 +97,21 @@ contains
         end do
       end do
     end do
-    this%built_x = x(:, face_nodes(1, :))
+    this%built_x = face_x
   end subroutine grid_build
 
-  !> True when some face has moved more than half the margin since the grid was built.
+  !> True when some face node has moved more than half the margin since the grid was built.
   logical function grid_needs_rebuild(this, face_nodes, x)
     class(face_grid_t), intent(in) :: this
     integer, intent(in) :: face_nodes(:, :)
     real(dp), intent(in) :: x(:, :)
-    integer :: f
+    integer :: f, a
     grid_needs_rebuild = .true.
     if (.not. allocated(this%built_x)) return
     do f = 1, size(face_nodes, 2)
-      if (norm2(x(:, face_nodes(1, f)) - this%built_x(:, f)) > 0.5_dp * this%margin) return
+      do a = 1, 4
+        if (norm2(x(:, face_nodes(a, f)) - this%built_x(:, a, f)) > 0.5_dp * this%margin) return
+      end do
     end do
     grid_needs_rebuild = .false.
   end function grid_needs_rebuild

@@ -172,7 +172,7 @@ contains
     pair%face_size = pair%face_size / (sqrt(2.0_dp) * nf)
     pair%reach = pair%face_size
     call face_neighbours(pair, model%mesh%n_nodes)
-    call pair%grid%build(pair%face_nodes, x, pair%reach)
+    call pair%grid%build(face_coordinates(pair, x), pair%reach)
     frictionless%law = 'COULOMB'
     frictionless%mu0 = 0.0_dp
     if (def%interaction > 0) then
@@ -183,6 +183,17 @@ contains
     end if
     if (.not. allocated(pair%law)) call create_friction_law(frictionless, pair%law, err)
   end subroutine setup_pair
+
+  !> Node coordinates of every master face of a pair, (3, 4, n_faces).
+  pure function face_coordinates(pair, x) result(face_x)
+    type(contact_pair_t), intent(in) :: pair
+    real(dp), intent(in) :: x(:, :)
+    real(dp) :: face_x(3, 4, size(pair%face_nodes, 2))
+    integer :: f
+    do f = 1, size(pair%face_nodes, 2)
+      face_x(:, :, f) = x(:, pair%face_nodes(:, f))
+    end do
+  end function face_coordinates
 
   !> For every face, the faces sharing at least one node with it (itself included).
   subroutine face_neighbours(pair, n_nodes)
@@ -558,7 +569,7 @@ contains
     integer :: k, s, kind
     do k = 1, size(this%pairs)
       if (this%pairs(k)%grid%needs_rebuild(this%pairs(k)%face_nodes, x)) &
-        call this%pairs(k)%grid%build(this%pairs(k)%face_nodes, x, this%pairs(k)%reach)
+        call this%pairs(k)%grid%build(face_coordinates(this%pairs(k), x), this%pairs(k)%reach)
     end do
     do s = 1, size(this%slave_node)
       kind = EVENT_NONE

@@ -6,6 +6,7 @@ module fcs_coulomb
   private
   public :: coulomb_t
 
+  !> Constant friction coefficient mu0 [-]; no state.
   type, extends(friction_law_t) :: coulomb_t
     real(dp) :: mu0 = 0.0_dp
   contains

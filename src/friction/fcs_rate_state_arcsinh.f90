@@ -2,10 +2,12 @@
 !>
 !>     mu = a asinh[ V/(2 V0) exp((mu0 + b ln(V0 theta/D_c))/a) ]
 !>
-!> (Rice & Ben-Zion 1996, Proc. Natl. Acad. Sci. 93:3811; Lapusta et al. 2000, J. Geophys. Res.
-!> 105:23765, eq. 3; QDYN RNS_LAW=2 and the older PyLith RateStateAgeing, method notes 3.2-3.3).
-!> It equals the logarithmic law up to O((2 V0/V)^2 exp(-2 mu_log/a)) once that is small, and
-!> is finite, smooth and odd in V through V = 0 (mu(0) = 0), so it needs no cut-off rate.
+!> (Rice & Ben-Zion 1996, Proc. Natl. Acad. Sci. 93:3811; Lapusta et al. 2000, J. Geophys.
+!> Res. 105:23765), in the form of QDYN RNS_LAW=2 and of the older PyLith RateStateAgeing
+!> (method notes 3.2-3.3). Since asinh x = ln 2x + 1/(4x^2) + ..., it equals the logarithmic
+!> law up to a/(4 x^2) with x = V z (below), i.e. wherever V >> 1/z. It is finite and smooth
+!> through V = 0 and needs no cut-off rate, but mu(0) = 0: the law has no static friction, and
+!> mu stays near 0 for V below 1/z (1.75e-29 mm/s for mu0 = 0.6, a = 0.01 at steady state at V0).
 !> State theta [time] with the ageing or slip law (fcs_rate_state_base).
 !>
 !> Evaluation in logarithms, with ln x = ln V + ln z and ln z = (mu0 + b ln(V0 theta/D_c))/a
@@ -33,7 +35,7 @@ module fcs_rate_state_arcsinh
 contains
 
   !> mu, dmu/dV and dmu/dtheta at slip rate V >= 0 [length/time] and state theta > 0 [time]
-  !> (Lapusta et al. 2000, eq. 3; module header). At V = 0, dmu/dV = a z (capped at huge for
+  !> (QDYN RNS_LAW=2, method notes 3.3; module header). At V = 0, dmu/dV = a z (capped at huge for
   !> parameters with (mu0 + b ln(V0 theta/D_c))/a > ~709, where the slope is practically
   !> infinite); theta <= 0 is read as the smallest positive number.
   pure function rate_state_arcsinh_evaluate(this, pressure, rate, state) result(d)

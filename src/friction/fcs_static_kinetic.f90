@@ -4,7 +4,7 @@
 !>
 !> with the static coefficient mu_s = MU0, the kinetic coefficient mu_k = MUK <= mu_s and the
 !> decay coefficient d = DECAY [time/length]. This is the exponential-decay law of Oden & Martins
-!> (1985, CMAME 52:527-634, sec. 2) in the form the Abaqus Analysis User's Guide gives it
+!> (1985, CMAME 52:527-634) in the form the Abaqus Analysis User's Guide gives it
 !> ("Frictional behavior", static-kinetic exponential decay). No state variable.
 module fcs_static_kinetic
   use fcs_kinds, only: dp

@@ -8,7 +8,10 @@ module fcs_build_contact
   use fcs_builder_state, only: builder_t
   use fcs_mesh, only: SURFACE_FACES
   use fcs_model, only: model_t, interaction_def_t, contact_pair_def_t
-  use fcs_strings, only: to_upper, str, parse_real
+  use fcs_strings, only: to_upper, str, parse_real, string_t
+  use fcs_error, only: error_t
+  use fcs_friction_factory, only: friction_def_t, friction_def_problems, set_friction_parameter, &
+                                  friction_parameter_names
   implicit none
   private
   public :: handle_surface_interaction, handle_surface_behavior, handle_friction
@@ -80,42 +83,119 @@ contains
     end associate
   end subroutine handle_surface_behavior
 
-  !> *FRICTION: mu, stick slope.
+  !> *FRICTION, LAW=...: the law and its parameters (keyword line), or for COULOMB the
+  !> CalculiX data line mu[, stick slope]; the stick slope also as STICK SLOPE=.
   subroutine handle_friction(card, model, state, diag)
     type(card_t), intent(in) :: card
     type(model_t), intent(inout) :: model
     type(builder_t), intent(in) :: state
     type(diagnostics_t), intent(inout) :: diag
-    real(dp) :: mu, stick
+    type(friction_def_t) :: def
+    type(string_t), allocatable :: problems(:)
+    real(dp) :: stick
+    integer :: i
     if (.not. has_interaction(card, state, diag)) return
+    if (model%interactions(state%interaction)%has_friction) then
+      call diag%report(card%loc, '*FRICTION: interaction ' // model%interactions(state%interaction)%name // &
+                       ' already has friction')
+      return
+    end if
+    def%law = param_upper(card, 'LAW')
+    def%loc = card%loc
+    stick = 0.0_dp
+    if (.not. set_law_parameters(card, def, stick, diag)) return
+    if (card%n_lines > 0) then
+      if (.not. coulomb_data_line(card, def, stick, diag)) return
+    end if
+    problems = friction_def_problems(def)
+    do i = 1, size(problems)
+      call diag%report(card%loc, '*FRICTION, LAW=' // def%law // ': ' // problems(i)%s)
+    end do
+    if (size(problems) > 0) return
+    associate (interaction => model%interactions(state%interaction))
+      interaction%has_friction = .true.
+      interaction%friction = def
+      interaction%stick_stiffness = stick
+    end associate
+  end subroutine handle_friction
+
+  !> The law's parameters from the keyword line; STICK SLOPE into `stick`.
+  logical function set_law_parameters(card, def, stick, diag) result(ok)
+    type(card_t), intent(in) :: card
+    type(friction_def_t), intent(inout) :: def
+    real(dp), intent(inout) :: stick
+    type(diagnostics_t), intent(inout) :: diag
+    type(error_t), allocatable :: err
+    real(dp) :: value
+    logical :: is_number
+    integer :: k
+    ok = .true.
+    do k = 1, size(card%params)
+      associate (param => card%params(k))
+        if (param%name == 'LAW') cycle
+        if (param%name == 'STICK SLOPE') then
+          call parse_real(param%value, stick, is_number)
+          if (stick <= 0.0_dp) then
+            call diag%report(card%loc, '*FRICTION: STICK SLOPE must be positive')
+            ok = .false.
+          end if
+          cycle
+        end if
+        call parse_real(param%value, value, is_number)
+        if (is_number) then
+          call set_friction_parameter(def, param%name, value, err)
+        else
+          call set_friction_parameter(def, param%name, param%value, err)
+        end if
+        if (allocated(err)) then
+          call diag%report(card%loc, '*FRICTION: ' // err%message)
+          ok = .false.
+        end if
+      end associate
+    end do
+  end function set_law_parameters
+
+  !> The CalculiX data line mu[, stick slope], for COULOMB only.
+  logical function coulomb_data_line(card, def, stick, diag) result(ok)
+    type(card_t), intent(in) :: card
+    type(friction_def_t), intent(inout) :: def
+    real(dp), intent(inout) :: stick
+    type(diagnostics_t), intent(inout) :: diag
+    real(dp) :: mu, slope
+    ok = .false.
     associate (line => card%lines(1))
+      if (def%law /= 'COULOMB') then
+        call diag%report(line%loc, '*FRICTION, LAW=' // def%law // ' takes its parameters on the ' // &
+                         'keyword line (' // friction_parameter_names(def%law) // &
+                         '; STICK SLOPE=), not on a data line')
+        return
+      end if
       if (card%n_lines /= 1 .or. size(line%fields) > 2) then
         call diag%report(line%loc, '*FRICTION: expected one line: mu[, stick slope]')
         return
       end if
+      if (card%find_param('MU0') > 0) then
+        call diag%report(line%loc, '*FRICTION: mu is given twice (MU0= and the data line)')
+        return
+      end if
       if (.not. line_real(line, 1, mu, 'friction coefficient', 'FRICTION', diag)) return
-      if (.not. line_optional_real(line, 2, stick, 0.0_dp, 'stick slope', 'FRICTION', diag)) return
-      if (mu < 0.0_dp) then
-        call diag%report(line%loc, '*FRICTION: the friction coefficient must not be negative')
-        return
+      if (.not. line_optional_real(line, 2, slope, 0.0_dp, 'stick slope', 'FRICTION', diag)) return
+      if (size(line%fields) == 2) then
+        if (slope <= 0.0_dp) then
+          call diag%report(line%loc, '*FRICTION: the stick slope E_t must be positive')
+          return
+        end if
+        if (stick > 0.0_dp) then
+          call diag%report(line%loc, '*FRICTION: the stick slope is given twice (STICK SLOPE= ' // &
+                           'and the data line)')
+          return
+        end if
+        stick = slope
       end if
-      if (stick < 0.0_dp .or. (size(line%fields) == 2 .and. stick == 0.0_dp)) then
-        call diag%report(line%loc, '*FRICTION: the stick slope E_t must be positive')
-        return
-      end if
+      def%mu0 = mu
     end associate
-    associate (interaction => model%interactions(state%interaction))
-      if (interaction%has_friction) then
-        call diag%report(card%loc, '*FRICTION: interaction ' // interaction%name // ' already has friction')
-        return
-      end if
-      interaction%has_friction = .true.
-      interaction%friction%law = param_upper(card, 'LAW')
-      interaction%friction%mu0 = mu
-      interaction%friction%loc = card%loc
-      interaction%stick_stiffness = stick
-    end associate
-  end subroutine handle_friction
+    ok = .true.
+  end function coulomb_data_line
 
   !> *CONTACT PAIR, INTERACTION=: slave surface, master surface.
   subroutine handle_contact_pair(card, model, diag)

@@ -6,6 +6,7 @@
 !> Abaqus; keywords marked "fcs3d" are our extensions in the same syntax.
 module fcs_keywords
   use fcs_strings, only: string_t, to_upper
+  use fcs_friction_factory, only: friction_parameter_t, friction_parameters, friction_laws
   implicit none
   private
   public :: keyword_spec_t, param_spec_t, keyword_table, find_keyword, find_param_spec
@@ -144,11 +145,11 @@ contains
             'tied (no separation, no slip), the "stick" segments of the paper.')], &
          data_required=.true.), &
       kw('FRICTION', CONTEXT_MODEL, 'CalculiX', 'Friction of the current interaction, treated ' // &
-         'like plasticity: stick with stiffness E_t, slip on the Coulomb cone (paper eqs. 2-6).', &
-         'friction coefficient mu, stick slope E_t [stress/length] (default E_t = E_n).', &
-         [p('LAW', PARAM_CHOICE, default='COULOMB', choices=[s('COULOMB')], &
-            description='Friction law (fcs3d extension): COULOMB, constant mu.')], &
-         data_required=.true.), &
+         'like plasticity: stick with stiffness E_t, slip on the cone |f_t| = mu f_n with ' // &
+         'mu = mu(f_n, V, phi) (paper eqs. 2-6). LAW= and the law''s parameters are fcs3d ' // &
+         'extensions; doc/friction.md gives each law.', &
+         'COULOMB only (the CalculiX form, instead of MU0=): mu, stick slope E_t [stress/length].', &
+         friction_keyword_params()), &
       kw('CONTACT PAIR', CONTEXT_MODEL, 'CalculiX', 'A node-to-point contact pair: the slave ' // &
          'surface''s nodes against the master surface''s 4-node faces.', &
          'slave surface (element-face or node based), master surface (element-face).', &
@@ -170,6 +171,28 @@ contains
          data_required=.true.) &
       ]
   end function contact_keywords
+
+  !> Parameters of *FRICTION: LAW, STICK SLOPE and every law parameter of the friction
+  !> library's catalogue (fcs_friction_factory), so that the table stays the library's.
+  function friction_keyword_params() result(params)
+    type(param_spec_t), allocatable :: params(:)
+    type(friction_parameter_t), allocatable :: catalogue(:)
+    integer :: i
+    catalogue = friction_parameters()
+    params = [p('LAW', PARAM_CHOICE, default='COULOMB', choices=friction_laws(), &
+                description='Friction law.'), &
+              p('STICK SLOPE', PARAM_REAL, unit='stress/length', description='Stick stiffness ' // &
+                'E_t (default: E_n, the normal penalty).')]
+    do i = 1, size(catalogue)
+      if (size(catalogue(i)%choices) > 0) then
+        params = [params, p(catalogue(i)%name, PARAM_CHOICE, choices=catalogue(i)%choices, &
+                            description=catalogue(i)%description)]
+      else
+        params = [params, p(catalogue(i)%name, PARAM_REAL, unit=catalogue(i)%unit, &
+                            description=catalogue(i)%description)]
+      end if
+    end do
+  end function friction_keyword_params
 
   function step_keywords() result(t)
     type(keyword_spec_t), allocatable :: t(:)

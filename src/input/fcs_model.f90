@@ -168,6 +168,10 @@ module fcs_model
     character(len=:), allocatable :: solver_name
     type(interaction_def_t), allocatable :: interactions(:)
     type(contact_pair_def_t), allocatable :: contact_pairs(:)
+    !> Checksums of the model definition (its cards and the mesh) and of each step's cards,
+    !> so that a restart can tell whether the deck still describes the checkpoint's model.
+    character(len=:), allocatable :: model_hash
+    type(string_t), allocatable :: step_hashes(:)
   end type model_t
 
 end module fcs_model

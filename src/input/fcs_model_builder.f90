@@ -22,6 +22,7 @@ module fcs_model_builder
                                handle_friction, handle_contact_pair, handle_tie
   use fcs_model, only: model_t, step_t
   use fcs_model_checks, only: check_model
+  use fcs_deck_hash, only: hash_deck
   use fcs_strings, only: string_t, to_upper, parse_int, parse_real, join_strings, str
   implicit none
   private
@@ -64,29 +65,12 @@ contains
     end if
     model%steps = state%steps
     if (.not. diag%has_errors()) call check_model(model, diag)
-    if (diag%has_errors()) call diag%to_error(err)
+    if (diag%has_errors()) then
+      call diag%to_error(err)
+      return
+    end if
+    call hash_deck(deck, model)
   end subroutine build_model
-
-  !> After an invalid *STEP, *STATIC or *END STEP card, keep track of the step structure as
-  !> if it had been valid, so that one error does not cause a cascade of follow-on errors.
-  subroutine recover_step_structure(keyword, state)
-    character(len=*), intent(in) :: keyword
-    type(builder_t), intent(inout) :: state
-    select case (keyword)
-    case ('STEP')
-      if (.not. state%in_step) then
-        state%in_step = .true.
-        state%step%name = 'Step-' // str(size(state%steps) + 1)
-        state%step%period = -1.0_dp
-        state%step%has_procedure = .false.
-      end if
-    case ('STATIC')
-      state%step%period = 1.0_dp
-      state%step%has_procedure = .true.
-    case ('END STEP')
-      state%in_step = .false.
-    end select
-  end subroutine recover_step_structure
 
   subroutine init_model(model, path)
     type(model_t), intent(inout) :: model
@@ -115,7 +99,10 @@ contains
       state%step%period = -1.0_dp
       state%in_step = .true.
     case ('STATIC')
-      if (state%in_step) state%step%period = 0.0_dp
+      if (state%in_step) then
+        state%step%period = 1.0_dp
+        state%step%has_procedure = .true.
+      end if
     case ('END STEP')
       state%in_step = .false.
     end select

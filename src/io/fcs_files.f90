@@ -11,11 +11,12 @@
 !> `sync_file(dirname('name'))` so that the rename itself survives a crash.
 module fcs_files
   use, intrinsic :: iso_c_binding, only: c_char, c_int, c_ptr, c_size_t, c_null_char, &
-    c_associated, c_f_pointer
+    c_associated, c_f_pointer, c_long
   use fcs_error, only: error_t, fatal_error
   implicit none
   private
   public :: rename_file, remove_file, sync_file, directory_exists, make_directory
+  public :: truncate_file, file_size
 
   interface
     function c_rename(old_path, new_path) bind(c, name='rename') result(status)
@@ -23,6 +24,14 @@ module fcs_files
       character(kind=c_char), intent(in) :: old_path(*), new_path(*)
       integer(c_int) :: status
     end function c_rename
+
+    !> truncate(2); off_t is a C long on the 64-bit Linux targets fcs3d is built for.
+    function c_truncate(path, length) bind(c, name='truncate') result(status)
+      import :: c_char, c_int, c_long
+      character(kind=c_char), intent(in) :: path(*)
+      integer(c_long), value :: length
+      integer(c_int) :: status
+    end function c_truncate
 
     function c_unlink(path) bind(c, name='unlink') result(status)
       import :: c_char, c_int
@@ -109,6 +118,27 @@ contains
       call fatal_error(err, 'removing ' // path // ': ' // reason)
     end if
   end subroutine remove_file
+
+  !> Cut the file `path` to `length` bytes (the text outputs of a restarted run continue from
+  !> the checkpoint, so what a killed run wrote after it is removed).
+  subroutine truncate_file(path, length, err)
+    character(len=*), intent(in) :: path
+    integer(kind=8), intent(in) :: length
+    type(error_t), allocatable, intent(out) :: err
+    character(len=:), allocatable :: reason
+    if (c_truncate(path // c_null_char, int(length, c_long)) /= 0) then
+      reason = errno_text()
+      call fatal_error(err, 'truncating ' // path // ': ' // reason)
+    end if
+  end subroutine truncate_file
+
+  !> Size of file `path` in bytes (-1 if it does not exist).
+  integer(kind=8) function file_size(path)
+    character(len=*), intent(in) :: path
+    logical :: exists
+    inquire (file=path, exist=exists, size=file_size)
+    if (.not. exists) file_size = -1
+  end function file_size
 
   !> Flush the file or directory `path` to stable storage (fsync). For a directory this makes
   !> a preceding rename inside it durable.

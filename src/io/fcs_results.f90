@@ -149,18 +149,24 @@ contains
   end subroutine results_create
 
   !> Reopen `<path_stem>.h5` to add frames after its last complete one. A trailing incomplete
-  !> frame is deleted; the XDMF is rebuilt from the file.
-  subroutine results_open_append(this, path_stem, err)
+  !> frame is deleted; the XDMF is rebuilt from the file. With `keep_until_increment`, frames
+  !> of later increments are deleted too (a restart from a checkpoint taken at that increment
+  !> writes them again).
+  subroutine results_open_append(this, path_stem, err, keep_until_increment)
     class(results_file_t), intent(inout) :: this
     character(len=*), intent(in) :: path_stem
     type(error_t), allocatable, intent(out) :: err
+    integer, intent(in), optional :: keep_until_increment
+    integer :: limit
+    limit = huge(1)
+    if (present(keep_until_increment)) limit = keep_until_increment
     call start(this, path_stem, OPENING, err)
     if (allocated(err)) return
     call this%h5%open(this%h5_path, .true., err, file_locking=.false.)
     if (.not. allocated(err)) call check_format(this, err)
     if (.not. allocated(err)) call load_mesh_sizes(this, err)
     if (.not. allocated(err)) call load_surfaces(this, err)
-    if (.not. allocated(err)) call load_frames(this, err)
+    if (.not. allocated(err)) call load_frames(this, limit, err)
     if (.not. allocated(err)) call this%h5%flush(err)
     if (allocated(err)) then
       call prefix(err, OPENING)
@@ -839,11 +845,12 @@ contains
   ! ---------------------------------------------------------------------------------------------
 
   !> Describe every complete frame; delete the first incomplete frame and all after it.
-  subroutine load_frames(this, err)
+  subroutine load_frames(this, limit, err)
     class(results_file_t), intent(inout) :: this
+    integer, intent(in) :: limit
     type(error_t), allocatable, intent(out) :: err
     type(string_t), allocatable :: names(:)
-    integer :: i, number, complete
+    integer :: i, number, complete, increment
     logical :: ok, keeping
     call this%h5%list_group('/frames', names, err)
     if (allocated(err)) return
@@ -863,6 +870,11 @@ contains
         end if
       end if
       keeping = keeping .and. complete == 1
+      if (keeping) then
+        call this%h5%read_attribute(frame_path(i), 'increment', increment, err)
+        if (allocated(err)) return
+        keeping = increment <= limit
+      end if
       if (keeping) then
         call load_frame(this, i, err)
         if (allocated(err)) return
