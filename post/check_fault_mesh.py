@@ -3,9 +3,10 @@
 
 Usage:
     /usr/bin/python3 post/check_fault_mesh.py MESH.msh [--geo fault_bend.geo]
-                                               [--setnumber NAME VALUE ...]
-Give the same --setnumber values as to gmsh: the expected geometry (trace C-D-E-F-G, plate
-size, layers) is computed from the .geo file's defaults with those overrides (fault_profile.py).
+                                               [-setnumber NAME VALUE ...]
+Give the same -setnumber values as to gmsh (--setnumber is accepted too): the expected
+geometry (trace C-D-E-F-G, plate size, layers) is computed from the .geo file's defaults with
+those overrides (fault_profile.py).
 
 Checks (each failure is listed; exit 1 if any, 0 if none, 2 for bad usage or unreadable file):
   - the physical groups UPPER, LOWER (volumes), A, B, X0, Y0, Z0 and the eight fault sides
@@ -184,7 +185,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("mesh")
     parser.add_argument("--geo", default=fault_profile.DEFAULT_GEO)
-    parser.add_argument("--setnumber", nargs=2, action="append", default=[],
+    parser.add_argument("-setnumber", "--setnumber", nargs=2, action="append", default=[],
                         metavar=("NAME", "VALUE"))
     arguments = parser.parse_args()
     try:

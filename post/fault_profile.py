@@ -169,7 +169,7 @@ class FaultTrace:
 def main():
     parser = argparse.ArgumentParser(description="Print the fault trace of fault_bend.geo.")
     parser.add_argument("--geo", default=DEFAULT_GEO)
-    parser.add_argument("--setnumber", nargs=2, action="append", default=[],
+    parser.add_argument("-setnumber", "--setnumber", nargs=2, action="append", default=[],
                         metavar=("NAME", "VALUE"))
     arguments = parser.parse_args()
     try:

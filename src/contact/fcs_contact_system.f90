@@ -326,16 +326,22 @@ contains
   end subroutine search
 
   !> Cliques for the sparse pattern: each slave with a face, with the nodes of that face and
-  !> of its neighbours. Appended to clique_ptr/clique_nodes.
-  subroutine system_cliques(this, cstate, clique_ptr, clique_nodes)
+  !> of its neighbours. Appended to clique_ptr/clique_nodes. The faces are the current ones,
+  !> or with `keep_centres` those of the last pattern (after a restart, so that the pattern,
+  !> and with it every floating-point result, is the one of the interrupted run).
+  subroutine system_cliques(this, cstate, clique_ptr, clique_nodes, keep_centres)
     class(contact_system_t), intent(inout) :: this
     type(contact_state_t), intent(in) :: cstate
     integer, allocatable, intent(inout) :: clique_ptr(:), clique_nodes(:)
+    logical, intent(in), optional :: keep_centres
     integer, allocatable :: nodes(:)
     integer :: s, j, f
+    logical :: keep
+    keep = .false.
+    if (present(keep_centres)) keep = keep_centres
     do s = 1, size(this%slave_node)
-      this%pattern_face(s) = cstate%face(s)
-      f = cstate%face(s)
+      if (.not. keep) this%pattern_face(s) = cstate%face(s)
+      f = this%pattern_face(s)
       if (f == 0) cycle
       associate (pair => this%pairs(this%slave_pair(s)))
         nodes = [this%slave_node(s)]
@@ -347,7 +353,7 @@ contains
       clique_nodes = [clique_nodes, nodes]
       clique_ptr = [clique_ptr, clique_ptr(size(clique_ptr)) + size(nodes)]
     end do
-    this%pattern_dirty = .false.
+    if (.not. keep) this%pattern_dirty = .false.
   end subroutine system_cliques
 
   !> Linearisation of closed node s on coordinates x; dt is the trial time increment the

@@ -10,6 +10,7 @@ module fcs_build_material
   implicit none
   private
   public :: handle_material, handle_elastic, handle_density, handle_solid_section, handle_solver
+  public :: handle_restart
 
 contains
 
@@ -131,6 +132,25 @@ contains
     if (param_upper(card, 'FORMULATION') == 'BBAR') section%formulation = FORMULATION_BBAR
     if (section%element_set > 0 .and. section%material > 0) model%sections = [model%sections, section]
   end subroutine handle_solid_section
+
+  !> *RESTART, WRITE, FREQUENCY=, INTERVAL=, GENERATIONS=.
+  subroutine handle_restart(card, model, diag)
+    use fcs_deck_fields, only: param_value
+    use fcs_strings, only: parse_int, parse_real
+    type(card_t), intent(in) :: card
+    type(model_t), intent(inout) :: model
+    type(diagnostics_t), intent(inout) :: diag
+    logical :: ok
+    associate (c => model%checkpoint)
+      call parse_int(param_value(card, 'FREQUENCY'), c%frequency, ok)
+      call parse_real(param_value(card, 'INTERVAL'), c%interval, ok)
+      call parse_int(param_value(card, 'GENERATIONS'), c%generations, ok)
+      if (c%frequency < 0) call diag%report(card%loc, '*RESTART: FREQUENCY must not be negative')
+      if (c%interval < 0.0_dp) call diag%report(card%loc, '*RESTART: INTERVAL must not be negative')
+      if (c%generations < 1 .or. c%generations > 100) &
+        call diag%report(card%loc, '*RESTART: GENERATIONS must lie in 1..100')
+    end associate
+  end subroutine handle_restart
 
   !> *SOLVER, TYPE=.
   subroutine handle_solver(card, model)

@@ -96,6 +96,17 @@ contains
          [p('FILE', PARAM_FILE, required=.true., &
             description='The .msh file, relative to the deck holding *MESH. Physical groups ' // &
             'become node sets, element sets and element-face surfaces named by the physical name.')]), &
+      kw('RESTART', CONTEXT_ANY, 'CalculiX', 'Write checkpoints to continue the run later ' // &
+         '(fcs3d job.inp --restart job.rst.h5). Whatever is set here, a checkpoint is also ' // &
+         'written at the end of every step and when SIGTERM or SIGINT stops the run.', '', &
+         [p('WRITE', PARAM_FLAG, required=.true., description='Write checkpoints (the only ' // &
+            'mode: a restart is asked for on the command line).'), &
+          p('FREQUENCY', PARAM_INTEGER, default='0', description='Every N increments (0: not ' // &
+            'by count).'), &
+          p('INTERVAL', PARAM_REAL, default='600', unit='s (wall time)', description='Every this ' // &
+            'many seconds of wall time (0: not by time) (fcs3d extension).'), &
+          p('GENERATIONS', PARAM_INTEGER, default='2', description='How many checkpoints are ' // &
+            'kept: <job>.rst.h5 (newest), <job>.rst.1.h5, ... (fcs3d extension).')]), &
       kw('SOLVER', CONTEXT_MODEL, 'fcs3d', 'Choose the linear solver.', '', &
          [p('TYPE', PARAM_CHOICE, default='UMFPACK', &
             choices=[s('UMFPACK'), s('SKYLINE'), s('MUMPS')], &

@@ -11,7 +11,7 @@ module fcs_model
   private
   public :: model_t, material_def_t, section_t, amplitude_t, time_points_t, dof_condition_t
   public :: face_load_t, output_request_t, step_t, rmin_settings_t
-  public :: friction_def_t, interaction_def_t, contact_pair_def_t
+  public :: friction_def_t, interaction_def_t, contact_pair_def_t, checkpoint_settings_t
   public :: BC_DISPLACEMENT, BC_VELOCITY, FORMULATION_FULL, FORMULATION_BBAR
   public :: OUTPUT_NODE_PRINT, OUTPUT_EL_PRINT, OUTPUT_NODE_FILE, OUTPUT_EL_FILE
   public :: OUTPUT_CONTACT_PRINT, OUTPUT_CONTACT_FILE
@@ -153,6 +153,17 @@ module fcs_model
     type(source_loc_t) :: loc
   end type contact_pair_def_t
 
+  !> When checkpoints are written (*RESTART, WRITE). Whatever the settings, one is written at
+  !> the end of every step and when the run is stopped by SIGTERM or SIGINT.
+  type :: checkpoint_settings_t
+    !> Every this many increments (0: not by count).
+    integer :: frequency = 0
+    !> Every this many seconds of wall time (0: not by time).
+    real(dp) :: interval = 600.0_dp
+    !> Generations kept (<job>.rst.h5, <job>.rst.1.h5, ...).
+    integer :: generations = 2
+  end type checkpoint_settings_t
+
   !> The whole model.
   type :: model_t
     character(len=:), allocatable :: title
@@ -172,6 +183,7 @@ module fcs_model
     !> so that a restart can tell whether the deck still describes the checkpoint's model.
     character(len=:), allocatable :: model_hash
     type(string_t), allocatable :: step_hashes(:)
+    type(checkpoint_settings_t) :: checkpoint
   end type model_t
 
 end module fcs_model

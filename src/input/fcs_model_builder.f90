@@ -13,7 +13,7 @@ module fcs_model_builder
   use fcs_build_mesh, only: handle_node, handle_element, handle_nset, handle_elset, &
                             handle_surface, handle_mesh
   use fcs_build_material, only: handle_material, handle_elastic, handle_density, &
-                                handle_solid_section, handle_solver
+                                handle_solid_section, handle_solver, handle_restart
   use fcs_build_step, only: handle_step, handle_static, handle_end_step, handle_boundary, &
                             handle_cload, handle_dsload, handle_amplitude, handle_time_points, &
                             handle_rmin
@@ -132,6 +132,8 @@ contains
       call handle_mesh(card, model, diag)
     case ('SOLVER')
       call handle_solver(card, model)
+    case ('RESTART')
+      call handle_restart(card, model, diag)
     case ('MATERIAL')
       call handle_material(card, model, state, diag)
     case ('ELASTIC')

@@ -34,6 +34,8 @@ module fcs_checkpoint
     character(len=:), allocatable :: build
     integer :: n_nodes = 0, n_elements = 0, n_slaves = 0, n_material_state = 0
     real(dp) :: time = 0.0_dp
+    !> Time within the step (0: the checkpoint is at the start of `step`).
+    real(dp) :: step_time = 0.0_dp
     integer :: step = 0, increment = 0
     !> Size of the job's text outputs when the checkpoint was written [bytes].
     integer(i8) :: dat_size = 0
@@ -171,7 +173,7 @@ contains
     if (.not. allocated(err)) call put_int1(archive, '/meta/sizes', [info%n_nodes, info%n_elements, &
       info%n_slaves, info%n_material_state, info%step, info%increment], err)
     if (.not. allocated(err)) call put_real1(archive, '/meta/values', [info%time, &
-      real(info%dat_size, dp)], err)
+      real(info%dat_size, dp), info%step_time], err)
     call archive%total%add_text(info%model_hash // info%step_hashes // info%build)
     if (.not. allocated(err)) call archive%h5%write_attribute('/meta', 'checksum', &
                                                               checksum_text(archive%total%value), err)
@@ -318,7 +320,7 @@ contains
     if (.not. allocated(err)) call archive%h5%read_attribute('/meta', 'build', info%build, err)
     if (allocated(err)) return
     info%step_hashes = trim(info%step_hashes)
-    allocate (sizes(6), values(2))
+    allocate (sizes(6), values(3))
     call get_int1(archive, '/meta/sizes', sizes, err)
     if (.not. allocated(err)) call get_real1(archive, '/meta/values', values, err)
     if (allocated(err)) return
@@ -330,6 +332,7 @@ contains
     info%increment = sizes(6)
     info%time = values(1)
     info%dat_size = int(values(2), i8)
+    info%step_time = values(3)
   end subroutine read_meta
 
   ! Each dataset goes with a checksum attribute; reading checks shape and checksum.

@@ -2,7 +2,7 @@
 !> outputs, runs every step increment by increment, and writes results at the output times.
 module fcs_driver
   use fcs_kinds, only: dp
-  use fcs_error, only: error_t, fatal_error, add_context
+  use fcs_error, only: error_t, fatal_error, add_context, EXIT_INTERRUPTED
   use fcs_deck_lexer, only: deck_t
   use fcs_model, only: model_t, step_t, output_request_t, OUTPUT_NODE_PRINT, OUTPUT_EL_PRINT, &
                        OUTPUT_NODE_FILE, OUTPUT_EL_FILE, OUTPUT_CONTACT_PRINT, OUTPUT_CONTACT_FILE
@@ -25,6 +25,10 @@ module fcs_driver
   use fcs_hex8_element, only: mises_stress, hex8_extrapolate
   use fcs_hex8_shape, only: N_GAUSS_HEX8
   use fcs_strings, only: str, to_upper
+  use fcs_signals, only: install_signal_handlers, signal_received
+  use fcs_run_checkpoint, only: save_checkpoint, restore_checkpoint
+  use fcs_checkpoint, only: checkpoint_info_t
+  use fcs_files, only: truncate_file, file_size
   implicit none
   private
   public :: run_job
@@ -37,6 +41,9 @@ module fcs_driver
     type(dat_file_t) :: dat
     real(dp) :: started = 0.0_dp
     real(dp) :: total_time = 0.0_dp
+    !> Path stem of the outputs, and wall time of the last checkpoint.
+    character(len=:), allocatable :: job
+    real(dp) :: last_checkpoint = 0.0_dp
   end type run_t
 
 contains
@@ -55,7 +62,7 @@ contains
     if (len(options%solver) > 0) model%solver_name = to_upper(options%solver)
     call write_echo(options%job // '.echo', deck, model, err)
     if (allocated(err)) return
-    call run%log%open(options%job // '.log', options%quiet, err)
+    call run%log%open(options%job // '.log', options%quiet, err, append=len(options%restart_file) > 0)
     if (allocated(err)) return
     call describe_model(run%log, model, options)
     if (options%check_only) then
@@ -64,8 +71,20 @@ contains
       return
     end if
     run%started = t_start
-    call setup(run, model, options, err)
-    if (.not. allocated(err)) call run_steps(run, model, err)
+    run%job = options%job
+    call setup(run, model, err)
+    if (.not. allocated(err)) then
+      if (len(options%restart_file) > 0) then
+        call resume_outputs(run, model, options%restart_file, err)
+      else
+        call open_outputs(run, model, err)
+      end if
+    end if
+    if (.not. allocated(err)) then
+      call install_signal_handlers()
+      run%last_checkpoint = wall_time()
+      call run_steps(run, model, err)
+    end if
     if (.not. allocated(err)) call summary(run, model)
     call close_outputs(run)
   end subroutine run_job
@@ -85,11 +104,10 @@ contains
                   model%solver_name)
   end subroutine describe_model
 
-  !> State, materials, sparse pattern, solver, output files.
-  subroutine setup(run, model, options, err)
+  !> State, materials, contact, sparse pattern, solver.
+  subroutine setup(run, model, err)
     type(run_t), intent(inout) :: run
     type(model_t), intent(in) :: model
-    type(run_options_t), intent(in) :: options
     type(error_t), allocatable, intent(out) :: err
     integer :: n_state, n
     associate (a => run%analysis)
@@ -112,15 +130,74 @@ contains
       a%f_contact = 0.0_dp
     end associate
     run%total_time = sum(model%steps(:)%period)
-    call run%dat%open(options%job // '.dat', err)
+  end subroutine setup
+
+  !> New output files, with the initial frame.
+  subroutine open_outputs(run, model, err)
+    type(run_t), intent(inout) :: run
+    type(model_t), intent(in) :: model
+    type(error_t), allocatable, intent(out) :: err
+    call run%dat%open(run%job // '.dat', err)
     if (allocated(err)) return
-    call run%results%create(options%job, model%mesh%node_id, model%mesh%x, model%mesh%element_id, &
+    call run%results%create(run%job, model%mesh%node_id, model%mesh%x, model%mesh%element_id, &
                             model%mesh%connectivity, err)
     if (allocated(err)) return
     call define_contact_grids(run, err)
     if (allocated(err)) return
     call write_frame(run, model, err)
-  end subroutine setup
+  end subroutine open_outputs
+
+  !> Continue from a checkpoint: restore the analysis, and cut the outputs back to what they
+  !> held when the checkpoint was written (a killed run may have written more after it).
+  subroutine resume_outputs(run, model, path, err)
+    type(run_t), intent(inout) :: run
+    type(model_t), intent(in) :: model
+    character(len=*), intent(in) :: path
+    type(error_t), allocatable, intent(out) :: err
+    type(checkpoint_info_t) :: info
+    character(len=:), allocatable :: warning
+    call restore_checkpoint(path, run%analysis, model, info, warning, err)
+    if (allocated(err)) return
+    if (len(warning) > 0) call run%log%warn(warning)
+    call run%log%info('restart from ' // path // ': time ' // str(info%time) // ', step ' // &
+                      str(info%step) // ', increment ' // str(info%increment))
+    if (file_size(run%job // '.dat') >= 0) call truncate_file(run%job // '.dat', info%dat_size, err)
+    if (allocated(err)) return
+    call run%dat%open(run%job // '.dat', err, append=.true.)
+    if (allocated(err)) return
+    if (file_size(run%job // '.h5') >= 0) then
+      call run%results%open_append(run%job, err, keep_until_increment=info%increment)
+      if (.not. allocated(err)) call define_contact_grids(run, err)
+    else
+      call run%results%create(run%job, model%mesh%node_id, model%mesh%x, model%mesh%element_id, &
+                              model%mesh%connectivity, err)
+      if (.not. allocated(err)) call define_contact_grids(run, err)
+    end if
+  end subroutine resume_outputs
+
+  !> Write a checkpoint now and note the time.
+  subroutine checkpoint(run, model, err)
+    type(run_t), intent(inout) :: run
+    type(model_t), intent(in) :: model
+    type(error_t), allocatable, intent(out) :: err
+    call save_checkpoint(run%job, run%analysis, model, err)
+    run%last_checkpoint = wall_time()
+    if (.not. allocated(err)) call run%log%detail('checkpoint written: ' // run%job // '.rst.h5 ' // &
+      '(time ' // str(run%analysis%state%time) // ', increment ' // str(run%analysis%state%increment) // ')')
+  end subroutine checkpoint
+
+  !> Whether a periodic checkpoint is due after this increment.
+  logical function checkpoint_due(run, model)
+    type(run_t), intent(in) :: run
+    type(model_t), intent(in) :: model
+    checkpoint_due = .false.
+    associate (c => model%checkpoint)
+      if (c%frequency > 0) checkpoint_due = mod(run%analysis%state%increment, c%frequency) == 0
+      if (c%interval > 0.0_dp) then
+        if (wall_time() - run%last_checkpoint >= c%interval) checkpoint_due = .true.
+      end if
+    end associate
+  end function checkpoint_due
 
   !> One point grid per contact pair (its slave nodes) in the results.
   subroutine define_contact_grids(run, err)
@@ -215,40 +292,77 @@ contains
     type(run_t), intent(inout) :: run
     type(model_t), intent(in) :: model
     type(error_t), allocatable, intent(out) :: err
-    type(increment_record_t) :: record
     integer :: k
-    associate (a => run%analysis, state => run%analysis%state)
-      do k = state%step, size(model%steps)
-        state%step = k
+    associate (state => run%analysis%state)
+      do while (state%step <= size(model%steps))
+        k = state%step
         call begin_step(run, model, k)
-        do while (state%step_time < model%steps(k)%period * (1.0_dp - 1.0e-12_dp))
-          if (state%step_increment >= model%steps(k)%max_increments) then
-            call fatal_error(err, 'step ' // str(k) // ' ("' // model%steps(k)%name // '") needs ' // &
-              'more than INC=' // str(model%steps(k)%max_increments) // ' increments; raise INC ' // &
-              'on *STEP or the R-minimum limits')
-            exit
-          end if
-          call take_increment(a, model, record, err)
-          if (allocated(err)) exit
-          call log_increment(run, model, record)
-          call increment_outputs(run, model, .false., err)
-          if (allocated(err)) exit
-        end do
-        if (allocated(err)) then
-          call add_context(err, 'step ' // str(k) // ', increment ' // str(state%increment + 1) // &
-                           ', time ' // str(state%time))
-          return
-        end if
+        call run_increments(run, model, k, err)
+        if (allocated(err)) return
         state%step_time = model%steps(k)%period
         call increment_outputs(run, model, .true., err)
         if (allocated(err)) return
         call run%log%info('end of step ' // str(k) // ' ("' // model%steps(k)%name // '") at time ' // &
                           str(state%time) // ' after ' // str(state%step_increment) // ' increment(s)')
         call log_contact_totals(run, .false.)
+        state%step = k + 1
         state%step_time = 0.0_dp
+        state%step_increment = 0
+        call checkpoint(run, model, err)
+        if (allocated(err)) return
       end do
     end associate
   end subroutine run_steps
+
+  !> The increments of step k, with their outputs, periodic checkpoints, and the clean stop
+  !> on SIGTERM/SIGINT (checkpoint, then exit status 3).
+  subroutine run_increments(run, model, k, err)
+    type(run_t), intent(inout) :: run
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: k
+    type(error_t), allocatable, intent(out) :: err
+    type(increment_record_t) :: record
+    associate (a => run%analysis, state => run%analysis%state)
+      do while (state%step_time < model%steps(k)%period * (1.0_dp - 1.0e-12_dp))
+        if (state%step_increment >= model%steps(k)%max_increments) then
+          call fatal_error(err, 'step ' // str(k) // ' ("' // model%steps(k)%name // '") needs ' // &
+            'more than INC=' // str(model%steps(k)%max_increments) // ' increments; raise INC ' // &
+            'on *STEP or the R-minimum limits')
+          exit
+        end if
+        call take_increment(a, model, record, err)
+        if (allocated(err)) exit
+        call log_increment(run, model, record)
+        call increment_outputs(run, model, .false., err)
+        if (allocated(err)) exit
+        if (signal_received() /= 0) then
+          call stop_on_signal(run, model, err)
+          return
+        end if
+        if (checkpoint_due(run, model)) call checkpoint(run, model, err)
+        if (allocated(err)) exit
+      end do
+      if (allocated(err)) call add_context(err, 'step ' // str(k) // ', increment ' // &
+                                           str(state%increment + 1) // ', time ' // str(state%time))
+    end associate
+  end subroutine run_increments
+
+  !> SIGTERM or SIGINT: the increment is complete; write a checkpoint and stop.
+  subroutine stop_on_signal(run, model, err)
+    type(run_t), intent(inout) :: run
+    type(model_t), intent(in) :: model
+    type(error_t), allocatable, intent(out) :: err
+    integer :: signal
+    signal = signal_received()
+    call checkpoint(run, model, err)
+    if (allocated(err)) return
+    allocate (err)
+    err%exit_code = EXIT_INTERRUPTED
+    err%message = 'stopped by signal ' // str(signal) // ' after increment ' // &
+      str(run%analysis%state%increment) // ' (time ' // str(run%analysis%state%time) // &
+      '); checkpoint written to ' // run%job // '.rst.h5; continue with --restart ' // run%job // '.rst.h5'
+    call run%log%detail(err%message)
+  end subroutine stop_on_signal
 
   subroutine begin_step(run, model, k)
     type(run_t), intent(inout) :: run

@@ -182,12 +182,14 @@ contains
 
   !> Sparse pattern from the element cliques and the contact cliques (slave node with the
   !> nodes of its master face and the neighbouring faces).
-  subroutine build_pattern(a, model)
+  subroutine build_pattern(a, model, keep_centres)
     type(analysis_t), intent(inout) :: a
     type(model_t), intent(in) :: model
+    logical, intent(in), optional :: keep_centres
     integer, allocatable :: clique_ptr(:), clique_nodes(:)
     call element_cliques(model, clique_ptr, clique_nodes)
-    if (a%contact%n_slaves() > 0) call a%contact%cliques(a%state%contact, clique_ptr, clique_nodes)
+    if (a%contact%n_slaves() > 0) call a%contact%cliques(a%state%contact, clique_ptr, clique_nodes, &
+                                                         keep_centres)
     call a%matrix%build(model%mesh%n_nodes, clique_ptr, clique_nodes)
   end subroutine build_pattern
 

@@ -1,0 +1,736 @@
+#!/usr/bin/python3
+"""Figures of a fault-bend run (input/fault_bend/fault_bend.inp) from its fcs3d results file.
+
+Usage:
+    /usr/bin/python3 post/make_figures.py --results run/fault_bend/fault_bend.h5 --out doc/figures
+        [--deck run/fault_bend/fault_bend.inp] [--geo input/fault_bend/fault_bend.geo]
+        [--setnumber NAME VALUE ...] [--z Z] [--vmax MPA] [--prefix fault_bend]
+
+Figures written to --out (PNG), each skipped with a message when the data it needs are missing:
+  <prefix>_mises_fig2.png       Mises stress [MPa] on the x-y cross-section at z = Z (default
+  <prefix>_mises_fig3.png       mid-thickness) at the end of stage 1 (paper Fig. 2) and at the
+                                paper's later output times (Fig. 3); one colour scale for all
+                                the maps of a figure (0.5th..99.5th percentile of their values,
+                                or 0..--vmax), fault trace with C, D, E, F, G (tied segments
+                                thick); also one PNG per time (<prefix>_mises_t<time>.png) on
+                                its figure's scale.
+  <prefix>_fault_histories.png  per fault segment (mean over its slave nodes): contact pressure,
+                                shear traction, their ratio and mu, slip, slip rate, fraction
+                                of nodes slipping, against time.
+  <prefix>_stick_slip.png       space-time diagrams along the trace: contact status and slip
+                                rate against distance from C and time.
+  <prefix>_loading.png          the force on face B (sum of the x nodal forces of the nodes on
+                                x = max x) against B's displacement and against time.
+and <prefix>_summary.txt: the numbers behind the figures (times of the frames used, first
+stick->slip event of stage 2 from the .log, B force at the paper's times).
+
+The results layout (fcs3d src/io/fcs_results.f90) is read from the file: /mesh/coordinates,
+/mesh/connectivity, /frames/NNNNNN (attributes time, step) with nodal/<field>, cell/<field>
+and surfaces/contact_<pair>/{coordinates, nodal/<field>}. The fault segments are the contact
+pairs and ties of the deck (their slave surface CD_UPPER, DE_UPPER, ... names the segment);
+without the deck, grids named contact_CD, contact_DE, contact_EF, contact_FG. Frame times are
+matched to the wanted times within 1e-6 s.
+"""
+
+import argparse
+import os
+import re
+import sys
+
+import h5py
+import matplotlib
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+from matplotlib.collections import PolyCollection  # noqa: E402
+from matplotlib.colors import ListedColormap, BoundaryNorm, LogNorm  # noqa: E402
+from matplotlib.tri import Triangulation  # noqa: E402
+
+import fault_profile  # noqa: E402
+
+#: The paper's output times [s] (Figs. 2 and 3), total time with stage 1 assumed to last 10 s.
+STAGE_1_END = 10.0
+PAPER_TIMES = (STAGE_1_END, 228.7, 292.75, 296.15, 302.98, 311.08, 329.93, 369.78)
+#: Contact status codes written by fcs3d (fcs_contact_element: CONTACT_OPEN ... CONTACT_TIED).
+STATUS_NAMES = {0: "open", 1: "stick", 2: "slip", 3: "tied"}
+STATUS_COLOURS = ("#ffffff", "#4c72b0", "#dd3c2c", "#9a9a9a")
+SEGMENT_COLOURS = {"CD": "#7f7f7f", "DE": "#1f77b4", "EF": "#d62728", "FG": "#2ca02c"}
+TIME_TOLERANCE = 1e-6
+#: Faces of a C3D8 hexahedron (0-based local nodes), as in fcs3d and gmsh.
+HEX_FACES = ((0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7))
+
+
+def message(text):
+    print(f"make_figures.py: {text}")
+
+
+# ------------------------------------------------------------------------------ reading
+
+
+class Results:
+    """The parts of an fcs3d results file that the figures use."""
+
+    def __init__(self, path):
+        self.path = path
+        self.file = h5py.File(path, "r")
+        try:
+            self.x_ref = self.file["/mesh/coordinates"][()]
+            self.connectivity = self.file["/mesh/connectivity"][()]
+        except KeyError as error:
+            raise ValueError(f"{path}: no /mesh/coordinates or /mesh/connectivity") from error
+        frames = self.file.get("/frames")
+        if frames is None or len(frames) == 0:
+            raise ValueError(f"{path}: no frames")
+        entries = []
+        for name in sorted(frames):
+            group = frames[name]
+            if int(group.attrs.get("complete", 1)) != 1:
+                continue
+            entries.append((float(group.attrs["time"]), int(group.attrs.get("step", 0)), name))
+        # Several frames at one time (end of a step and a time point): keep the last written.
+        by_time = {}
+        for time, step, name in entries:
+            by_time[round(time / TIME_TOLERANCE)] = (time, step, name)
+        self.frames = sorted(by_time.values())
+        self.times = np.array([t for t, _, _ in self.frames])
+
+    def close(self):
+        self.file.close()
+
+    def step_end(self, step):
+        """Time of the last frame of `step` (None if it has none)."""
+        times = [t for t, s, _ in self.frames if s == step]
+        return max(times) if times else None
+
+    def group(self, index):
+        return self.file["/frames"][self.frames[index][2]]
+
+    def frame_at(self, time):
+        """Index of the frame at `time` (within TIME_TOLERANCE), or None."""
+        hits = np.nonzero(np.abs(self.times - time) <= TIME_TOLERANCE * max(1.0, abs(time)))[0]
+        return int(hits[-1]) if len(hits) else None
+
+    def field(self, index, kind, name):
+        """A nodal/cell field of a frame, or None if absent."""
+        dataset = self.group(index).get(f"{kind}/{name}")
+        return None if dataset is None else dataset[()]
+
+    def grid_names(self):
+        names = set()
+        for _, _, frame in self.frames:
+            surfaces = self.file["/frames"][frame].get("surfaces")
+            if surfaces is not None:
+                names.update(surfaces.keys())
+        return sorted(names)
+
+    def grid_field(self, index, grid, name):
+        dataset = self.group(index).get(f"surfaces/{grid}/nodal/{name}")
+        return None if dataset is None else dataset[()]
+
+    def grid_coordinates(self, index, grid):
+        dataset = self.group(index).get(f"surfaces/{grid}/coordinates")
+        return None if dataset is None else dataset[()]
+
+
+def deck_segments(deck):
+    """{segment: pair name} from the *CONTACT PAIR and *TIE cards of a deck: the segment is the
+    part before '_' of the slave surface's name (CD_UPPER -> CD)."""
+    segments = {}
+    with open(deck, encoding="utf-8", errors="replace") as handle:
+        lines = [line.rstrip("\n") for line in handle if not line.startswith("**")]
+    i = 0
+    while i < len(lines):
+        line = lines[i].strip()
+        upper = line.upper()
+        if upper.startswith("*CONTACT PAIR") or upper.startswith("*TIE"):
+            params = {}
+            for item in line.split(",")[1:]:
+                if "=" in item:
+                    key, value = item.split("=", 1)
+                    params[key.strip().upper()] = value.strip().upper()
+            j = i + 1
+            while j < len(lines) and not lines[j].lstrip().startswith("*"):
+                slave = lines[j].split(",")[0].strip().upper()
+                segment = slave.split("_")[0]
+                name = params.get("NAME")
+                if name and segment in dict((s, 0) for s, _, _ in fault_profile.SEGMENTS):
+                    segments[segment] = name
+                j += 1
+            i = j
+            continue
+        i += 1
+    return segments
+
+
+def deck_time_points(deck, name="PAPER"):
+    """The times of *TIME POINTS, NAME=<name> (explicit lists only), or None."""
+    with open(deck, encoding="utf-8", errors="replace") as handle:
+        lines = [line.strip() for line in handle if not line.startswith("**")]
+    for i, line in enumerate(lines):
+        upper = line.upper().replace(" ", "")
+        if upper.startswith("*TIMEPOINTS") and f"NAME={name}" in upper and "GENERATE" not in upper:
+            times = []
+            for data in lines[i + 1:]:
+                if data.startswith("*"):
+                    break
+                times += [float(v) for v in data.split(",") if v.strip()]
+            return times
+    return None
+
+
+def first_slip_event(log_path, step=2):
+    """(time, node) of the first increment of `step` limited by a stick->slip event, from the
+    run log, or None."""
+    if not os.path.exists(log_path):
+        return None
+    pattern = re.compile(r"^inc \d+ step (\d+) time (\S+) .* limit stick->slip(?: node (\d+))?")
+    with open(log_path, encoding="utf-8", errors="replace") as handle:
+        for line in handle:
+            match = pattern.match(line)
+            if match and int(match.group(1)) == step:
+                return float(match.group(2)), match.group(3)
+    return None
+
+
+def dat_totals(dat_path, set_name="B"):
+    """[(time, fx, fy, fz)] of the 'total force ... for set <set_name>' tables of a .dat."""
+    if not os.path.exists(dat_path):
+        return []
+    rows = []
+    pattern = re.compile(r"total force \(fx,fy,fz\) for set (\S+) and time\s+(\S+)")
+    with open(dat_path, encoding="utf-8", errors="replace") as handle:
+        lines = handle.readlines()
+    for i, line in enumerate(lines):
+        match = pattern.search(line)
+        if not match or match.group(1).upper() != set_name:
+            continue
+        for data in lines[i + 1:i + 4]:
+            values = data.split()
+            if len(values) == 3:
+                rows.append((float(match.group(2)), *(float(v) for v in values)))
+                break
+    return rows
+
+
+# ------------------------------------------------------------------------------ geometry
+
+
+def fault_trace(results, segments, arguments):
+    """The trace C-D-E-F-G: from the contact grids of the first frame if all four segments
+    have one, else from the .geo parameters."""
+    grids = {}
+    for segment, pair in segments.items():
+        coordinates = results.grid_coordinates(0, f"contact_{pair}")
+        if coordinates is not None and len(coordinates) >= 2:
+            grids[segment] = coordinates
+    if len(grids) == 4:
+        return fault_profile.FaultTrace.from_contact_grids(grids), "the contact grids"
+    p = fault_profile.parameters(arguments.geo, [(n, float(v)) for n, v in arguments.setnumber])
+    return fault_profile.FaultTrace.from_parameters(p), f"{arguments.geo} parameters"
+
+
+def section_faces(x_ref, connectivity, z0, tolerance):
+    """Quadrilateral hexahedron faces lying in the plane z = z0: (faces (k, 4) node indices,
+    elements (k)), each face once."""
+    on_plane = np.abs(x_ref[:, 2] - z0) <= tolerance
+    faces, elements, seen = [], [], set()
+    candidates = np.nonzero(on_plane[connectivity].sum(axis=1) == 4)[0]
+    for e in candidates:
+        for face in HEX_FACES:
+            nodes = connectivity[e, list(face)]
+            if on_plane[nodes].all():
+                key = tuple(sorted(nodes))
+                if key not in seen:
+                    seen.add(key)
+                    faces.append(nodes)
+                    elements.append(e)
+                break
+    return np.array(faces, dtype=int).reshape(-1, 4), np.array(elements, dtype=int)
+
+
+def layer_elements(x_ref, connectivity, z0):
+    """Hexahedra whose z range contains z0 (the element layer cut by the plane)."""
+    z = x_ref[connectivity, 2]
+    return np.nonzero((z.min(axis=1) <= z0) & (z.max(axis=1) >= z0))[0]
+
+
+def element_outline_xy(x_ref, connectivity, elements):
+    """x-y outlines of extruded hexahedra (mean of the bottom and top faces), (k, 4, 2)."""
+    corners = x_ref[connectivity[elements]][:, :, :2]
+    return 0.5 * (corners[:, 0:4] + corners[:, 4:8])
+
+
+# ------------------------------------------------------------------------------ figures
+
+
+class MisesMaps:
+    """Mises stress on the x-y section: nodal values on the faces at z = z0 if there is a node
+    level there, else the element values of the layer cut by z = z0."""
+
+    def __init__(self, results, z0):
+        self.results = results
+        x, conn = results.x_ref, results.connectivity
+        size = np.ptp(x, axis=0).max()
+        self.tolerance = 1e-6 * size
+        self.z0 = z0
+        faces, _ = section_faces(x, conn, z0, self.tolerance)
+        if len(faces):
+            self.mode = "nodal"
+            self.triangles = np.vstack([faces[:, [0, 1, 2]], faces[:, [0, 2, 3]]])
+            self.description = f"nodal Mises stress (element values extrapolated and averaged " \
+                               f"per block) on the plane z = {z0:g} mm"
+        else:
+            self.mode = "cell"
+            self.elements = layer_elements(x, conn, z0)
+            self.polygons = element_outline_xy(x, conn, self.elements)
+            self.description = f"element mean Mises stress of the element layer cut by " \
+                               f"z = {z0:g} mm"
+
+    def values(self, index):
+        if self.mode == "nodal":
+            return self.results.field(index, "nodal", "mises")
+        cell = self.results.field(index, "cell", "mises")
+        return None if cell is None else cell[self.elements]
+
+    def draw(self, ax, values, vmin, vmax, cmap):
+        if self.mode == "nodal":
+            x = self.results.x_ref
+            triangulation = Triangulation(x[:, 0], x[:, 1], self.triangles)
+            return ax.tripcolor(triangulation, values, shading="gouraud", cmap=cmap,
+                                vmin=vmin, vmax=vmax, rasterized=True)
+        collection = PolyCollection(self.polygons, array=values, cmap=cmap, edgecolors="face",
+                                    linewidths=0.2)
+        collection.set_clim(vmin, vmax)
+        ax.add_collection(collection)
+        return collection
+
+
+def draw_trace(ax, trace, labels=True):
+    line = trace.polyline()
+    ax.plot(line[:, 0], line[:, 1], color="black", lw=1.0)
+    for seg, a, b in (("CD", "C", "D"), ("FG", "F", "G")):
+        pa, pb = trace.points[a], trace.points[b]
+        ax.plot([pa[0], pb[0]], [pa[1], pb[1]], color="black", lw=3.0, solid_capstyle="butt")
+    if not labels:
+        return
+    direction = (trace.points["G"] - trace.points["C"]) / np.linalg.norm(
+        trace.points["G"] - trace.points["C"])
+    normal = np.array([-direction[1], direction[0]])
+    for name in "CDEFG":
+        p = trace.points[name] + 9.0 * normal
+        ax.text(p[0], p[1], name, ha="center", va="center", fontsize=9, fontweight="bold",
+                bbox=dict(boxstyle="round,pad=0.1", fc="white", ec="none", alpha=0.7))
+
+
+def figure_mises(results, trace, times, arguments, summary):
+    """Paper Fig. 2 (end of stage 1) and Fig. 3 (the later times): one figure each, with one
+    colour scale for all the maps of the figure (also used by the single-time PNGs)."""
+    z0 = arguments.z if arguments.z is not None else 0.5 * (
+        results.x_ref[:, 2].min() + results.x_ref[:, 2].max())
+    maps = MisesMaps(results, z0)
+    summary.append(f"Mises maps: {maps.description}")
+    stage_1_end = results.step_end(1) or STAGE_1_END
+    end_of_stage_1 = [t for t in times if abs(t - stage_1_end) <= TIME_TOLERANCE]
+    later = [t for t in times if abs(t - stage_1_end) > TIME_TOLERANCE]
+    written = []
+    for name, group in (("fig2", end_of_stage_1), ("fig3", later)):
+        if group:
+            written += mises_figure(results, maps, trace, group, name, arguments, summary)
+    return written
+
+
+def mises_figure(results, maps, trace, times, name, arguments, summary):
+    panels = []
+    for time in times:
+        index = results.frame_at(time)
+        if index is None:
+            message(f"Mises map at t = {time:g} s skipped: no frame at that time")
+            continue
+        values = maps.values(index)
+        if values is None:
+            message(f"Mises map at t = {time:g} s skipped: the frame has no "
+                    f"{'nodal' if maps.mode == 'nodal' else 'cell'} field 'mises'")
+            continue
+        panels.append((time, values))
+    if not panels:
+        message(f"Mises maps ({name}) skipped: none of the times "
+                f"{', '.join(f'{t:g}' for t in times)} s has a frame with 'mises'")
+        return []
+    low = min(float(v.min()) for _, v in panels)
+    peak = max(float(v.max()) for _, v in panels)
+    vmin = 0.0 if arguments.vmax is not None else \
+        min(float(np.percentile(v, 0.5)) for _, v in panels)
+    vmax = arguments.vmax if arguments.vmax is not None else \
+        max(float(np.percentile(v, 99.5)) for _, v in panels)
+    if vmax <= vmin:
+        vmax = vmin + max(1e-6, 1e-6 * abs(vmin))
+    extend = {(False, False): "neither", (True, False): "min", (False, True): "max",
+              (True, True): "both"}[(low < vmin, peak > vmax)]
+    cmap = plt.get_cmap("jet")
+    n = len(panels)
+    columns = min(4, n)
+    rows = (n + columns - 1) // columns
+    fig, axes = plt.subplots(rows, columns, figsize=(3.3 * columns + 1.2, 3.3 * rows + 0.6),
+                             squeeze=False, constrained_layout=True)
+    mappable = None
+    for ax, (time, values) in zip(axes.flat, panels):
+        mappable = maps.draw(ax, values, vmin, vmax, cmap)
+        draw_trace(ax, trace)
+        setup_plan_axes(ax, results)
+        ax.set_title(f"t = {time:g} s" + (" (end of stage 1)" if name == "fig2" else ""),
+                     fontsize=9)
+    for ax in list(axes.flat)[n:]:
+        ax.set_visible(False)
+    bar = fig.colorbar(mappable, ax=axes.ravel().tolist(), shrink=0.85, extend=extend)
+    bar.set_label("Mises stress [MPa]")
+    fig.suptitle(f"Mises stress on the x-y section z = {maps.z0:g} mm "
+                 f"(values {low:.2f} .. {peak:.2f} MPa)", fontsize=10)
+    path = os.path.join(arguments.out, f"{arguments.prefix}_mises_{name}.png")
+    fig.savefig(path, dpi=arguments.dpi)
+    plt.close(fig)
+    written = [path]
+    for time, values in panels:
+        fig, ax = plt.subplots(figsize=(5.2, 4.4), constrained_layout=True)
+        mappable = maps.draw(ax, values, vmin, vmax, cmap)
+        draw_trace(ax, trace)
+        setup_plan_axes(ax, results)
+        ax.set_title(f"Mises stress [MPa], t = {time:g} s, z = {maps.z0:g} mm", fontsize=9)
+        fig.colorbar(mappable, ax=ax, extend=extend)
+        path = os.path.join(arguments.out, f"{arguments.prefix}_mises_t{time:07.2f}.png")
+        fig.savefig(path, dpi=arguments.dpi)
+        plt.close(fig)
+        written.append(path)
+    summary.append(f"  {name}: colour scale {vmin:.3f} .. {vmax:.3f} MPa "
+                   f"({'--vmax' if arguments.vmax is not None else '0.5th..99.5th percentile'})")
+    for time, values in panels:
+        summary.append(f"    t = {time:9.3f} s: Mises min {values.min():8.3f}  mean "
+                       f"{values.mean():8.3f}  max {values.max():8.3f} MPa")
+    return written
+
+
+def setup_plan_axes(ax, results):
+    x = results.x_ref
+    ax.set_xlim(x[:, 0].min(), x[:, 0].max())
+    ax.set_ylim(x[:, 1].min(), x[:, 1].max())
+    ax.set_aspect("equal")
+    ax.set_xlabel("x [mm]", fontsize=8)
+    ax.set_ylabel("y [mm]", fontsize=8)
+    ax.tick_params(labelsize=7)
+
+
+def segment_histories(results, segments):
+    """{segment: {field: (frames,) means over the slave nodes}} and the times."""
+    fields = ("pressure", "shear_magnitude", "slip", "slip_rate", "mu", "status")
+    histories = {}
+    for segment, pair in segments.items():
+        grid = f"contact_{pair}"
+        data = {name: [] for name in fields}
+        data["slipping"] = []
+        data["ratio"] = []
+        ok = True
+        for index in range(len(results.frames)):
+            values = {name: results.grid_field(index, grid, name) for name in fields}
+            if values["status"] is None:
+                ok = False
+                break
+            for name in fields:
+                v = values[name]
+                data[name].append(np.nan if v is None else float(np.mean(v)))
+            status = np.rint(values["status"]).astype(int)
+            data["slipping"].append(float(np.mean(status == 2)))
+            pressure, shear = values["pressure"], values["shear_magnitude"]
+            if pressure is not None and shear is not None:
+                closed = pressure > 0
+                data["ratio"].append(float(np.sum(shear[closed]) / np.sum(pressure[closed]))
+                                     if closed.any() else np.nan)
+            else:
+                data["ratio"].append(np.nan)
+        if ok:
+            histories[segment] = {k: np.array(v) for k, v in data.items()}
+        else:
+            message(f"segment {segment}: grid {grid} has no 'status' in some frame; "
+                    f"left out of the histories")
+    return histories
+
+
+def figure_histories(results, segments, arguments, summary):
+    histories = segment_histories(results, segments)
+    if not histories:
+        message("fault histories skipped: no contact grid with fields in the frames")
+        return []
+    times = results.times
+    panels = (("pressure", "mean contact pressure [MPa]", False),
+              ("shear_magnitude", "mean shear traction [MPa]", False),
+              ("ratio", "shear / pressure (lines), mu (dashed)", False),
+              ("slip", "mean accumulated slip [mm]", False),
+              ("slip_rate", "mean slip rate [mm/s]", True),
+              ("slipping", "fraction of nodes slipping", False))
+    fig, axes = plt.subplots(len(panels), 1, figsize=(7.5, 12), sharex=True,
+                             constrained_layout=True)
+    for ax, (field, label, log) in zip(axes, panels):
+        for segment in ("CD", "DE", "EF", "FG"):
+            if segment not in histories:
+                continue
+            values = histories[segment][field]
+            if np.all(np.isnan(values)):
+                continue
+            style = dict(color=SEGMENT_COLOURS[segment], lw=1.2, marker=".", ms=3,
+                         label=segment)
+            if log:
+                positive = values > 0
+                if positive.any():
+                    ax.semilogy(times[positive], values[positive], **style)
+            else:
+                ax.plot(times, values, **style)
+            if field == "ratio":
+                mu = histories[segment]["mu"]
+                if segment in ("DE", "EF") and not np.all(np.isnan(mu)):
+                    ax.plot(times, mu, color=SEGMENT_COLOURS[segment], lw=0.8, ls="--")
+        ax.set_ylabel(label, fontsize=8)
+        ax.grid(True, lw=0.3)
+        ax.tick_params(labelsize=7)
+    for time in PAPER_TIMES[1:]:
+        for ax in axes:
+            ax.axvline(time, color="0.6", lw=0.5, ls=":")
+    axes[0].legend(fontsize=7, ncol=4)
+    axes[-1].set_xlabel("time [s] (dotted: the paper's output times)", fontsize=8)
+    fig.suptitle("Fault segments: means over the slave nodes of each segment "
+                 f"({len(times)} frames)", fontsize=10)
+    path = os.path.join(arguments.out, f"{arguments.prefix}_fault_histories.png")
+    fig.savefig(path, dpi=arguments.dpi)
+    plt.close(fig)
+    for segment, h in histories.items():
+        slipping = np.nonzero(h["slipping"] > 0)[0]
+        stage_1_end = results.step_end(1) or STAGE_1_END
+        after = slipping[times[slipping] > stage_1_end + TIME_TOLERANCE] if len(slipping) \
+            else slipping
+        first = f"{times[after[0]]:g} s" if len(after) else "never in stage 2"
+        summary.append(f"segment {segment}: first frame of stage 2 with slipping nodes: {first}")
+    return [path]
+
+
+def figure_stick_slip(results, segments, trace, arguments, summary):
+    """Status and slip rate of the slave nodes of one row (the node level nearest to
+    mid-thickness) against the distance along the trace and time; each segment is drawn in
+    its own range, so nodes shared by two pairs (at D, E, F) appear in both."""
+    rows = []
+    for segment, pair in sorted(segments.items()):
+        grid = f"contact_{pair}"
+        coordinates = results.grid_coordinates(0, grid)
+        if coordinates is not None and len(coordinates):
+            rows.append((segment, grid, coordinates))
+    if not rows:
+        message("stick-slip diagram skipped: no contact grids")
+        return []
+    z_all = np.concatenate([c[:, 2] for _, _, c in rows])
+    levels = np.unique(np.round(z_all, 6))
+    z_row = levels[np.argmin(np.abs(levels - 0.5 * (z_all.min() + z_all.max())))]
+    times = results.times
+    t_edges = cell_edges(times)
+    fig, axes = plt.subplots(1, 2, figsize=(11, 6), sharey=True, constrained_layout=True)
+    cmap = ListedColormap(STATUS_COLOURS)
+    norm = BoundaryNorm([-0.5, 0.5, 1.5, 2.5, 3.5], cmap.N)
+    rates = []
+    per_segment = []
+    n_nodes = 0
+    for segment, grid, coordinates in rows:
+        pick = np.nonzero(np.abs(coordinates[:, 2] - z_row) <= 1e-6 * max(1.0, abs(z_row)))[0]
+        if not len(pick):
+            continue
+        along = trace.along(coordinates[pick, :2])[0]
+        order = np.argsort(along)
+        pick, along = pick[order], along[order]
+        status = np.full((len(times), len(pick)), np.nan)
+        rate = np.full((len(times), len(pick)), np.nan)
+        for index in range(len(times)):
+            s = results.grid_field(index, grid, "status")
+            r = results.grid_field(index, grid, "slip_rate")
+            if s is not None:
+                status[index] = s[pick]
+            if r is not None:
+                rate[index] = r[pick]
+        start = trace.start[segment]
+        x_edges = np.clip(cell_edges(along), start, start + trace.lengths[segment])
+        per_segment.append((x_edges, status, rate))
+        rates.append(rate[np.isfinite(rate) & (rate > 0)])
+        n_nodes += len(pick)
+    for x_edges, status, _ in per_segment:
+        mesh = axes[0].pcolormesh(x_edges, t_edges, np.ma.masked_invalid(status), cmap=cmap,
+                                  norm=norm, shading="flat")
+    bar = fig.colorbar(mesh, ax=axes[0], ticks=[0, 1, 2, 3])
+    bar.ax.set_yticklabels([STATUS_NAMES[k] for k in range(4)])
+    positive = np.concatenate(rates) if rates else np.zeros(0)
+    if positive.size:
+        norm_rate = LogNorm(max(positive.min(), positive.max() * 1e-8), positive.max())
+        for x_edges, _, rate in per_segment:
+            mesh = axes[1].pcolormesh(x_edges, t_edges, np.ma.masked_less_equal(rate, 0.0),
+                                      cmap="viridis", norm=norm_rate, shading="flat")
+        fig.colorbar(mesh, ax=axes[1]).set_label("slip rate [mm/s]")
+    else:
+        axes[1].text(0.5, 0.5, "no slip rate > 0", transform=axes[1].transAxes, ha="center")
+    for ax in axes:
+        for name in "DEF":
+            ax.axvline(along_of(trace, name), color="black", lw=0.6)
+        ax.set_xlabel("distance along the trace from C [mm]", fontsize=8)
+        ax.set_xlim(0.0, trace.total_length)
+        ax.tick_params(labelsize=7)
+        top = ax.secondary_xaxis("top")
+        top.set_xticks([along_of(trace, name) for name in "CDEFG"])
+        top.set_xticklabels(list("CDEFG"))
+    axes[0].set_ylim(t_edges[0], t_edges[-1])
+    axes[0].set_ylabel("time [s]", fontsize=8)
+    axes[0].set_title(f"contact status (slave nodes at z = {z_row:g} mm)", fontsize=9)
+    axes[1].set_title("slip rate (same nodes; blank: zero)", fontsize=9)
+    path = os.path.join(arguments.out, f"{arguments.prefix}_stick_slip.png")
+    fig.savefig(path, dpi=arguments.dpi)
+    plt.close(fig)
+    summary.append(f"stick-slip diagram: {n_nodes} slave nodes at z = {z_row:g} mm, "
+                   f"{len(times)} frames")
+    return [path]
+
+
+def along_of(trace, name):
+    position, _, _ = trace.along(trace.points[name][None, :])
+    return float(position[0])
+
+
+def cell_edges(centres):
+    """Edges of cells centred on sorted `centres` (midpoints; the ends extended by half a
+    spacing)."""
+    centres = np.asarray(centres, dtype=float)
+    if len(centres) == 1:
+        return np.array([centres[0] - 0.5, centres[0] + 0.5])
+    middle = 0.5 * (centres[1:] + centres[:-1])
+    return np.concatenate([[centres[0] - (middle[0] - centres[0])], middle,
+                           [centres[-1] + (centres[-1] - middle[-1])]])
+
+
+def figure_loading(results, arguments, summary):
+    x = results.x_ref
+    size = np.ptp(x, axis=0).max()
+    on_b = np.nonzero(x[:, 0] >= x[:, 0].max() - 1e-6 * size)[0]
+    force, shortening, times = [], [], []
+    for index in range(len(results.frames)):
+        f = results.field(index, "nodal", "force")
+        u = results.field(index, "nodal", "displacement")
+        if f is None or u is None:
+            continue
+        force.append(-f[on_b, 0].sum())
+        shortening.append(-u[on_b, 0].mean())
+        times.append(results.times[index])
+    if not force:
+        message("loading curve skipped: no frame has nodal 'force' and 'displacement'")
+        return []
+    force = np.array(force) / 1000.0
+    shortening = np.array(shortening)
+    times = np.array(times)
+    dat = dat_totals(os.path.splitext(results.path)[0] + ".dat", "B")
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.2), constrained_layout=True)
+    axes[0].plot(shortening, force, color="C0", marker=".", ms=3, lw=1.0,
+                 label="sum of nodal forces on B (frames)")
+    axes[0].set_xlabel("displacement of B, -u_x [mm] (mean over its nodes)", fontsize=8)
+    axes[0].set_ylabel("force on B, -F_x [kN]", fontsize=8)
+    axes[1].plot(times, force, color="C0", marker=".", ms=3, lw=1.0, label="frames")
+    if dat:
+        dat = np.array(dat)
+        axes[1].plot(dat[:, 0], -dat[:, 1] / 1000.0, "x", color="C3", ms=4,
+                     label=".dat totals of set B (RF)")
+    for time in PAPER_TIMES[1:]:
+        axes[1].axvline(time, color="0.6", lw=0.5, ls=":")
+    axes[1].set_xlabel("time [s] (dotted: the paper's output times)", fontsize=8)
+    axes[1].set_ylabel("force on B, -F_x [kN]", fontsize=8)
+    for ax in axes:
+        ax.grid(True, lw=0.3)
+        ax.legend(fontsize=7)
+        ax.tick_params(labelsize=7)
+    fig.suptitle(f"Loading of face B (x = {x[:, 0].max():g} mm, {len(on_b)} nodes)", fontsize=10)
+    path = os.path.join(arguments.out, f"{arguments.prefix}_loading.png")
+    fig.savefig(path, dpi=arguments.dpi)
+    plt.close(fig)
+    summary.append(f"loading: B = {len(on_b)} nodes on x = {x[:, 0].max():g} mm")
+    for time in PAPER_TIMES:
+        hit = np.nonzero(np.abs(times - time) <= TIME_TOLERANCE * max(1.0, time))[0]
+        if len(hit):
+            k = hit[-1]
+            summary.append(f"  t = {time:9.3f} s: force on B {force[k]:10.3f} kN, "
+                           f"displacement of B {shortening[k]:.5f} mm")
+    return [path]
+
+
+# ------------------------------------------------------------------------------ main
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--results", required=True, help="fcs3d results file (.h5)")
+    parser.add_argument("--out", required=True, help="directory for the figures")
+    parser.add_argument("--deck", help="the deck of the run (default: <results>.inp if any)")
+    parser.add_argument("--geo", default=fault_profile.DEFAULT_GEO,
+                        help="the .geo file (fault trace if the results lack contact grids)")
+    parser.add_argument("-setnumber", "--setnumber", nargs=2, action="append", default=[],
+                        metavar=("NAME", "VALUE"), help="as given to gmsh")
+    parser.add_argument("--z", type=float, help="z of the section [mm] (default: mid-thickness)")
+    parser.add_argument("--vmax", type=float, help="top of the Mises colour scale [MPa]")
+    parser.add_argument("--prefix", default="fault_bend")
+    parser.add_argument("--dpi", type=int, default=130)
+    arguments = parser.parse_args()
+
+    if not os.path.exists(arguments.results):
+        print(f"make_figures.py: {arguments.results}: no such file (run `make run` first)",
+              file=sys.stderr)
+        return 2
+    try:
+        results = Results(arguments.results)
+    except (OSError, ValueError) as error:
+        print(f"make_figures.py: {error}", file=sys.stderr)
+        return 2
+    os.makedirs(arguments.out, exist_ok=True)
+    deck = arguments.deck or os.path.splitext(arguments.results)[0] + ".inp"
+    segments = {}
+    times = sorted(set([results.step_end(1) or STAGE_1_END] + list(PAPER_TIMES[1:])))
+    if os.path.exists(deck):
+        segments = deck_segments(deck)
+        listed = deck_time_points(deck, "PAPER")
+        if listed:
+            times = sorted(set([results.step_end(1) or STAGE_1_END] + listed))
+    else:
+        deck = None
+    grids = results.grid_names()
+    for segment, _, _ in fault_profile.SEGMENTS:
+        if segment not in segments and f"contact_{segment}" in grids:
+            segments[segment] = segment
+    segments = {s: p for s, p in segments.items() if f"contact_{p}" in grids}
+    summary = [f"results: {os.path.abspath(arguments.results)}",
+               f"deck: {os.path.abspath(deck) if deck else 'none'}",
+               f"frames: {len(results.frames)}, times {results.times.min():g} .. "
+               f"{results.times.max():g} s",
+               f"segments (contact grids): " +
+               (", ".join(f"{s} = contact_{p}" for s, p in sorted(segments.items())) or "none")]
+    try:
+        trace, source = fault_trace(results, segments, arguments)
+    except (OSError, ValueError) as error:
+        print(f"make_figures.py: fault trace: {error}", file=sys.stderr)
+        return 2
+    summary.append(f"trace (from {source}): " + "  ".join(
+        f"{k} ({v[0]:.3f}, {v[1]:.3f})" for k, v in trace.points.items()))
+    event = first_slip_event(os.path.splitext(arguments.results)[0] + ".log")
+    summary.append("first stick->slip event of stage 2 (log): " +
+                   (f"t = {event[0]:.6g} s, node {event[1]}" if event else "none found"))
+
+    written = []
+    written += figure_mises(results, trace, times, arguments, summary)
+    written += figure_histories(results, segments, arguments, summary)
+    written += figure_stick_slip(results, segments, trace, arguments, summary)
+    written += figure_loading(results, arguments, summary)
+    results.close()
+    path = os.path.join(arguments.out, f"{arguments.prefix}_summary.txt")
+    with open(path, "w", encoding="utf-8") as handle:
+        handle.write("\n".join(summary) + "\n")
+    written.append(path)
+    for item in written:
+        print(f"wrote {item}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

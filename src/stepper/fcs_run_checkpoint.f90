@@ -1,0 +1,154 @@
+!> Checkpoints of a running analysis and restarts from them: what the checkpoint records
+!> besides the state (the deck's hashes, the build, the size of the text outputs), and the
+!> checks a restart makes before it continues (same model, same steps up to the checkpoint;
+!> further steps may be added).
+module fcs_run_checkpoint
+  use fcs_kinds, only: dp, i8
+  use fcs_error, only: error_t, input_error, add_context
+  use fcs_model, only: model_t
+  use fcs_static_explicit, only: analysis_t, build_pattern, contact_positions
+  use fcs_checkpoint, only: checkpoint_info_t, write_checkpoint, read_checkpoint, &
+                            read_checkpoint_info, checkpoint_generation_path
+  use fcs_files, only: file_size
+  use fcs_strings, only: str, join_strings, string_t
+  use fcs_version, only: FCS3D_VERSION, FCS3D_REVISION
+  implicit none
+  private
+  public :: save_checkpoint, restore_checkpoint, build_id
+
+contains
+
+  !> Version and revision of this build.
+  pure function build_id() result(id)
+    character(len=:), allocatable :: id
+    id = FCS3D_VERSION // ' (git ' // FCS3D_REVISION // ')'
+  end function build_id
+
+  !> Write the checkpoint of the analysis now (generation 0 of `<job>.rst.h5`).
+  subroutine save_checkpoint(job, a, model, err)
+    character(len=*), intent(in) :: job
+    type(analysis_t), intent(in) :: a
+    type(model_t), intent(in) :: model
+    type(error_t), allocatable, intent(out) :: err
+    type(checkpoint_info_t) :: info
+    info%model_hash = model%model_hash
+    info%step_hashes = join_strings(model%step_hashes, ' ')
+    info%build = build_id()
+    info%n_nodes = a%state%n_nodes
+    info%n_elements = a%state%n_elements
+    info%n_slaves = a%contact%n_slaves()
+    info%n_material_state = size(a%state%material_state, 1)
+    info%time = a%state%time
+    info%step_time = a%state%step_time
+    info%step = a%state%step
+    info%increment = a%state%increment
+    info%dat_size = max(0_i8, file_size(job // '.dat'))
+    call write_checkpoint(job, a%state, a%contact, info, model%checkpoint%generations, err)
+  end subroutine save_checkpoint
+
+  !> Restore the analysis from checkpoint `path`, after checking that the deck still
+  !> describes its model; the sparse pattern is rebuilt as it was. `warning` is set when the
+  !> build differs (results may then differ in the last digits).
+  subroutine restore_checkpoint(path, a, model, info, warning, err)
+    character(len=*), intent(in) :: path
+    type(analysis_t), intent(inout) :: a
+    type(model_t), intent(in) :: model
+    type(checkpoint_info_t), intent(out) :: info
+    character(len=:), allocatable, intent(out) :: warning
+    type(error_t), allocatable, intent(out) :: err
+    warning = ''
+    call read_checkpoint(path, a%state, a%contact, info, err)
+    if (allocated(err)) then
+      call offer_older_generation(path, err)
+      return
+    end if
+    call check_deck(model, info, err)
+    if (allocated(err)) then
+      call add_context(err, 'restart from ' // path)
+      return
+    end if
+    if (info%build /= build_id()) warning = 'the checkpoint ' // path // ' was written by fcs3d ' // &
+      info%build // ', this is ' // build_id() // ': results may differ in the last digits'
+    call contact_positions(a, model)
+    if (a%contact%n_slaves() > 0) call build_pattern(a, model, keep_centres=.true.)
+  end subroutine restore_checkpoint
+
+  !> The deck must have the checkpoint's model and the same steps up to the checkpoint.
+  subroutine check_deck(model, info, err)
+    type(model_t), intent(in) :: model
+    type(checkpoint_info_t), intent(in) :: info
+    type(error_t), allocatable, intent(out) :: err
+    type(string_t), allocatable :: saved(:)
+    integer :: k, n_done
+    if (info%model_hash /= model%model_hash) then
+      call input_error(err, 'the model definition (the cards before the first *STEP, and the ' // &
+        'mesh) differs from the one the checkpoint was written for (hash ' // info%model_hash // &
+        ' there, ' // model%model_hash // ' here); a restart continues the same model, only ' // &
+        'steps may be added after the checkpoint''s step')
+      return
+    end if
+    saved = words(info%step_hashes)
+    ! Steps begun before the checkpoint must be unchanged.
+    n_done = info%step - 1
+    if (info%step_time > 0.0_dp) n_done = info%step
+    if (n_done > size(model%steps)) then
+      call input_error(err, 'the checkpoint is after step ' // str(n_done) // ' but the deck has ' // &
+                       'only ' // str(size(model%steps)) // ' step(s)')
+      return
+    end if
+    do k = 1, min(n_done, size(saved))
+      if (saved(k)%s /= model%step_hashes(k)%s) then
+        call input_error(err, 'step ' // str(k) // ' of the deck differs from the step the ' // &
+          'checkpoint ran (steps up to the checkpoint''s step ' // str(info%step) // ' must be ' // &
+          'unchanged; later steps may be changed or added)')
+        return
+      end if
+    end do
+  end subroutine check_deck
+
+  !> Space-separated words.
+  pure function words(text) result(out)
+    character(len=*), intent(in) :: text
+    type(string_t), allocatable :: out(:)
+    integer :: i, start
+    allocate (out(0))
+    start = 0
+    do i = 1, len(text) + 1
+      if (i > len(text)) then
+        if (start > 0) out = [out, string_t(text(start:len(text)))]
+      else if (text(i:i) == ' ') then
+        if (start > 0) out = [out, string_t(text(start:i - 1))]
+        start = 0
+      else if (start == 0) then
+        start = i
+      end if
+    end do
+  end function words
+
+  !> When a checkpoint cannot be read, say which older generation can.
+  subroutine offer_older_generation(path, err)
+    character(len=*), intent(in) :: path
+    type(error_t), intent(inout) :: err
+    type(checkpoint_info_t) :: info
+    type(error_t), allocatable :: other_err
+    character(len=:), allocatable :: stem, candidate
+    integer :: g, k
+    k = index(path, '.rst.', back=.true.)
+    if (k == 0) return
+    stem = path(1:k - 1)
+    do g = 0, 9
+      candidate = checkpoint_generation_path(stem, g)
+      if (candidate == path) cycle
+      call read_checkpoint_info(candidate, info, other_err)
+      if (allocated(other_err)) then
+        deallocate (other_err)
+        cycle
+      end if
+      err%message = err%message // new_line('a') // 'an older checkpoint is readable: ' // &
+        candidate // ' (time ' // str(info%time) // ', increment ' // str(info%increment) // &
+        '); restart from it with --restart ' // candidate
+      return
+    end do
+  end subroutine offer_older_generation
+
+end module fcs_run_checkpoint

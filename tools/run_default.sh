@@ -1,0 +1,65 @@
+#!/bin/sh
+# The default run (`make run`): the fault-bend model of Xing, Mora & Makinouchi (2003).
+# Meshes input/fault_bend/fault_bend.geo with gmsh into run/fault_bend/, checks the mesh
+# (post/check_fault_mesh.py), copies the deck there and runs fcs3d on it.
+#
+# Usage: sh tools/run_default.sh /path/to/bin/fcs3d
+# Environment (also as make variables: make run FAULT_BEND_GMSH="..."):
+#   FAULT_BEND_GMSH  extra gmsh options, e.g. "-setnumber h_fault 5 -setnumber h_far 12
+#                    -setnumber layers 5" (finer mesh) or "-setnumber bend_angle 0" (flat
+#                    fault); the parameters are listed at the head of fault_bend.geo
+#   FAULT_BEND_DIR   work directory (default run/fault_bend of this checkout)
+#   FCS3D_OPTIONS    extra fcs3d options, e.g. "--solver MUMPS" or "-q"
+set -eu
+fcs3d=${1:?usage: sh tools/run_default.sh /path/to/bin/fcs3d}
+root=$(cd "$(dirname "$0")/.." && pwd)
+python=${PYTHON:-/usr/bin/python3}
+work=${FAULT_BEND_DIR:-$root/run/fault_bend}
+gmsh_options=${FAULT_BEND_GMSH:-}
+fcs3d_options=${FCS3D_OPTIONS:-}
+
+[ -x "$fcs3d" ] || { echo "run_default.sh: $fcs3d is not an executable (build with make)" >&2; exit 1; }
+command -v gmsh >/dev/null 2>&1 || { echo "run_default.sh: gmsh is not installed (Debian package gmsh)" >&2; exit 1; }
+mkdir -p "$work"
+cp "$root/input/fault_bend/fault_bend.geo" "$root/input/fault_bend/fault_bend.inp" "$work/"
+cd "$work"
+# Results of an earlier run would be mixed with the new ones by a viewer: remove them.
+rm -f fault_bend.h5 fault_bend.xdmf fault_bend.dat fault_bend.log fault_bend.echo fault_bend.rst.h5
+
+echo "meshing fault_bend.geo ${gmsh_options:+($gmsh_options) }in $work"
+# shellcheck disable=SC2086  # the options are words to split
+if ! gmsh -3 -format msh41 $gmsh_options fault_bend.geo -o fault_bend.msh > gmsh.log 2>&1; then
+  grep -i "error" gmsh.log >&2 || tail -20 gmsh.log >&2
+  echo "run_default.sh: gmsh failed; see $work/gmsh.log" >&2
+  exit 1
+fi
+# shellcheck disable=SC2086
+if ! "$python" "$root/post/check_fault_mesh.py" fault_bend.msh --geo fault_bend.geo $gmsh_options \
+     > mesh_check.txt 2>&1; then
+  cat mesh_check.txt >&2
+  echo "run_default.sh: the mesh check failed; see $work/mesh_check.txt" >&2
+  exit 1
+fi
+head -n 1 mesh_check.txt
+
+start=$(date +%s)
+status=0
+# shellcheck disable=SC2086
+"$fcs3d" $fcs3d_options fault_bend.inp || status=$?
+end=$(date +%s)
+echo "fcs3d finished in $((end - start)) s (exit status $status)"
+if [ "$status" -ne 0 ]; then
+  echo "run_default.sh: fcs3d failed; see $work/fault_bend.log" >&2
+  exit "$status"
+fi
+
+cat <<EOF
+results in $work:
+  fault_bend.h5 + fault_bend.xdmf  result frames (open fault_bend.xdmf in ParaView)
+  fault_bend.dat                   force on face B at the output times (*NODE PRINT)
+  fault_bend.log                   run log, one line per increment
+  fault_bend.echo                  the deck with every default filled in
+  mesh_check.txt, gmsh.log         mesh statistics and checks
+figures (into doc/figures/):   make figures
+  or: $python $root/post/make_figures.py --results $work/fault_bend.h5 --out <directory>
+EOF
