@@ -30,6 +30,8 @@ module fcs_contact_state
     real(dp), allocatable :: friction_state(:)
     !> Tied pairs: the gap at which the node was tied.
     real(dp), allocatable :: tied_gap(:)
+    !> Frictional work dissipated at the node, sum of |f_t| x slip [force x length].
+    real(dp), allocatable :: work(:)
     !> Relative tangential displacement of the slave over the master accumulated while in
     !> contact (elastic + slip), as a vector [length].
     real(dp), allocatable :: tangential_displacement(:, :)
@@ -45,7 +47,8 @@ contains
     this%n = n
     allocate (this%status(n), this%face(n), this%xi(2, n), this%gap(n), this%normal_force(n), &
               this%friction(2, n), this%trial_norm(n), this%slip(n), this%slip_rate(n), this%mu(n), &
-              this%friction_state(n), this%tied_gap(n), this%tangential_displacement(3, n))
+              this%friction_state(n), this%tied_gap(n), this%tangential_displacement(3, n), &
+              this%work(n))
     this%status = 0
     this%face = 0
     this%xi = 0.0_dp
@@ -59,6 +62,7 @@ contains
     this%friction_state = 0.0_dp
     this%tied_gap = 0.0_dp
     this%tangential_displacement = 0.0_dp
+    this%work = 0.0_dp
   end subroutine contact_state_init
 
 end module fcs_contact_state

@@ -676,6 +676,7 @@ contains
       cstate%friction(:, s) = u%friction
       cstate%trial_norm(s) = u%trial_norm
       cstate%slip(s) = cstate%slip(s) + u%plastic_slip
+      cstate%work(s) = cstate%work(s) + norm2(u%friction) * u%plastic_slip
       cstate%tangential_displacement(:, s) = cstate%tangential_displacement(:, s) + u%slip_vector
       cstate%slip_rate(s) = u%slip_rate
       cstate%mu(s) = u%mu

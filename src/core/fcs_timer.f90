@@ -76,7 +76,10 @@ contains
   real(dp) function phase_timer_total(this, name)
     class(phase_timer_t), intent(inout) :: this
     character(len=*), intent(in) :: name
-    phase_timer_total = this%seconds(phase_index(this, name))
+    integer :: i
+    ! The index first: phase_index may reallocate the arrays.
+    i = phase_index(this, name)
+    phase_timer_total = this%seconds(i)
   end function phase_timer_total
 
   !> Peak resident memory of this process in MiB (VmHWM from /proc/self/status; 0 if unknown).

@@ -1,17 +1,20 @@
 !> Model builder, output keywords: *NODE PRINT, *EL PRINT, *NODE FILE, *EL FILE.
 module fcs_build_output
+  use fcs_kinds, only: dp
   use fcs_deck_lexer, only: card_t
   use fcs_deck_fields, only: param_upper, param_value
   use fcs_diagnostics, only: diagnostics_t
   use fcs_builder_state, only: builder_t
   use fcs_build_step, only: find_time_points
+  use fcs_model, only: history_request_t, history_item_t, HISTORY_NSET_U, HISTORY_NSET_RF, &
+                       HISTORY_CONTACT, HISTORY_ENERGY
   use fcs_model, only: model_t, output_request_t, OUTPUT_NODE_PRINT, OUTPUT_EL_PRINT, &
                        OUTPUT_NODE_FILE, OUTPUT_EL_FILE, OUTPUT_CONTACT_PRINT, OUTPUT_CONTACT_FILE, &
                        TOTALS_NO, TOTALS_YES, TOTALS_ONLY
-  use fcs_strings, only: string_t, to_upper, parse_int, join_strings
+  use fcs_strings, only: string_t, to_upper, parse_int, parse_real, join_strings
   implicit none
   private
-  public :: handle_output_request
+  public :: handle_output_request, handle_history, handle_event_catalog
 
 contains
 
@@ -99,5 +102,99 @@ contains
       end do
     end do
   end subroutine read_variables
+
+  !> *HISTORY, NAME=: the quantities to sample.
+  subroutine handle_history(card, model, diag)
+    type(card_t), intent(in) :: card
+    type(model_t), intent(inout) :: model
+    type(diagnostics_t), intent(inout) :: diag
+    type(history_request_t) :: history
+    type(history_item_t) :: item
+    character(len=:), allocatable :: what
+    logical :: ok
+    integer :: i, k
+    history%name = param_upper(card, 'NAME')
+    do k = 1, size(model%histories)
+      if (model%histories(k)%name == history%name) then
+        call diag%report(card%loc, '*HISTORY: history ' // history%name // ' is defined twice')
+        return
+      end if
+    end do
+    call parse_int(param_value(card, 'FREQUENCY'), history%frequency, ok)
+    if (history%frequency < 0) call diag%report(card%loc, '*HISTORY: FREQUENCY must not be negative')
+    if (card%find_param('TIME POINTS') > 0) then
+      history%time_points = find_time_points(model, param_upper(card, 'TIME POINTS'))
+      if (history%time_points == 0) call diag%report(card%loc, '*HISTORY: time points "' // &
+        param_value(card, 'TIME POINTS') // '" are not defined (define them with *TIME POINTS first)')
+    end if
+    allocate (history%items(0))
+    do i = 1, card%n_lines
+      associate (line => card%lines(i))
+        what = to_upper(line%fields(1)%s)
+        item%target = 0
+        select case (what)
+        case ('NSET')
+          if (size(line%fields) /= 3) then
+            call diag%report(line%loc, '*HISTORY: expected NSET, <node set>, U or RF')
+            cycle
+          end if
+          item%target = model%mesh%find_node_set(to_upper(line%fields(2)%s))
+          if (item%target == 0) then
+            call diag%report(line%loc, '*HISTORY: node set "' // line%fields(2)%s // '" is not defined')
+            cycle
+          end if
+          select case (to_upper(line%fields(3)%s))
+          case ('U')
+            item%kind = HISTORY_NSET_U
+          case ('RF')
+            item%kind = HISTORY_NSET_RF
+          case default
+            call diag%report(line%loc, '*HISTORY: node set quantity "' // line%fields(3)%s // &
+                             '" is not available; expected U or RF')
+            cycle
+          end select
+        case ('CONTACT')
+          item%kind = HISTORY_CONTACT
+          if (size(line%fields) == 2) item%target = find_pair(model, to_upper(line%fields(2)%s))
+          if (item%target == 0) then
+            call diag%report(line%loc, '*HISTORY: expected CONTACT, <contact pair or tie name> ' // &
+                             '(a name given by NAME= on *CONTACT PAIR or *TIE, or slave-master)')
+            cycle
+          end if
+        case ('ENERGY')
+          item%kind = HISTORY_ENERGY
+        case default
+          call diag%report(line%loc, '*HISTORY: unknown quantity "' // line%fields(1)%s // &
+                           '"; expected NSET, CONTACT or ENERGY')
+          cycle
+        end select
+        history%items = [history%items, item]
+      end associate
+    end do
+    model%histories = [model%histories, history]
+  end subroutine handle_history
+
+  pure integer function find_pair(model, name) result(k)
+    type(model_t), intent(in) :: model
+    character(len=*), intent(in) :: name
+    do k = 1, size(model%contact_pairs)
+      if (model%contact_pairs(k)%name == name) return
+    end do
+    k = 0
+  end function find_pair
+
+  !> *EVENT CATALOG, SLIP RATE=, MIN SLIP=.
+  subroutine handle_event_catalog(card, model, diag)
+    type(card_t), intent(in) :: card
+    type(model_t), intent(inout) :: model
+    type(diagnostics_t), intent(inout) :: diag
+    logical :: ok
+    call parse_real(param_value(card, 'SLIP RATE'), model%event_threshold, ok)
+    call parse_real(param_value(card, 'MIN SLIP'), model%event_min_slip, ok)
+    if (model%event_threshold <= 0.0_dp) call diag%report(card%loc, '*EVENT CATALOG: SLIP RATE ' // &
+                                                          'must be positive')
+    if (model%event_min_slip < 0.0_dp) call diag%report(card%loc, '*EVENT CATALOG: MIN SLIP must ' // &
+                                                        'not be negative')
+  end subroutine handle_event_catalog
 
 end module fcs_build_output

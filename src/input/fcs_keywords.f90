@@ -311,6 +311,25 @@ contains
          '(every frame holds the contact fields of every pair).', 'CDIS, CSTR, ...', &
          [p('FREQUENCY', PARAM_INTEGER, default='0', description='Also write every N increments.'), &
           p('TIME POINTS', PARAM_NAME, description='Write at these times.')]), &
+      kw('HISTORY', CONTEXT_MODEL, 'fcs3d', 'History output through the whole run, in ' // &
+         '<job>_<name>.csv and /history/<name> of <job>.h5: one row per sample, the first ' // &
+         'column the time.', 'NSET, <set>, U (mean displacement, 3 columns) | NSET, <set>, RF ' // &
+         '(total force, 3) | CONTACT, <pair> (normal force, tangential force 3, stick, slip, ' // &
+         'open counts, mean and largest slip, largest slip rate, mean pressure and shear ' // &
+         'traction) | ENERGY (elastic strain energy, frictional work).', &
+         [p('NAME', PARAM_NAME, required=.true., description='Name of the history.'), &
+          p('FREQUENCY', PARAM_INTEGER, default='1', description='Sample every N increments ' // &
+            '(0: only at the time points and step ends).'), &
+          p('TIME POINTS', PARAM_NAME, description='Also sample at these times.')], &
+         data_required=.true.), &
+      kw('EVENT CATALOG', CONTEXT_MODEL, 'fcs3d', 'Catalogue slip events on every contact ' // &
+         'pair: an event starts when a node''s slip rate exceeds the threshold and ends when ' // &
+         'no node exceeds it; onset, end, nodes, peak slip rate, slip, stress drop and ' // &
+         'hypocentre go to <job>_events.csv, /events in <job>.h5 and the log.', '', &
+         [p('SLIP RATE', PARAM_REAL, required=.true., unit='length/time', &
+            description='Threshold slip rate.'), &
+          p('MIN SLIP', PARAM_REAL, default='0', unit='length', description='Events whose ' // &
+            'largest slip stays below this are not catalogued.')]), &
       kw('NODE FILE', CONTEXT_STEP, 'CalculiX', 'Request result frames in <job>.h5/.xdmf. ' // &
          'Every frame holds all fields (displacement, reactions, stresses, Mises stress); ' // &
          'the variables listed are checked, not used to select.', 'U, RF, ...', &

@@ -12,6 +12,8 @@ module fcs_model
   public :: model_t, material_def_t, section_t, amplitude_t, time_points_t, dof_condition_t
   public :: face_load_t, output_request_t, step_t, rmin_settings_t
   public :: friction_def_t, interaction_def_t, contact_pair_def_t, checkpoint_settings_t
+  public :: history_item_t, history_request_t, HISTORY_NSET_U, HISTORY_NSET_RF
+  public :: HISTORY_CONTACT, HISTORY_ENERGY
   public :: BC_DISPLACEMENT, BC_VELOCITY, FORMULATION_FULL, FORMULATION_BBAR
   public :: OUTPUT_NODE_PRINT, OUTPUT_EL_PRINT, OUTPUT_NODE_FILE, OUTPUT_EL_FILE
   public :: OUTPUT_CONTACT_PRINT, OUTPUT_CONTACT_FILE
@@ -24,6 +26,11 @@ module fcs_model
   !> Output request kinds.
   integer, parameter :: OUTPUT_NODE_PRINT = 1, OUTPUT_EL_PRINT = 2, OUTPUT_NODE_FILE = 3, &
                         OUTPUT_EL_FILE = 4, OUTPUT_CONTACT_PRINT = 5, OUTPUT_CONTACT_FILE = 6
+  !> What a *HISTORY line asks for: the mean displacement or the total force of a node set,
+  !> the totals of a contact pair, the energies.
+  integer, parameter :: HISTORY_NSET_U = 1, HISTORY_NSET_RF = 2, HISTORY_CONTACT = 3, &
+                        HISTORY_ENERGY = 4
+
   !> *NODE PRINT, TOTALS=.
   integer, parameter :: TOTALS_NO = 0, TOTALS_YES = 1, TOTALS_ONLY = 2
 
@@ -153,6 +160,21 @@ module fcs_model
     type(source_loc_t) :: loc
   end type contact_pair_def_t
 
+  !> One quantity of a history request.
+  type :: history_item_t
+    integer :: kind = HISTORY_NSET_U
+    !> Node set (NSET items) or contact pair (CONTACT items).
+    integer :: target = 0
+  end type history_item_t
+
+  !> *HISTORY: quantities sampled through the whole run into <job>_<name>.csv and the results.
+  type :: history_request_t
+    character(len=:), allocatable :: name
+    integer :: frequency = 1
+    integer :: time_points = 0
+    type(history_item_t), allocatable :: items(:)
+  end type history_request_t
+
   !> When checkpoints are written (*RESTART, WRITE). Whatever the settings, one is written at
   !> the end of every step and when the run is stopped by SIGTERM or SIGINT.
   type :: checkpoint_settings_t
@@ -184,6 +206,11 @@ module fcs_model
     character(len=:), allocatable :: model_hash
     type(string_t), allocatable :: step_hashes(:)
     type(checkpoint_settings_t) :: checkpoint
+    type(history_request_t), allocatable :: histories(:)
+    !> *EVENT CATALOG: slip-rate threshold of slip events [length/time]; <= 0: no catalog.
+    real(dp) :: event_threshold = 0.0_dp
+    !> Events whose largest slip stays below this are not catalogued [length].
+    real(dp) :: event_min_slip = 0.0_dp
   end type model_t
 
 end module fcs_model

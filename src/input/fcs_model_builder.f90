@@ -17,7 +17,7 @@ module fcs_model_builder
   use fcs_build_step, only: handle_step, handle_static, handle_end_step, handle_boundary, &
                             handle_cload, handle_dsload, handle_amplitude, handle_time_points, &
                             handle_rmin
-  use fcs_build_output, only: handle_output_request
+  use fcs_build_output, only: handle_output_request, handle_history, handle_event_catalog
   use fcs_build_contact, only: handle_surface_interaction, handle_surface_behavior, &
                                handle_friction, handle_contact_pair, handle_tie
   use fcs_model, only: model_t, step_t
@@ -80,7 +80,8 @@ contains
     model%solver_name = 'UMFPACK'
     call model%mesh%init()
     allocate (model%materials(0), model%sections(0), model%amplitudes(0), &
-              model%time_points(0), model%steps(0), model%interactions(0), model%contact_pairs(0))
+              model%time_points(0), model%steps(0), model%interactions(0), model%contact_pairs(0), &
+              model%histories(0))
   end subroutine init_model
 
   !> After a card with errors: still open or close its step, or mark the step's procedure as
@@ -170,6 +171,10 @@ contains
       call handle_cload(card, model, state, diag)
     case ('DSLOAD')
       call handle_dsload(card, model, state, diag)
+    case ('HISTORY')
+      call handle_history(card, model, diag)
+    case ('EVENT CATALOG')
+      call handle_event_catalog(card, model, diag)
     case ('NODE PRINT', 'EL PRINT', 'NODE FILE', 'EL FILE', 'CONTACT PRINT', 'CONTACT FILE')
       call handle_output_request(card, model, state, diag)
     case default

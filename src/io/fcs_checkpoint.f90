@@ -16,6 +16,8 @@ module fcs_checkpoint
   use fcs_checksum, only: checksum_t, checksum_text
   use fcs_state, only: state_t
   use fcs_contact_system, only: contact_system_t
+  use fcs_history, only: history_table_t
+  use fcs_event_catalog, only: event_catalog_t, slip_event_t
   use fcs_strings, only: str, dirname, file_exists
   implicit none
   private
@@ -64,10 +66,12 @@ contains
 
   !> Write the checkpoint of `state` (and the contact bookkeeping) as generation 0 of `stem`,
   !> keeping `generations` generations in all.
-  subroutine write_checkpoint(stem, state, contact, info, generations, err)
+  subroutine write_checkpoint(stem, state, contact, tables, catalog, info, generations, err)
     character(len=*), intent(in) :: stem
     type(state_t), intent(in) :: state
     type(contact_system_t), intent(in) :: contact
+    type(history_table_t), intent(in) :: tables(:)
+    type(event_catalog_t), intent(in) :: catalog
     type(checkpoint_info_t), intent(in) :: info
     integer, intent(in) :: generations
     type(error_t), allocatable, intent(out) :: err
@@ -79,6 +83,8 @@ contains
     call h5_library_open(err)
     if (.not. allocated(err)) call archive%h5%create(archive%path, err)
     if (.not. allocated(err)) call write_contents(archive, state, contact, info, err)
+    if (.not. allocated(err)) call write_monitors(archive, tables, catalog, err)
+    if (.not. allocated(err)) call seal(archive, info, err)
     if (allocated(err)) then
       if (archive%h5%is_open()) call close_quietly(archive)
       call add_context(err, 'writing checkpoint ' // final_path)
@@ -122,8 +128,72 @@ contains
       [state%step, state%increment, state%step_increment], err)
     if (.not. allocated(err) .and. contact%n_slaves() > 0) &
       call write_contact(archive, state, contact, err)
-    if (.not. allocated(err)) call write_meta(archive, info, err)
   end subroutine write_contents
+
+  !> History rows and the event catalog (watched pairs and events so far).
+  subroutine write_monitors(archive, tables, catalog, err)
+    type(archive_t), intent(inout) :: archive
+    type(history_table_t), intent(in) :: tables(:)
+    type(event_catalog_t), intent(in) :: catalog
+    type(error_t), allocatable, intent(out) :: err
+    integer :: k
+    call archive%h5%create_group('/monitors', err)
+    do k = 1, size(tables)
+      if (allocated(err)) return
+      call put_real2(archive, '/monitors/history_' // str(k), tables(k)%values(), err)
+    end do
+    if (allocated(err) .or. .not. allocated(catalog%watch)) return
+    call put_real2(archive, '/monitors/events', events_to_table(catalog), err)
+    do k = 1, size(catalog%watch)
+      if (allocated(err)) return
+      call put_real2(archive, '/monitors/watch_' // str(k), watch_to_table(catalog, k), err)
+    end do
+  end subroutine write_monitors
+
+  !> Events as rows of reals (the slip_event_t fields in order).
+  pure function events_to_table(catalog) result(table)
+    type(event_catalog_t), intent(in) :: catalog
+    real(dp), allocatable :: table(:, :)
+    integer :: i
+    allocate (table(12, catalog%n_events))
+    do i = 1, catalog%n_events
+      table(:, i) = event_values(catalog%events(i))
+    end do
+  end function events_to_table
+
+  pure function event_values(e) result(v)
+    type(slip_event_t), intent(in) :: e
+    real(dp) :: v(12)
+    v = [real(e%pair, dp), e%onset, e%finish, real(e%n_nodes, dp), e%peak_rate, e%max_slip, &
+         e%mean_slip, e%stress_drop, real(e%hypocentre, dp), e%location]
+  end function event_values
+
+  pure function values_event(v) result(e)
+    real(dp), intent(in) :: v(12)
+    type(slip_event_t) :: e
+    e = slip_event_t(nint(v(1)), v(2), v(3), nint(v(4)), v(5), v(6), v(7), v(8), nint(v(9)), v(10:12))
+  end function values_event
+
+  !> The watch of pair k as one column: per-node involved flags, slip and shear at onset,
+  !> last slip and shear (5 n values), then the active flag and the event under way (13).
+  pure function watch_to_table(catalog, k) result(table)
+    type(event_catalog_t), intent(in) :: catalog
+    integer, intent(in) :: k
+    real(dp), allocatable :: table(:, :)
+    associate (w => catalog%watch(k))
+      table = reshape([merge(1.0_dp, 0.0_dp, w%involved), w%slip_start, w%shear_start, &
+                       w%last_slip, w%last_shear, merge(1.0_dp, 0.0_dp, w%active), &
+                       event_values(w%event)], [5 * size(w%involved) + 13, 1])
+    end associate
+  end function watch_to_table
+
+  !> The /meta group and the overall checksum: written last.
+  subroutine seal(archive, info, err)
+    type(archive_t), intent(inout) :: archive
+    type(checkpoint_info_t), intent(in) :: info
+    type(error_t), allocatable, intent(out) :: err
+    call write_meta(archive, info, err)
+  end subroutine seal
 
   pure function state_scalars(state) result(values)
     type(state_t), intent(in) :: state
@@ -147,8 +217,8 @@ contains
       if (.not. allocated(err)) call put_real2(archive, '/contact/tangential_displacement', &
                                                c%tangential_displacement, err)
       if (.not. allocated(err)) call put_real2(archive, '/contact/scalars', reshape([c%gap, &
-        c%normal_force, c%trial_norm, c%slip, c%slip_rate, c%mu, c%friction_state, c%tied_gap], &
-        [c%n, 8]), err)
+        c%normal_force, c%trial_norm, c%slip, c%slip_rate, c%mu, c%friction_state, c%tied_gap, &
+        c%work], [c%n, 9]), err)
       do k = 1, size(contact%pairs)
         if (allocated(err)) return
         call put_real3(archive, '/contact/grid_' // str(k), contact%pairs(k)%grid%built_x, err)
@@ -219,10 +289,12 @@ contains
 
   !> Read and verify a checkpoint into `state` (already set up for the model, so that its
   !> sizes are checked) and the contact bookkeeping.
-  subroutine read_checkpoint(path, state, contact, info, err)
+  subroutine read_checkpoint(path, state, contact, tables, catalog, info, err)
     character(len=*), intent(in) :: path
     type(state_t), intent(inout) :: state
     type(contact_system_t), intent(inout) :: contact
+    type(history_table_t), intent(inout) :: tables(:)
+    type(event_catalog_t), intent(inout) :: catalog
     type(checkpoint_info_t), intent(out) :: info
     type(error_t), allocatable, intent(out) :: err
     type(archive_t) :: archive
@@ -230,6 +302,7 @@ contains
     call open_archive(archive, path, err)
     if (.not. allocated(err)) call read_state(archive, state, err)
     if (.not. allocated(err) .and. contact%n_slaves() > 0) call read_contact(archive, state, contact, err)
+    if (.not. allocated(err)) call read_monitors(archive, tables, catalog, err)
     if (.not. allocated(err)) call read_meta(archive, info, err)
     if (.not. allocated(err)) then
       call archive%total%add_text(info%model_hash // info%step_hashes // info%build)
@@ -286,7 +359,7 @@ contains
       if (.not. allocated(err)) call get_real2(archive, '/contact/tangential_displacement', &
                                                c%tangential_displacement, err)
       if (allocated(err)) return
-      allocate (scalars(c%n, 8))
+      allocate (scalars(c%n, 9))
       call get_real2(archive, '/contact/scalars', scalars, err)
       if (allocated(err)) return
       c%gap = scalars(:, 1)
@@ -297,6 +370,7 @@ contains
       c%mu = scalars(:, 6)
       c%friction_state = scalars(:, 7)
       c%tied_gap = scalars(:, 8)
+      c%work = scalars(:, 9)
       do k = 1, size(contact%pairs)
         allocate (grid, mold=contact%pairs(k)%grid%built_x)
         call get_real3(archive, '/contact/grid_' // str(k), grid, err)
@@ -308,6 +382,75 @@ contains
       contact%pattern_dirty = dirty /= 0
     end associate
   end subroutine read_contact
+
+  subroutine read_monitors(archive, tables, catalog, err)
+    type(archive_t), intent(inout) :: archive
+    type(history_table_t), intent(inout) :: tables(:)
+    type(event_catalog_t), intent(inout) :: catalog
+    type(error_t), allocatable, intent(out) :: err
+    real(dp), allocatable :: rows(:, :)
+    integer(i8), allocatable :: dims(:)
+    integer :: k, i, n
+    do k = 1, size(tables)
+      if (.not. archive%h5%exists('/monitors/history_' // str(k))) then
+        call input_error(err, 'the checkpoint has no history ' // tables(k)%name // ' (was *HISTORY added?)')
+        return
+      end if
+      call archive%h5%dataset_shape('/monitors/history_' // str(k), dims, err)
+      if (allocated(err)) return
+      allocate (rows(size(tables(k)%columns), dims(2)))
+      call get_real2(archive, '/monitors/history_' // str(k), rows, err)
+      if (.not. allocated(err)) call tables(k)%set_rows(rows, err)
+      deallocate (rows)
+      if (allocated(err)) return
+    end do
+    if (.not. allocated(catalog%watch)) return
+    if (.not. archive%h5%exists('/monitors/events')) then
+      call input_error(err, 'the checkpoint has no event catalog (was *EVENT CATALOG added?)')
+      return
+    end if
+    call archive%h5%dataset_shape('/monitors/events', dims, err)
+    if (allocated(err)) return
+    allocate (rows(12, dims(2)))
+    call get_real2(archive, '/monitors/events', rows, err)
+    if (allocated(err)) return
+    n = size(rows, 2)
+    deallocate (catalog%events)
+    allocate (catalog%events(max(16, n)))
+    do i = 1, n
+      catalog%events(i) = values_event(rows(:, i))
+    end do
+    catalog%n_events = n
+    deallocate (rows)
+    do k = 1, size(catalog%watch)
+      call read_watch(archive, catalog, k, err)
+      if (allocated(err)) return
+    end do
+    call catalog%rewrite_csv(err)
+  end subroutine read_monitors
+
+  subroutine read_watch(archive, catalog, k, err)
+    type(archive_t), intent(inout) :: archive
+    type(event_catalog_t), intent(inout) :: catalog
+    integer, intent(in) :: k
+    type(error_t), allocatable, intent(out) :: err
+    real(dp), allocatable :: table(:, :), flat(:)
+    integer :: n
+    associate (w => catalog%watch(k))
+      n = size(w%involved)
+      allocate (table(5 * n + 13, 1))
+      call get_real2(archive, '/monitors/watch_' // str(k), table, err)
+      if (allocated(err)) return
+      flat = table(:, 1)
+      w%involved = flat(1:n) > 0.5_dp
+      w%slip_start = flat(n + 1:2 * n)
+      w%shear_start = flat(2 * n + 1:3 * n)
+      w%last_slip = flat(3 * n + 1:4 * n)
+      w%last_shear = flat(4 * n + 1:5 * n)
+      w%active = flat(5 * n + 1) > 0.5_dp
+      w%event = values_event(flat(5 * n + 2:5 * n + 13))
+    end associate
+  end subroutine read_watch
 
   subroutine read_meta(archive, info, err)
     type(archive_t), intent(inout) :: archive

@@ -109,6 +109,7 @@ module fcs_results
     procedure :: end_frame => results_end_frame
     procedure :: close => results_close
     procedure :: n_frames => results_n_frames
+    procedure :: write_table => results_write_table
     procedure :: is_open => results_is_open
   end type results_file_t
 
@@ -186,6 +187,23 @@ contains
     call this%h5%close(err)
     if (allocated(err)) call prefix(err, 'closing results')
   end subroutine results_close
+
+  !> Store a table (history, event catalog) as /<group>/<name>: a dataset `values` of shape
+  !> (rows, columns) in h5py's view, with the column names as the attribute `columns`
+  !> (comma-separated). Replaces what was there; flushed.
+  subroutine results_write_table(this, group, name, columns, values, err)
+    class(results_file_t), intent(inout) :: this
+    character(len=*), intent(in) :: group, name, columns
+    real(dp), intent(in) :: values(:, :)
+    type(error_t), allocatable, intent(out) :: err
+    character(len=:), allocatable :: path
+    path = '/' // group // '/' // name
+    if (.not. this%h5%exists(path)) call this%h5%create_group(path, err)
+    if (.not. allocated(err)) call this%h5%write_dataset(path // '/values', values, err)
+    if (.not. allocated(err)) call this%h5%write_attribute(path // '/values', 'columns', columns, err)
+    if (.not. allocated(err)) call this%h5%flush(err)
+    if (allocated(err)) call prefix(err, 'writing table ' // path // ' of')
+  end subroutine results_write_table
 
   !> Number of complete frames.
   pure integer function results_n_frames(this)

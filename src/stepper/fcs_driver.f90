@@ -24,11 +24,13 @@ module fcs_driver
                              EVENT_ROTATION_LIMIT, EVENT_YIELD
   use fcs_hex8_element, only: mises_stress, hex8_extrapolate
   use fcs_hex8_shape, only: N_GAUSS_HEX8
-  use fcs_strings, only: str, to_upper
+  use fcs_strings, only: str, to_upper, to_lower, join_strings
   use fcs_signals, only: install_signal_handlers, signal_received
   use fcs_run_checkpoint, only: save_checkpoint, restore_checkpoint
   use fcs_checkpoint, only: checkpoint_info_t
   use fcs_files, only: truncate_file, file_size
+  use fcs_monitors, only: monitors_t
+  use fcs_event_catalog, only: EVENT_COLUMNS
   implicit none
   private
   public :: run_job
@@ -44,6 +46,7 @@ module fcs_driver
     !> Path stem of the outputs, and wall time of the last checkpoint.
     character(len=:), allocatable :: job
     real(dp) :: last_checkpoint = 0.0_dp
+    type(monitors_t) :: monitors
   end type run_t
 
 contains
@@ -144,6 +147,10 @@ contains
     if (allocated(err)) return
     call define_contact_grids(run, err)
     if (allocated(err)) return
+    call run%monitors%init(model, run%analysis, run%job, err)
+    if (allocated(err)) return
+    call run%monitors%sample(model, run%analysis, spread(.true., 1, size(model%histories)), err)
+    if (allocated(err)) return
     call write_frame(run, model, err)
   end subroutine open_outputs
 
@@ -156,7 +163,9 @@ contains
     type(error_t), allocatable, intent(out) :: err
     type(checkpoint_info_t) :: info
     character(len=:), allocatable :: warning
-    call restore_checkpoint(path, run%analysis, model, info, warning, err)
+    call run%monitors%init(model, run%analysis, run%job, err)
+    if (allocated(err)) return
+    call restore_checkpoint(path, run%analysis, run%monitors, model, info, warning, err)
     if (allocated(err)) return
     if (len(warning) > 0) call run%log%warn(warning)
     call run%log%info('restart from ' // path // ': time ' // str(info%time) // ', step ' // &
@@ -180,7 +189,7 @@ contains
     type(run_t), intent(inout) :: run
     type(model_t), intent(in) :: model
     type(error_t), allocatable, intent(out) :: err
-    call save_checkpoint(run%job, run%analysis, model, err)
+    call save_checkpoint(run%job, run%analysis, run%monitors, model, err)
     run%last_checkpoint = wall_time()
     if (.not. allocated(err)) call run%log%detail('checkpoint written: ' // run%job // '.rst.h5 ' // &
       '(time ' // str(run%analysis%state%time) // ', increment ' // str(run%analysis%state%increment) // ')')
@@ -300,7 +309,8 @@ contains
         call run_increments(run, model, k, err)
         if (allocated(err)) return
         state%step_time = model%steps(k)%period
-        call increment_outputs(run, model, .true., err)
+        call sample_histories(run, model, .true., err)
+        if (.not. allocated(err)) call increment_outputs(run, model, .true., err)
         if (allocated(err)) return
         call run%log%info('end of step ' // str(k) // ' ("' // model%steps(k)%name // '") at time ' // &
                           str(state%time) // ' after ' // str(state%step_increment) // ' increment(s)')
@@ -334,6 +344,9 @@ contains
         if (allocated(err)) exit
         call log_increment(run, model, record)
         call increment_outputs(run, model, .false., err)
+        if (.not. allocated(err)) call run%monitors%watch_events(model, a, state%time - &
+                                                                 state%last_increment, run%log, err)
+        if (.not. allocated(err)) call sample_histories(run, model, .false., err)
         if (allocated(err)) exit
         if (signal_received() /= 0) then
           call stop_on_signal(run, model, err)
@@ -460,6 +473,70 @@ contains
     end associate
   end subroutine increment_outputs
 
+  !> Sample the histories due after this increment (or at the end of the step: every history
+  !> that has no row at this time yet).
+  subroutine sample_histories(run, model, end_of_step, err)
+    type(run_t), intent(inout) :: run
+    type(model_t), intent(in) :: model
+    logical, intent(in) :: end_of_step
+    type(error_t), allocatable, intent(out) :: err
+    logical :: due(size(model%histories))
+    integer :: k
+    associate (state => run%analysis%state)
+      do k = 1, size(model%histories)
+        associate (h => model%histories(k), table => run%monitors%tables(k))
+          due(k) = .false.
+          if (table%n_rows > 0) then
+            if (table%rows(1, table%n_rows) >= state%time) cycle
+          end if
+          if (end_of_step) then
+            due(k) = .true.
+          else if (h%frequency > 0) then
+            due(k) = mod(state%step_increment, h%frequency) == 0
+          end if
+          if (.not. due(k) .and. h%time_points > 0) due(k) = at_time_point(model, h%time_points, &
+            model%steps(state%step)%period, state)
+        end associate
+      end do
+    end associate
+    call run%monitors%sample(model, run%analysis, due, err)
+  end subroutine sample_histories
+
+  !> Whether the state is at one of the times of list `k`.
+  logical function at_time_point(model, k, period, state)
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: k
+    real(dp), intent(in) :: period
+    type(state_t), intent(in) :: state
+    real(dp) :: t
+    integer :: i
+    at_time_point = .false.
+    associate (tp => model%time_points(k))
+      do i = 1, size(tp%times)
+        t = tp%times(i)
+        if (tp%total_time) t = t - (state%time - state%step_time)
+        if (abs(state%step_time - t) <= 1.0e-9_dp * period) at_time_point = .true.
+      end do
+    end associate
+  end function at_time_point
+
+  !> History tables and the event catalog into the results file (h5py sees one row per
+  !> sample or event: shape (rows, columns)).
+  subroutine write_tables(run, err)
+    type(run_t), intent(inout) :: run
+    type(error_t), allocatable, intent(out) :: err
+    integer :: k
+    do k = 1, size(run%monitors%tables)
+      associate (table => run%monitors%tables(k))
+        call run%results%write_table('history', to_lower(table%name), join_strings(table%columns, ','), &
+                                     table%values(), err)
+      end associate
+      if (allocated(err)) return
+    end do
+    if (run%monitors%catalog_on) call run%results%write_table('events', 'catalog', EVENT_COLUMNS, &
+      run%monitors%catalog%table(), err)
+  end subroutine write_tables
+
   !> Whether output request `request` is due now.
   logical function is_due(model, step, request, state, end_of_step)
     type(model_t), intent(in) :: model
@@ -516,6 +593,7 @@ contains
       if (.not. allocated(err)) call run%results%write_integration_points('strain', state%strain, err)
       if (.not. allocated(err)) call write_contact_fields(run, err)
       if (.not. allocated(err)) call run%results%end_frame(err)
+      if (.not. allocated(err)) call write_tables(run, err)
       call log_contact_totals(run, .true.)
     end associate
   end subroutine write_frame

@@ -10,6 +10,7 @@ module fcs_run_checkpoint
   use fcs_checkpoint, only: checkpoint_info_t, write_checkpoint, read_checkpoint, &
                             read_checkpoint_info, checkpoint_generation_path
   use fcs_files, only: file_size
+  use fcs_monitors, only: monitors_t
   use fcs_strings, only: str, join_strings, string_t
   use fcs_version, only: FCS3D_VERSION, FCS3D_REVISION
   implicit none
@@ -25,9 +26,10 @@ contains
   end function build_id
 
   !> Write the checkpoint of the analysis now (generation 0 of `<job>.rst.h5`).
-  subroutine save_checkpoint(job, a, model, err)
+  subroutine save_checkpoint(job, a, monitors, model, err)
     character(len=*), intent(in) :: job
     type(analysis_t), intent(in) :: a
+    type(monitors_t), intent(in) :: monitors
     type(model_t), intent(in) :: model
     type(error_t), allocatable, intent(out) :: err
     type(checkpoint_info_t) :: info
@@ -43,21 +45,23 @@ contains
     info%step = a%state%step
     info%increment = a%state%increment
     info%dat_size = max(0_i8, file_size(job // '.dat'))
-    call write_checkpoint(job, a%state, a%contact, info, model%checkpoint%generations, err)
+    call write_checkpoint(job, a%state, a%contact, monitors%tables, monitors%catalog, info, &
+                          model%checkpoint%generations, err)
   end subroutine save_checkpoint
 
   !> Restore the analysis from checkpoint `path`, after checking that the deck still
   !> describes its model; the sparse pattern is rebuilt as it was. `warning` is set when the
   !> build differs (results may then differ in the last digits).
-  subroutine restore_checkpoint(path, a, model, info, warning, err)
+  subroutine restore_checkpoint(path, a, monitors, model, info, warning, err)
     character(len=*), intent(in) :: path
     type(analysis_t), intent(inout) :: a
+    type(monitors_t), intent(inout) :: monitors
     type(model_t), intent(in) :: model
     type(checkpoint_info_t), intent(out) :: info
     character(len=:), allocatable, intent(out) :: warning
     type(error_t), allocatable, intent(out) :: err
     warning = ''
-    call read_checkpoint(path, a%state, a%contact, info, err)
+    call read_checkpoint(path, a%state, a%contact, monitors%tables, monitors%catalog, info, err)
     if (allocated(err)) then
       call offer_older_generation(path, err)
       return

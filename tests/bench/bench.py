@@ -20,6 +20,13 @@ Figures per run:
                                   including reading the deck and writing the results.
   peak memory                     maximum resident set size (/usr/bin/time -v); fcs3d also
                                   prints its own VmHWM in the log (same figure).
+Memory guard: every run is limited to 90% of the machine's memory (RLIMIT_AS), so that a run
+that does not fit fails by itself instead of waking the kernel's OOM killer, and a run whose
+memory, scaled from the same program at the previous size as (DOF ratio)^(4/3) (the growth of
+a nested-dissection factor of a 3-D mesh), would exceed that limit is not started; the table
+says so. The load average at the end of each run is printed too: the figures are only
+meaningful on an otherwise idle machine.
+
 Ratios are CalculiX's time (memory) divided by fcs3d's: above 1 means fcs3d is faster
 (smaller). The displacement of the top corner printed by both programs is compared as a
 sanity check. A benchmark prints figures; it asserts nothing about them.
@@ -29,15 +36,36 @@ import argparse
 import os
 import platform
 import re
+import resource
 import shutil
 import subprocess
 import sys
 import time
 
-import datfile
 import cube_deck
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tools"))
+import datfile  # noqa: E402  (tests/tools/datfile.py)
+
 SKYLINE_LIMIT = 30000
+MEMORY_FRACTION = 0.9
+FILL_EXPONENT = 4.0 / 3.0
+
+
+def machine_memory_mib():
+    with open("/proc/meminfo") as handle:
+        for line in handle:
+            if line.startswith("MemTotal:"):
+                return int(line.split()[1]) / 1024.0
+    return os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES") / 2 ** 20
+
+
+def limit_memory(limit_mib):
+    """A preexec_fn: cap the child's address space."""
+    def apply():
+        size = int(limit_mib * 2 ** 20)
+        resource.setrlimit(resource.RLIMIT_AS, (size, size))
+    return apply
 
 
 def gnu_time(path):
@@ -79,7 +107,7 @@ def fcs3d_phases(log_path):
     return phases
 
 
-def run_fcs3d(fcs3d, deck, solver, workdir, env, timeout):
+def run_fcs3d(fcs3d, deck, solver, workdir, env, timeout, limit_mib):
     outdir = os.path.join(workdir, solver.lower())
     os.makedirs(outdir, exist_ok=True)
     time_file = os.path.join(outdir, "time.txt")
@@ -89,10 +117,10 @@ def run_fcs3d(fcs3d, deck, solver, workdir, env, timeout):
     with open(os.path.join(outdir, "stdout.txt"), "w") as out:
         try:
             status = subprocess.run(command, stdout=out, stderr=subprocess.STDOUT, env=env,
-                                    timeout=timeout).returncode
+                                    timeout=timeout, preexec_fn=limit_memory(limit_mib)).returncode
         except subprocess.TimeoutExpired:
             return {"program": f"fcs3d {solver}", "failed": f"timed out after {timeout} s"}
-    row = {"program": f"fcs3d {solver}"}
+    row = {"program": f"fcs3d {solver}", "load": os.getloadavg()[0]}
     if status != 0:
         tail = open(os.path.join(outdir, "stdout.txt")).read().strip().splitlines()[-3:]
         row["failed"] = f"exit status {status}: " + " / ".join(tail)
@@ -107,7 +135,7 @@ def run_fcs3d(fcs3d, deck, solver, workdir, env, timeout):
     return row
 
 
-def run_ccx(deck, workdir, env, timeout):
+def run_ccx(deck, workdir, env, timeout, limit_mib):
     ccxdir = os.path.join(workdir, "ccx")
     os.makedirs(ccxdir, exist_ok=True)
     job = os.path.splitext(os.path.basename(deck))[0]
@@ -118,7 +146,7 @@ def run_ccx(deck, workdir, env, timeout):
     stamps = []
     started = time.perf_counter()
     with subprocess.Popen(command, cwd=ccxdir, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                          text=True, env=env) as process, \
+                          text=True, env=env, preexec_fn=limit_memory(limit_mib)) as process, \
             open(os.path.join(ccxdir, "ccx.log"), "w") as log:
         for line in process.stdout:
             stamp = time.perf_counter() - started
@@ -127,7 +155,7 @@ def run_ccx(deck, workdir, env, timeout):
             if stamp > timeout:
                 process.kill()
         status = process.wait()
-    row = {"program": "ccx"}
+    row = {"program": "ccx", "load": os.getloadavg()[0]}
     if status != 0 or not any("Job finished" in text for _, text in stamps):
         row["failed"] = f"exit status {status}"
         return row
@@ -174,6 +202,35 @@ def ratio(reference, value):
     return f"{reference / value:.2f}"
 
 
+def table_row(dofs, row, reference):
+    if "failed" in row:
+        return f"| {dofs:,} | {row['program']} | {row['failed']} |" + " |" * 10
+    difference = monitor_difference(row, reference) if row is not reference else None
+    return (f"| {dofs:,} | {row['program']} | {fmt(row.get('assembly'), 2)} | "
+            f"{fmt(row.get('factor'))} | {fmt(row.get('solve'))} | "
+            f"{fmt(row.get('factor_solve'), 2)} | {fmt(row.get('wall'), 2)} | "
+            f"{fmt(row.get('peak'), 0)} | "
+            f"{ratio(reference.get('factor_solve'), row.get('factor_solve'))} | "
+            f"{ratio(reference.get('wall'), row.get('wall'))} | "
+            f"{ratio(reference.get('peak'), row.get('peak'))} | "
+            f"{'-' if difference is None else f'{difference:.1e}'} | {fmt(row.get('load'))} |")
+
+
+def guarded(program, dofs, previous, limit_mib, run):
+    """Run `run()` unless the memory scaled from the previous size would not fit."""
+    if program in previous:
+        last_dofs, last_peak = previous[program]
+        estimate = last_peak * (dofs / last_dofs) ** FILL_EXPONENT
+        if estimate > limit_mib:
+            return {"program": program, "failed": (
+                f"not run: needs about {estimate / 1024:.0f} GiB (scaled from "
+                f"{last_peak / 1024:.1f} GiB at {last_dofs:,} DOF), limit {limit_mib / 1024:.0f} GiB")}
+    row = run()
+    if row.get("peak"):
+        previous[program] = (dofs, row["peak"])
+    return row
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--fcs3d", required=True)
@@ -182,26 +239,42 @@ def main():
     parser.add_argument("--threads", type=int, default=2)
     parser.add_argument("--timeout", type=float, default=3600.0)
     parser.add_argument("--markdown")
+    parser.add_argument("--skip", default="",
+                        help="runs not to start, e.g. 'ccx@61,fcs3d UMFPACK@61'")
+    parser.add_argument("--no-estimate", action="store_true",
+                        help="start every run, even when the scaled memory would not fit "
+                             "(the memory limit still applies)")
     args = parser.parse_args()
+    skip = {item.strip() for item in args.skip.split(",") if item.strip()}
     threads = str(args.threads)
     env = dict(os.environ, OMP_NUM_THREADS=threads, OPENBLAS_NUM_THREADS=threads,
                MKL_NUM_THREADS=threads, CCX_NPROC_EQUATION_SOLVER=threads,
                CCX_NPROC_STIFFNESS=threads, CCX_NPROC_RESULTS=threads)
-    memory = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES") / 2 ** 30
-    machine = (f"{platform.processor() or platform.machine()}, nproc {os.cpu_count()}, "
-               f"{memory:.1f} GiB memory, {platform.system()} {platform.release()}")
+    memory_mib = machine_memory_mib()
+    limit_mib = MEMORY_FRACTION * memory_mib
     cpu = ""
     if os.path.exists("/proc/cpuinfo"):
         names = re.findall(r"model name\s*: (.*)", open("/proc/cpuinfo").read())
-        cpu = names[0] if names else ""
-    print(f"machine: {cpu} ({machine})")
-    print(f"threads: OMP_NUM_THREADS=OPENBLAS_NUM_THREADS={threads} (and CCX_NPROC_*={threads})")
+        cpu = names[0] if names else platform.machine()
+    machine = (f"{cpu}, nproc {os.cpu_count()}, {memory_mib / 1024:.1f} GiB memory, "
+               f"{platform.system()} {platform.release()}")
+    notes = [f"machine: {machine}",
+             f"threads: OMP_NUM_THREADS = OPENBLAS_NUM_THREADS = CCX_NPROC_* = {threads}",
+             f"memory limit per run: {limit_mib / 1024:.1f} GiB"]
     header = ("| DOF | program, solver | assembly [s] | factorisation [s] | solve [s] | "
               "factor+solve [s] | wall [s] | peak memory [MiB] | ccx/fcs3d factor+solve | "
-              "ccx/fcs3d wall | ccx/fcs3d memory | corner u vs ccx |")
-    lines = [header, "|" + "---|" * 12]
-    print(header)
-    print(lines[1])
+              "ccx/fcs3d wall | ccx/fcs3d memory | corner u vs ccx | load |")
+    lines = [header, "|" + "---|" * 13]
+    print("\n".join(notes + [""] + lines), flush=True)
+    previous = {}
+
+    def attempt(program, n, dofs, run):
+        if f"{program}@{n}" in skip:
+            return {"program": program, "failed": "not run (--skip)"}
+        if args.no_estimate:
+            previous.pop(program, None)
+        return guarded(program, dofs, previous, limit_mib, run)
+
     for n in (int(s) for s in args.sizes.split(",")):
         dofs = 3 * (n + 1) ** 3
         workdir = os.path.abspath(os.path.join(args.work, f"cube{n}"))
@@ -209,26 +282,18 @@ def main():
         deck = os.path.join(workdir, f"cube{n}.inp")
         cube_deck.write_deck(n, deck)
         solvers = (["SKYLINE"] if dofs <= SKYLINE_LIMIT else []) + ["UMFPACK", "MUMPS"]
-        reference = run_ccx(deck, workdir, env, args.timeout)
-        rows = [run_fcs3d(args.fcs3d, deck, s, workdir, env, args.timeout) for s in solvers]
+        reference = attempt("ccx", n, dofs,
+                            lambda: run_ccx(deck, workdir, env, args.timeout, limit_mib))
+        rows = [attempt(f"fcs3d {s}", n, dofs,
+                        lambda s=s: run_fcs3d(args.fcs3d, deck, s, workdir, env, args.timeout,
+                                              limit_mib))
+                for s in solvers]
         for row in rows + [reference]:
-            if "failed" in row:
-                line = f"| {dofs:,} | {row['program']} | failed: {row['failed']} |" + " |" * 9
-            else:
-                difference = monitor_difference(row, reference) if row is not reference else None
-                line = (f"| {dofs:,} | {row['program']} | {fmt(row.get('assembly'), 2)} | "
-                        f"{fmt(row.get('factor'))} | {fmt(row.get('solve'))} | "
-                        f"{fmt(row.get('factor_solve'), 2)} | {fmt(row.get('wall'), 2)} | "
-                        f"{fmt(row.get('peak'), 0)} | "
-                        f"{ratio(reference.get('factor_solve'), row.get('factor_solve'))} | "
-                        f"{ratio(reference.get('wall'), row.get('wall'))} | "
-                        f"{ratio(reference.get('peak'), row.get('peak'))} | "
-                        f"{'-' if difference is None else f'{difference:.1e}'} |")
-            print(line, flush=True)
-            lines.append(line)
+            lines.append(table_row(dofs, row, reference))
+            print(lines[-1], flush=True)
     if args.markdown:
         with open(args.markdown, "w") as handle:
-            handle.write(f"machine: {cpu} ({machine})\n\n" + "\n".join(lines) + "\n")
+            handle.write("\n".join(notes + [""] + lines) + "\n")
     return 0
 
 

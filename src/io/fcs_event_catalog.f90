@@ -1,0 +1,215 @@
+!> The slip-event catalog. On every contact pair, an event starts when the slip rate of some
+!> slave node exceeds the threshold, and ends when no node of the pair exceeds it. For each
+!> event: onset and end times, the nodes that took part, the peak slip rate, the largest and
+!> mean slip of those nodes during the event, the mean drop of their shear traction, and the
+!> hypocentre (the node that crossed the threshold first, the fastest if several did).
+module fcs_event_catalog
+  use fcs_kinds, only: dp
+  use fcs_error, only: error_t, fatal_error
+  use fcs_strings, only: string_t
+  implicit none
+  private
+  public :: event_catalog_t, slip_event_t, pair_watch_t, EVENT_COLUMNS
+
+  !> Columns of the catalog table (CSV and HDF5).
+  character(len=*), parameter :: EVENT_COLUMNS = 'event,pair,onset,end,duration,nodes,' // &
+    'peak_slip_rate,max_slip,mean_slip,stress_drop,hypocentre_node,x,y,z'
+
+  type :: slip_event_t
+    integer :: pair = 0
+    real(dp) :: onset = 0.0_dp
+    real(dp) :: finish = 0.0_dp
+    integer :: n_nodes = 0
+    real(dp) :: peak_rate = 0.0_dp
+    real(dp) :: max_slip = 0.0_dp
+    real(dp) :: mean_slip = 0.0_dp
+    real(dp) :: stress_drop = 0.0_dp
+    !> Node id of the hypocentre and its position at onset.
+    integer :: hypocentre = 0
+    real(dp) :: location(3) = 0.0_dp
+  end type slip_event_t
+
+  !> What is watched on one pair: the event under way, and the slip and shear traction of
+  !> every slave node after the previous increment (the values just before an onset).
+  type :: pair_watch_t
+    logical :: active = .false.
+    type(slip_event_t) :: event
+    logical, allocatable :: involved(:)
+    real(dp), allocatable :: slip_start(:), shear_start(:)
+    real(dp), allocatable :: last_slip(:), last_shear(:)
+  end type pair_watch_t
+
+  type :: event_catalog_t
+    real(dp) :: threshold = 0.0_dp
+    real(dp) :: min_slip = 0.0_dp
+    type(pair_watch_t), allocatable :: watch(:)
+    type(slip_event_t), allocatable :: events(:)
+    integer :: n_events = 0
+    character(len=:), allocatable :: csv_path
+  contains
+    procedure :: init => catalog_init
+    procedure :: update => catalog_update
+    procedure :: table => catalog_table
+    procedure :: rewrite_csv => catalog_rewrite_csv
+  end type event_catalog_t
+
+contains
+
+  !> Watch `size(pair_sizes)` pairs with the given numbers of slave nodes.
+  subroutine catalog_init(this, threshold, min_slip, pair_sizes, csv_path, err)
+    class(event_catalog_t), intent(inout) :: this
+    real(dp), intent(in) :: threshold, min_slip
+    integer, intent(in) :: pair_sizes(:)
+    character(len=*), intent(in) :: csv_path
+    type(error_t), allocatable, intent(out) :: err
+    integer :: k, n
+    this%threshold = threshold
+    this%min_slip = min_slip
+    this%csv_path = csv_path
+    allocate (this%watch(size(pair_sizes)), this%events(16))
+    this%n_events = 0
+    do k = 1, size(pair_sizes)
+      n = pair_sizes(k)
+      allocate (this%watch(k)%involved(n), this%watch(k)%slip_start(n), this%watch(k)%shear_start(n), &
+                this%watch(k)%last_slip(n), this%watch(k)%last_shear(n))
+      this%watch(k)%involved = .false.
+      this%watch(k)%slip_start = 0.0_dp
+      this%watch(k)%shear_start = 0.0_dp
+      this%watch(k)%last_slip = 0.0_dp
+      this%watch(k)%last_shear = 0.0_dp
+    end do
+    call this%rewrite_csv(err)
+  end subroutine catalog_init
+
+  !> After an increment from t_start to t_end: the slip rate, accumulated slip and shear
+  !> traction of pair k's slave nodes, their node ids and positions. `ended` returns the
+  !> index of an event that ended (and was kept) in this call, 0 otherwise.
+  subroutine catalog_update(this, k, t_start, t_end, rate, slip, shear, node_ids, x, ended, err)
+    class(event_catalog_t), intent(inout) :: this
+    integer, intent(in) :: k
+    real(dp), intent(in) :: t_start, t_end, rate(:), slip(:), shear(:), x(:, :)
+    integer, intent(in) :: node_ids(:)
+    integer, intent(out) :: ended
+    type(error_t), allocatable, intent(out) :: err
+    logical :: fast(size(rate))
+    integer :: first
+    ended = 0
+    fast = rate > this%threshold
+    associate (w => this%watch(k))
+      if (.not. w%active .and. any(fast)) then
+        first = maxloc(rate, 1)
+        w%active = .true.
+        w%event = slip_event_t(pair=k, onset=t_start, hypocentre=node_ids(first), &
+                               location=x(:, first))
+        w%involved = .false.
+        w%slip_start = w%last_slip
+        w%shear_start = w%last_shear
+      end if
+      if (w%active) then
+        w%involved = w%involved .or. fast
+        w%event%peak_rate = max(w%event%peak_rate, maxval(rate))
+        if (.not. any(fast)) then
+          w%event%finish = t_start
+          call close_event(this, k, slip, shear, ended, err)
+        end if
+      end if
+      w%last_slip = slip
+      w%last_shear = shear
+    end associate
+    if (t_end < t_start) ended = 0
+  end subroutine catalog_update
+
+  !> Finish the event of pair k: slip and stress drop of the nodes that took part.
+  subroutine close_event(this, k, slip, shear, ended, err)
+    type(event_catalog_t), intent(inout) :: this
+    integer, intent(in) :: k
+    real(dp), intent(in) :: slip(:), shear(:)
+    integer, intent(out) :: ended
+    type(error_t), allocatable, intent(out) :: err
+    type(slip_event_t), allocatable :: grown(:)
+    real(dp), allocatable :: event_slip(:)
+    ended = 0
+    associate (w => this%watch(k), e => this%watch(k)%event)
+      w%active = .false.
+      e%n_nodes = count(w%involved)
+      if (e%n_nodes == 0) return
+      event_slip = pack(slip - w%slip_start, w%involved)
+      e%max_slip = maxval(event_slip)
+      e%mean_slip = sum(event_slip) / e%n_nodes
+      e%stress_drop = sum(pack(w%shear_start - shear, w%involved)) / e%n_nodes
+      if (e%max_slip < this%min_slip) return
+      if (this%n_events == size(this%events)) then
+        allocate (grown(2 * size(this%events)))
+        grown(1:this%n_events) = this%events(1:this%n_events)
+        call move_alloc(grown, this%events)
+      end if
+      this%n_events = this%n_events + 1
+      this%events(this%n_events) = e
+      ended = this%n_events
+    end associate
+    call append_csv(this, ended, err)
+  end subroutine close_event
+
+  !> The catalog as a table (n_columns, n_events), columns as EVENT_COLUMNS.
+  pure function catalog_table(this) result(table)
+    class(event_catalog_t), intent(in) :: this
+    real(dp), allocatable :: table(:, :)
+    integer :: i
+    allocate (table(14, this%n_events))
+    do i = 1, this%n_events
+      table(:, i) = event_row(this%events(i), i)
+    end do
+  end function catalog_table
+
+  pure function event_row(e, i) result(row)
+    type(slip_event_t), intent(in) :: e
+    integer, intent(in) :: i
+    real(dp) :: row(14)
+    row = [real(i, dp), real(e%pair, dp), e%onset, e%finish, e%finish - e%onset, &
+           real(e%n_nodes, dp), e%peak_rate, e%max_slip, e%mean_slip, e%stress_drop, &
+           real(e%hypocentre, dp), e%location]
+  end function event_row
+
+  subroutine append_csv(this, i, err)
+    type(event_catalog_t), intent(in) :: this
+    integer, intent(in) :: i
+    type(error_t), allocatable, intent(out) :: err
+    integer :: unit, stat
+    character(len=256) :: msg
+    open (newunit=unit, file=this%csv_path, action='write', position='append', iostat=stat, iomsg=msg)
+    if (stat /= 0) then
+      call fatal_error(err, 'writing the event catalog ' // this%csv_path // ': ' // trim(msg))
+      return
+    end if
+    call write_event(unit, this%events(i), i)
+    close (unit)
+  end subroutine append_csv
+
+  subroutine write_event(unit, e, i)
+    integer, intent(in) :: unit, i
+    type(slip_event_t), intent(in) :: e
+    write (unit, '(i0,a,i0,3(a,es16.9),a,i0,4(a,es16.9),a,i0,3(a,es16.9))') i, ',', e%pair, ',', &
+      e%onset, ',', e%finish, ',', e%finish - e%onset, ',', e%n_nodes, ',', e%peak_rate, ',', &
+      e%max_slip, ',', e%mean_slip, ',', e%stress_drop, ',', e%hypocentre, ',', e%location(1), ',', &
+      e%location(2), ',', e%location(3)
+  end subroutine write_event
+
+  !> The whole CSV from the events in memory (new run, or after a restart).
+  subroutine catalog_rewrite_csv(this, err)
+    class(event_catalog_t), intent(inout) :: this
+    type(error_t), allocatable, intent(out) :: err
+    integer :: unit, stat, i
+    character(len=256) :: msg
+    open (newunit=unit, file=this%csv_path, action='write', status='replace', iostat=stat, iomsg=msg)
+    if (stat /= 0) then
+      call fatal_error(err, 'writing the event catalog ' // this%csv_path // ': ' // trim(msg))
+      return
+    end if
+    write (unit, '(a)') EVENT_COLUMNS
+    do i = 1, this%n_events
+      call write_event(unit, this%events(i), i)
+    end do
+    close (unit)
+  end subroutine catalog_rewrite_csv
+
+end module fcs_event_catalog

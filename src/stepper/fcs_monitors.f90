@@ -1,0 +1,258 @@
+!> Monitors of a run: the history tables (*HISTORY) and the slip-event catalog (*EVENT
+!> CATALOG), sampled after increments from the analysis state.
+module fcs_monitors
+  use fcs_kinds, only: dp
+  use fcs_error, only: error_t
+  use fcs_model, only: model_t, history_request_t, HISTORY_NSET_U, HISTORY_NSET_RF, &
+                       HISTORY_CONTACT, HISTORY_ENERGY
+  use fcs_static_explicit, only: analysis_t
+  use fcs_assembly, only: assemble_elements
+  use fcs_history, only: history_table_t
+  use fcs_event_catalog, only: event_catalog_t
+  use fcs_contact_system, only: pair_totals_t
+  use fcs_contact_element, only: CONTACT_OPEN, CONTACT_TIED
+  use fcs_hex8_element, only: hex8_geometry_t, hex8_geometry
+  use fcs_hex8_shape, only: N_GAUSS_HEX8
+  use fcs_log, only: logger_t
+  use fcs_strings, only: string_t, str
+  implicit none
+  private
+  public :: monitors_t
+
+  type :: monitors_t
+    type(history_table_t), allocatable :: tables(:)
+    logical :: catalog_on = .false.
+    type(event_catalog_t) :: catalog
+    !> Reference volume of each integration point (strain energy), computed once.
+    real(dp), allocatable :: volume(:, :)
+  contains
+    procedure :: init => monitors_init
+    procedure :: sample => monitors_sample
+    procedure :: watch_events => monitors_watch_events
+  end type monitors_t
+
+contains
+
+  subroutine monitors_init(this, model, a, job, err)
+    class(monitors_t), intent(inout) :: this
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(in) :: a
+    character(len=*), intent(in) :: job
+    type(error_t), allocatable, intent(out) :: err
+    integer :: k
+    integer, allocatable :: sizes(:)
+    allocate (this%tables(size(model%histories)))
+    do k = 1, size(model%histories)
+      call this%tables(k)%create(model%histories(k)%name, job // '_' // to_lower_name( &
+        model%histories(k)%name) // '.csv', column_names(model, model%histories(k)), err)
+      if (allocated(err)) return
+    end do
+    this%catalog_on = model%event_threshold > 0.0_dp .and. a%contact%n_slaves() > 0
+    if (this%catalog_on) then
+      allocate (sizes(size(a%contact%pairs)))
+      do k = 1, size(a%contact%pairs)
+        sizes(k) = a%contact%pairs(k)%last - a%contact%pairs(k)%first + 1
+      end do
+      call this%catalog%init(model%event_threshold, model%event_min_slip, sizes, job // '_events.csv', err)
+    end if
+    if (any([(has_energy(model%histories(k)), k = 1, size(model%histories))])) call reference_volumes(this, model)
+  end subroutine monitors_init
+
+  pure logical function has_energy(history)
+    type(history_request_t), intent(in) :: history
+    integer :: i
+    has_energy = .false.
+    do i = 1, size(history%items)
+      if (history%items(i)%kind == HISTORY_ENERGY) has_energy = .true.
+    end do
+  end function has_energy
+
+  pure function to_lower_name(name) result(out)
+    character(len=*), intent(in) :: name
+    character(len=len(name)) :: out
+    integer :: i
+    out = name
+    do i = 1, len(name)
+      if (name(i:i) >= 'A' .and. name(i:i) <= 'Z') out(i:i) = achar(iachar(name(i:i)) + 32)
+      if (name(i:i) == ' ') out(i:i) = '_'
+    end do
+  end function to_lower_name
+
+  !> Column names of a history: time, then each item's quantities.
+  function column_names(model, history) result(columns)
+    type(model_t), intent(in) :: model
+    type(history_request_t), intent(in) :: history
+    type(string_t), allocatable :: columns(:)
+    character(len=:), allocatable :: p
+    integer :: i
+    columns = [string_t('time')]
+    do i = 1, size(history%items)
+      associate (item => history%items(i))
+        select case (item%kind)
+        case (HISTORY_NSET_U)
+          p = model%mesh%node_sets(item%target)%name
+          columns = [columns, string_t(p // '_U1'), string_t(p // '_U2'), string_t(p // '_U3')]
+        case (HISTORY_NSET_RF)
+          p = model%mesh%node_sets(item%target)%name
+          columns = [columns, string_t(p // '_RF1'), string_t(p // '_RF2'), string_t(p // '_RF3')]
+        case (HISTORY_CONTACT)
+          p = model%contact_pairs(item%target)%name
+          columns = [columns, string_t(p // '_FN'), string_t(p // '_FT1'), string_t(p // '_FT2'), &
+                     string_t(p // '_FT3'), string_t(p // '_STICK'), string_t(p // '_SLIP'), &
+                     string_t(p // '_OPEN'), string_t(p // '_SLIP_MEAN'), string_t(p // '_SLIP_MAX'), &
+                     string_t(p // '_RATE_MAX'), string_t(p // '_PRESSURE_MEAN'), &
+                     string_t(p // '_SHEAR_MEAN')]
+        case (HISTORY_ENERGY)
+          columns = [columns, string_t('STRAIN_ENERGY'), string_t('FRICTION_WORK')]
+        end select
+      end associate
+    end do
+  end function column_names
+
+  subroutine reference_volumes(this, model)
+    type(monitors_t), intent(inout) :: this
+    type(model_t), intent(in) :: model
+    type(hex8_geometry_t) :: geo
+    logical :: ok
+    integer :: e
+    allocate (this%volume(N_GAUSS_HEX8, model%mesh%n_elements))
+    do e = 1, model%mesh%n_elements
+      call hex8_geometry(model%mesh%x(:, model%mesh%connectivity(:, e)), geo, ok)
+      this%volume(:, e) = geo%dv
+    end do
+  end subroutine reference_volumes
+
+  !> Sample the histories due now (`due(k)` for history k).
+  subroutine monitors_sample(this, model, a, due, err)
+    class(monitors_t), intent(inout) :: this
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(inout) :: a
+    logical, intent(in) :: due(:)
+    type(error_t), allocatable, intent(out) :: err
+    real(dp), allocatable :: row(:), reaction(:, :)
+    integer :: k, i
+    if (.not. any(due)) return
+    call current_reactions(model, a, reaction, err)
+    if (allocated(err)) return
+    do k = 1, size(this%tables)
+      if (.not. due(k)) cycle
+      row = [a%state%time]
+      do i = 1, size(model%histories(k)%items)
+        row = [row, item_values(this, model, a, model%histories(k)%items(i)%kind, &
+                                model%histories(k)%items(i)%target, reaction)]
+      end do
+      call this%tables(k)%append(row, err)
+      if (allocated(err)) return
+    end do
+  end subroutine monitors_sample
+
+  !> Reactions of the current state: internal forces less contact forces (as CalculiX's RF).
+  subroutine current_reactions(model, a, reaction, err)
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(inout) :: a
+    real(dp), allocatable, intent(out) :: reaction(:, :)
+    type(error_t), allocatable, intent(out) :: err
+    real(dp), allocatable :: f_int(:), f_contact(:)
+    allocate (f_int(3 * model%mesh%n_nodes), f_contact(3 * model%mesh%n_nodes))
+    call assemble_elements(model, a%state, a%materials, model%steps(min(a%state%step, &
+                           size(model%steps)))%nlgeom, f_int, err)
+    if (allocated(err)) return
+    f_contact = 0.0_dp
+    if (a%contact%n_slaves() > 0) call a%contact%forces(a%x_contact, a%state%contact, f_contact)
+    reaction = reshape(f_int - f_contact, [3, model%mesh%n_nodes])
+  end subroutine current_reactions
+
+  function item_values(this, model, a, kind, target, reaction) result(values)
+    type(monitors_t), intent(in) :: this
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(in) :: a
+    integer, intent(in) :: kind, target
+    real(dp), intent(in) :: reaction(:, :)
+    real(dp), allocatable :: values(:)
+    select case (kind)
+    case (HISTORY_NSET_U)
+      associate (m => model%mesh%node_sets(target)%members)
+        values = sum(a%state%u(:, m), dim=2) / max(1, size(m))
+      end associate
+    case (HISTORY_NSET_RF)
+      values = sum(reaction(:, model%mesh%node_sets(target)%members), dim=2)
+    case (HISTORY_CONTACT)
+      values = contact_values(a, target)
+    case default
+      values = [strain_energy(this, a), sum(a%state%contact%work)]
+    end select
+  end function item_values
+
+  !> Totals of contact pair k: forces, counts, slip, slip rate, mean tractions of closed nodes.
+  function contact_values(a, k) result(values)
+    type(analysis_t), intent(in) :: a
+    integer, intent(in) :: k
+    real(dp) :: values(12)
+    type(pair_totals_t) :: t
+    real(dp) :: normal(3), pressure, shear(3), sum_pressure, sum_shear
+    integer :: s, first, last, n_closed
+    first = a%contact%pairs(k)%first
+    last = a%contact%pairs(k)%last
+    t = a%contact%totals(k, a%x_contact, a%state%contact)
+    sum_pressure = 0.0_dp
+    sum_shear = 0.0_dp
+    n_closed = 0
+    do s = first, last
+      if (a%state%contact%status(s) == CONTACT_OPEN) cycle
+      call a%contact%traction(s, a%x_contact, a%state%contact, normal, pressure, shear)
+      sum_pressure = sum_pressure + pressure
+      sum_shear = sum_shear + norm2(shear)
+      n_closed = n_closed + 1
+    end do
+    values = [t%normal_force, t%tangential_force, real(t%n_stick + t%n_tied, dp), real(t%n_slip, dp), &
+              real(t%n_open, dp), sum(a%state%contact%slip(first:last)) / max(1, last - first + 1), &
+              maxval(a%state%contact%slip(first:last)), maxval(a%state%contact%slip_rate(first:last)), &
+              sum_pressure / max(1, n_closed), sum_shear / max(1, n_closed)]
+  end function contact_values
+
+  !> 1/2 sum sigma:eps dV over the integration points (reference volumes; the elastic strain
+  !> energy of a hypoelastic body at small strains).
+  real(dp) function strain_energy(this, a)
+    type(monitors_t), intent(in) :: this
+    type(analysis_t), intent(in) :: a
+    strain_energy = 0.5_dp * sum(sum(a%state%stress * a%state%strain, dim=1) * this%volume)
+  end function strain_energy
+
+  !> Feed the event catalog after an increment that started at t_start; log ended events.
+  subroutine monitors_watch_events(this, model, a, t_start, log, err)
+    class(monitors_t), intent(inout) :: this
+    type(model_t), intent(in) :: model
+    type(analysis_t), intent(in) :: a
+    real(dp), intent(in) :: t_start
+    type(logger_t), intent(inout) :: log
+    type(error_t), allocatable, intent(out) :: err
+    real(dp), allocatable :: shear(:)
+    real(dp) :: normal(3), pressure, traction(3)
+    integer :: k, s, first, last, ended
+    if (.not. this%catalog_on) return
+    do k = 1, size(a%contact%pairs)
+      if (a%contact%pairs(k)%tied) cycle
+      first = a%contact%pairs(k)%first
+      last = a%contact%pairs(k)%last
+      allocate (shear(last - first + 1))
+      do s = first, last
+        call a%contact%traction(s, a%x_contact, a%state%contact, normal, pressure, traction)
+        shear(s - first + 1) = norm2(traction)
+      end do
+      call this%catalog%update(k, t_start, a%state%time, a%state%contact%slip_rate(first:last), &
+        a%state%contact%slip(first:last), shear, model%mesh%node_id(a%contact%slave_node(first:last)), &
+        a%x_contact(:, a%contact%slave_node(first:last)), ended, err)
+      deallocate (shear)
+      if (allocated(err)) return
+      if (ended > 0) then
+        associate (e => this%catalog%events(ended))
+          call log%info('slip event ' // str(ended) // ' on ' // a%contact%pairs(k)%name // ': ' // &
+            'onset ' // str(e%onset) // ', end ' // str(e%finish) // ', ' // str(e%n_nodes) // &
+            ' nodes, peak slip rate ' // str(e%peak_rate) // ', largest slip ' // str(e%max_slip) // &
+            ', mean stress drop ' // str(e%stress_drop) // ', hypocentre node ' // str(e%hypocentre))
+        end associate
+      end if
+    end do
+  end subroutine monitors_watch_events
+
+end module fcs_monitors
