@@ -10,7 +10,8 @@ those overrides (fault_profile.py).
 
 Checks (each failure is listed; exit 1 if any, 0 if none, 2 for bad usage or unreadable file):
   - the physical groups UPPER, LOWER (volumes), A, B, X0, Y0, Z0 and the eight fault sides
-    CD_UPPER ... FG_LOWER (surfaces) exist and are not empty;
+    CD_UPPER ... FG_LOWER (surfaces) exist and are not empty (and DF_UPPER, DF_LOWER, if
+    present, are D-E + E-F of their side);
   - every 3D element is an 8-node hexahedron, and every one is right-handed (positive
     Jacobian determinant at all eight corners, gmsh/C3D8 node order);
   - the blocks share no node; each block's volume is its polygon's area x thickness, and the
@@ -266,6 +267,15 @@ def main():
             side = name.split("_")[1]
             report.check(all(o == side for o in owners if o is not None),
                          f"{name}: quadrangles on faces of the other block")
+
+    for side in ("UPPER", "LOWER"):
+        name = f"DF_{side}"
+        if name not in groups:
+            continue
+        table = group_elements(blocks, entity_groups, groups[name], GMSH_QUAD)
+        combined = {frozenset(index[t] for t in row[1:]) for row in table}
+        parts = {frozenset(q) for seg in ("DE", "EF") for q in surface_quads[f"{seg}_{side}"]}
+        report.check(combined == parts, f"{name} is not DE_{side} + EF_{side}")
 
     planes = {"A": (1, height, width * thickness), "B": (0, width, height * thickness),
               "X0": (0, 0.0, height * thickness), "Y0": (1, 0.0, width * thickness),

@@ -28,8 +28,13 @@ The results layout (fcs3d src/io/fcs_results.f90) is read from the file: /mesh/c
 /mesh/connectivity, /frames/NNNNNN (attributes time, step) with nodal/<field>, cell/<field>
 and surfaces/contact_<pair>/{coordinates, nodal/<field>}. The fault segments are the contact
 pairs and ties of the deck (their slave surface CD_UPPER, DE_UPPER, ... names the segment);
-without the deck, grids named contact_CD, contact_DE, contact_EF, contact_FG. Frame times are
-matched to the wanted times within 1e-6 s.
+a pair on DF_UPPER (D-E and E-F in one pair) is split at E by the nodes' position along the
+trace. Without the deck: grids named contact_CD, contact_DE, contact_EF, contact_FG (or
+contact_DF). The trace C-D-E-F-G comes from the contact grids when each segment has its own,
+else from the .geo parameters: --geo (default: fault_bend.geo next to the results, else
+input/fault_bend/fault_bend.geo) and --setnumber, or the options recorded by
+tools/run_default.sh in mesh_options.txt next to the results. Frame times are matched to the
+wanted times within 1e-6 s.
 """
 
 import argparse
@@ -132,34 +137,40 @@ class Results:
         return None if dataset is None else dataset[()]
 
 
-def deck_segments(deck):
-    """{segment: pair name} from the *CONTACT PAIR and *TIE cards of a deck: the segment is the
-    part before '_' of the slave surface's name (CD_UPPER -> CD)."""
-    segments = {}
+#: Slave-surface prefixes that cover several segments (the single D-F pair).
+COMBINED = {"DF": ("DE", "EF")}
+
+
+def deck_pairs(deck):
+    """{pair name: segments} from the *CONTACT PAIR and *TIE cards of a deck: the segment is the
+    part before '_' of the slave surface's name (CD_UPPER -> CD; DF_UPPER -> DE and EF)."""
+    known = {seg for seg, _, _ in fault_profile.SEGMENTS}
+    pairs = {}
     with open(deck, encoding="utf-8", errors="replace") as handle:
         lines = [line.rstrip("\n") for line in handle if not line.startswith("**")]
     i = 0
     while i < len(lines):
         line = lines[i].strip()
         upper = line.upper()
-        if upper.startswith("*CONTACT PAIR") or upper.startswith("*TIE"):
-            params = {}
-            for item in line.split(",")[1:]:
-                if "=" in item:
-                    key, value = item.split("=", 1)
-                    params[key.strip().upper()] = value.strip().upper()
-            j = i + 1
-            while j < len(lines) and not lines[j].lstrip().startswith("*"):
-                slave = lines[j].split(",")[0].strip().upper()
-                segment = slave.split("_")[0]
-                name = params.get("NAME")
-                if name and segment in dict((s, 0) for s, _, _ in fault_profile.SEGMENTS):
-                    segments[segment] = name
-                j += 1
-            i = j
+        if not (upper.startswith("*CONTACT PAIR") or upper.startswith("*TIE")):
+            i += 1
             continue
-        i += 1
-    return segments
+        params = {}
+        for item in line.split(",")[1:]:
+            if "=" in item:
+                key, value = item.split("=", 1)
+                params[key.strip().upper()] = value.strip().upper()
+        j = i + 1
+        while j < len(lines) and not lines[j].lstrip().startswith("*"):
+            prefix = lines[j].split(",")[0].strip().upper().split("_")[0]
+            name = params.get("NAME")
+            if name and prefix in known:
+                pairs[name] = (prefix,)
+            elif name and prefix in COMBINED:
+                pairs[name] = COMBINED[prefix]
+            j += 1
+        i = j
+    return pairs
 
 
 def deck_time_points(deck, name="PAPER"):
@@ -192,6 +203,16 @@ def first_slip_event(log_path, step=2):
     return None
 
 
+def recorded_mesh_options(path):
+    """[(name, value)] of the -setnumber options in a file written by tools/run_default.sh."""
+    if not os.path.exists(path):
+        return []
+    with open(path, encoding="utf-8") as handle:
+        words = handle.read().split()
+    return [(words[i + 1], words[i + 2]) for i in range(len(words) - 2)
+            if words[i] in ("-setnumber", "--setnumber")]
+
+
 def dat_totals(dat_path, set_name="B"):
     """[(time, fx, fy, fz)] of the 'total force ... for set <set_name>' tables of a .dat."""
     if not os.path.exists(dat_path):
@@ -215,18 +236,44 @@ def dat_totals(dat_path, set_name="B"):
 # ------------------------------------------------------------------------------ geometry
 
 
-def fault_trace(results, segments, arguments):
-    """The trace C-D-E-F-G: from the contact grids of the first frame if all four segments
-    have one, else from the .geo parameters."""
+def fault_trace(results, pairs, arguments):
+    """The trace C-D-E-F-G: from the contact grids of the first frame if each of the four
+    segments has a grid of its own, else from the .geo parameters."""
     grids = {}
-    for segment, pair in segments.items():
+    for pair, covered in pairs.items():
         coordinates = results.grid_coordinates(0, f"contact_{pair}")
-        if coordinates is not None and len(coordinates) >= 2:
-            grids[segment] = coordinates
+        if len(covered) == 1 and coordinates is not None and len(coordinates) >= 2:
+            grids[covered[0]] = coordinates
     if len(grids) == 4:
         return fault_profile.FaultTrace.from_contact_grids(grids), "the contact grids"
     p = fault_profile.parameters(arguments.geo, [(n, float(v)) for n, v in arguments.setnumber])
-    return fault_profile.FaultTrace.from_parameters(p), f"{arguments.geo} parameters"
+    return fault_profile.FaultTrace.from_parameters(p), \
+        f"{arguments.geo} with {arguments.setnumber or 'its defaults'}"
+
+
+def segment_views(results, pairs, trace):
+    """[(segment, grid, slave indices)]: the slave nodes of each segment in the grids; a grid
+    covering several segments (D-F) is split by the position of its nodes along the trace (a
+    node at a segment end belongs to both segments)."""
+    views = []
+    for pair, covered in sorted(pairs.items()):
+        grid = f"contact_{pair}"
+        coordinates = results.grid_coordinates(0, grid)
+        if coordinates is None:
+            continue
+        if len(covered) == 1:
+            views.append((covered[0], grid, np.arange(len(coordinates))))
+            continue
+        along = trace.along(coordinates[:, :2])[0]
+        tolerance = 1e-6 * trace.total_length
+        for segment in covered:
+            start = trace.start[segment]
+            inside = np.nonzero((along >= start - tolerance) &
+                                (along <= start + trace.lengths[segment] + tolerance))[0]
+            if len(inside):
+                views.append((segment, grid, inside))
+    order = {seg: k for k, (seg, _, _) in enumerate(fault_profile.SEGMENTS)}
+    return sorted(views, key=lambda view: order[view[0]])
 
 
 def section_faces(x_ref, connectivity, z0, tolerance):
@@ -418,18 +465,18 @@ def setup_plan_axes(ax, results):
     ax.tick_params(labelsize=7)
 
 
-def segment_histories(results, segments):
-    """{segment: {field: (frames,) means over the slave nodes}} and the times."""
+def segment_histories(results, views):
+    """{segment: {field: (frames,) means over the segment's slave nodes}}."""
     fields = ("pressure", "shear_magnitude", "slip", "slip_rate", "mu", "status")
     histories = {}
-    for segment, pair in segments.items():
-        grid = f"contact_{pair}"
+    for segment, grid, picked in views:
         data = {name: [] for name in fields}
         data["slipping"] = []
         data["ratio"] = []
         ok = True
         for index in range(len(results.frames)):
             values = {name: results.grid_field(index, grid, name) for name in fields}
+            values = {name: None if v is None else v[picked] for name, v in values.items()}
             if values["status"] is None:
                 ok = False
                 break
@@ -453,8 +500,8 @@ def segment_histories(results, segments):
     return histories
 
 
-def figure_histories(results, segments, arguments, summary):
-    histories = segment_histories(results, segments)
+def figure_histories(results, views, arguments, summary):
+    histories = segment_histories(results, views)
     if not histories:
         message("fault histories skipped: no contact grid with fields in the frames")
         return []
@@ -509,20 +556,19 @@ def figure_histories(results, segments, arguments, summary):
     return [path]
 
 
-def figure_stick_slip(results, segments, trace, arguments, summary):
+def figure_stick_slip(results, views, trace, arguments, summary):
     """Status and slip rate of the slave nodes of one row (the node level nearest to
     mid-thickness) against the distance along the trace and time; each segment is drawn in
     its own range, so nodes shared by two pairs (at D, E, F) appear in both."""
     rows = []
-    for segment, pair in sorted(segments.items()):
-        grid = f"contact_{pair}"
+    for segment, grid, picked in views:
         coordinates = results.grid_coordinates(0, grid)
-        if coordinates is not None and len(coordinates):
-            rows.append((segment, grid, coordinates))
+        if coordinates is not None and len(picked):
+            rows.append((segment, grid, picked, coordinates[picked]))
     if not rows:
         message("stick-slip diagram skipped: no contact grids")
         return []
-    z_all = np.concatenate([c[:, 2] for _, _, c in rows])
+    z_all = np.concatenate([c[:, 2] for _, _, _, c in rows])
     levels = np.unique(np.round(z_all, 6))
     z_row = levels[np.argmin(np.abs(levels - 0.5 * (z_all.min() + z_all.max())))]
     times = results.times
@@ -533,13 +579,13 @@ def figure_stick_slip(results, segments, trace, arguments, summary):
     rates = []
     per_segment = []
     n_nodes = 0
-    for segment, grid, coordinates in rows:
-        pick = np.nonzero(np.abs(coordinates[:, 2] - z_row) <= 1e-6 * max(1.0, abs(z_row)))[0]
-        if not len(pick):
+    for segment, grid, picked, coordinates in rows:
+        row = np.nonzero(np.abs(coordinates[:, 2] - z_row) <= 1e-6 * max(1.0, abs(z_row)))[0]
+        if not len(row):
             continue
-        along = trace.along(coordinates[pick, :2])[0]
+        along = trace.along(coordinates[row, :2])[0]
         order = np.argsort(along)
-        pick, along = pick[order], along[order]
+        pick, along = picked[row[order]], along[order]
         status = np.full((len(times), len(pick)), np.nan)
         rate = np.full((len(times), len(pick)), np.nan)
         for index in range(len(times)):
@@ -665,7 +711,7 @@ def main():
     parser.add_argument("--results", required=True, help="fcs3d results file (.h5)")
     parser.add_argument("--out", required=True, help="directory for the figures")
     parser.add_argument("--deck", help="the deck of the run (default: <results>.inp if any)")
-    parser.add_argument("--geo", default=fault_profile.DEFAULT_GEO,
+    parser.add_argument("--geo",
                         help="the .geo file (fault trace if the results lack contact grids)")
     parser.add_argument("-setnumber", "--setnumber", nargs=2, action="append", default=[],
                         metavar=("NAME", "VALUE"), help="as given to gmsh")
@@ -685,42 +731,49 @@ def main():
         print(f"make_figures.py: {error}", file=sys.stderr)
         return 2
     os.makedirs(arguments.out, exist_ok=True)
+    here = os.path.dirname(os.path.abspath(arguments.results))
+    if arguments.geo is None:
+        local = os.path.join(here, "fault_bend.geo")
+        arguments.geo = local if os.path.exists(local) else fault_profile.DEFAULT_GEO
+    if not arguments.setnumber:
+        arguments.setnumber = recorded_mesh_options(os.path.join(here, "mesh_options.txt"))
     deck = arguments.deck or os.path.splitext(arguments.results)[0] + ".inp"
-    segments = {}
+    pairs = {}
     times = sorted(set([results.step_end(1) or STAGE_1_END] + list(PAPER_TIMES[1:])))
     if os.path.exists(deck):
-        segments = deck_segments(deck)
+        pairs = deck_pairs(deck)
         listed = deck_time_points(deck, "PAPER")
         if listed:
             times = sorted(set([results.step_end(1) or STAGE_1_END] + listed))
     else:
         deck = None
     grids = results.grid_names()
-    for segment, _, _ in fault_profile.SEGMENTS:
-        if segment not in segments and f"contact_{segment}" in grids:
-            segments[segment] = segment
-    segments = {s: p for s, p in segments.items() if f"contact_{p}" in grids}
+    if not pairs:
+        pairs = {seg: (seg,) for seg, _, _ in fault_profile.SEGMENTS}
+        pairs.update(COMBINED)
+    pairs = {p: covered for p, covered in pairs.items() if f"contact_{p}" in grids}
     summary = [f"results: {os.path.abspath(arguments.results)}",
                f"deck: {os.path.abspath(deck) if deck else 'none'}",
                f"frames: {len(results.frames)}, times {results.times.min():g} .. "
-               f"{results.times.max():g} s",
-               f"segments (contact grids): " +
-               (", ".join(f"{s} = contact_{p}" for s, p in sorted(segments.items())) or "none")]
+               f"{results.times.max():g} s"]
     try:
-        trace, source = fault_trace(results, segments, arguments)
+        trace, source = fault_trace(results, pairs, arguments)
     except (OSError, ValueError) as error:
         print(f"make_figures.py: fault trace: {error}", file=sys.stderr)
         return 2
     summary.append(f"trace (from {source}): " + "  ".join(
         f"{k} ({v[0]:.3f}, {v[1]:.3f})" for k, v in trace.points.items()))
+    views = segment_views(results, pairs, trace)
+    summary.append("segments: " + (", ".join(f"{seg} = {len(picked)} nodes of {grid}"
+                                             for seg, grid, picked in views) or "none"))
     event = first_slip_event(os.path.splitext(arguments.results)[0] + ".log")
     summary.append("first stick->slip event of stage 2 (log): " +
                    (f"t = {event[0]:.6g} s, node {event[1]}" if event else "none found"))
 
     written = []
     written += figure_mises(results, trace, times, arguments, summary)
-    written += figure_histories(results, segments, arguments, summary)
-    written += figure_stick_slip(results, segments, trace, arguments, summary)
+    written += figure_histories(results, views, arguments, summary)
+    written += figure_stick_slip(results, views, trace, arguments, summary)
     written += figure_loading(results, arguments, summary)
     results.close()
     path = os.path.join(arguments.out, f"{arguments.prefix}_summary.txt")

@@ -18,8 +18,12 @@ work=${FAULT_BEND_DIR:-$root/run/fault_bend}
 gmsh_options=${FAULT_BEND_GMSH:-}
 fcs3d_options=${FCS3D_OPTIONS:-}
 
-[ -x "$fcs3d" ] || { echo "run_default.sh: $fcs3d is not an executable (build with make)" >&2; exit 1; }
-command -v gmsh >/dev/null 2>&1 || { echo "run_default.sh: gmsh is not installed (Debian package gmsh)" >&2; exit 1; }
+fail() {
+  echo "run_default.sh: $*" >&2
+  exit 1
+}
+[ -x "$fcs3d" ] || fail "$fcs3d is not an executable (build with make)"
+command -v gmsh >/dev/null 2>&1 || fail "gmsh is not installed (Debian package gmsh)"
 mkdir -p "$work"
 cp "$root/input/fault_bend/fault_bend.geo" "$root/input/fault_bend/fault_bend.inp" "$work/"
 cd "$work"
@@ -30,17 +34,29 @@ echo "meshing fault_bend.geo ${gmsh_options:+($gmsh_options) }in $work"
 # shellcheck disable=SC2086  # the options are words to split
 if ! gmsh -3 -format msh41 $gmsh_options fault_bend.geo -o fault_bend.msh > gmsh.log 2>&1; then
   grep -i "error" gmsh.log >&2 || tail -20 gmsh.log >&2
-  echo "run_default.sh: gmsh failed; see $work/gmsh.log" >&2
-  exit 1
+  fail "gmsh failed; see $work/gmsh.log"
 fi
+# The checker takes the -setnumber options (it reads ASCII meshes only: no -bin).
+setnumbers=""
 # shellcheck disable=SC2086
-if ! "$python" "$root/post/check_fault_mesh.py" fault_bend.msh --geo fault_bend.geo $gmsh_options \
+set -f -- $gmsh_options
+set +f
+while [ $# -gt 0 ]; do
+  if [ "$1" = "-setnumber" ] && [ $# -ge 3 ]; then
+    setnumbers="$setnumbers -setnumber $2 $3"
+    shift 3
+  else
+    shift
+  fi
+done
+# shellcheck disable=SC2086
+if ! "$python" "$root/post/check_fault_mesh.py" fault_bend.msh --geo fault_bend.geo $setnumbers \
      > mesh_check.txt 2>&1; then
   cat mesh_check.txt >&2
-  echo "run_default.sh: the mesh check failed; see $work/mesh_check.txt" >&2
-  exit 1
+  fail "the mesh check failed; see $work/mesh_check.txt"
 fi
 head -n 1 mesh_check.txt
+printf '%s\n' "$setnumbers" > mesh_options.txt   # read by post/make_figures.py
 
 start=$(date +%s)
 status=0

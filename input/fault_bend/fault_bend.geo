@@ -49,6 +49,7 @@
 //            Y0 (y = 0), Z0 (z = 0, both blocks)         element-face surfaces and node sets
 //            CD_UPPER, CD_LOWER, DE_UPPER, DE_LOWER,
 //            EF_UPPER, EF_LOWER, FG_UPPER, FG_LOWER      the two sides of each fault segment
+//            DF_UPPER, DF_LOWER                          D-E and E-F together, each side
 // When the trace ends exactly at a corner (bend_angle = 0 with fault_angle = 45: C = (0,0),
 // G = (300,300)) the lower block has no face on x = 0 or y = 300; X0 and A then hold only the
 // upper block's faces.
@@ -378,6 +379,11 @@ Physical Surface("CD_LOWER") = {face_CD_l};
 Physical Surface("DE_LOWER") = {face_DE_l};
 Physical Surface("EF_LOWER") = {face_EF_l};
 Physical Surface("FG_LOWER") = {face_FG_l};
+// The whole frictional part D-F of each side (D-E and E-F together), for a single contact
+// pair in which the slave nodes at the bend E are one node each (with two pairs, DE and EF,
+// the nodes at E are slaves of both).
+Physical Surface("DF_UPPER") = {upper[3], upper[4]};
+Physical Surface("DF_LOWER") = {face_DE_l, face_EF_l};
 Physical Surface("A") = {face_A[]};
 Physical Surface("B") = {face_B[]};
 Physical Surface("X0") = {face_X0[]};

@@ -81,6 +81,10 @@ module fcs_contact_system
     integer, allocatable :: event_kind(:)
     !> How often each node's stick/slip tangent was switched in the current increment.
     integer, allocatable :: switches(:)
+    !> Largest changes over the last increment at nodes slipping before and after it: of
+    !> ln V, of mu and of ln(state), and the node where each happened.
+    real(dp) :: change(3) = 0.0_dp
+    integer :: change_node(3) = 0
   contains
     procedure :: init => system_init
     procedure :: n_slaves => system_n_slaves
@@ -573,11 +577,19 @@ contains
     real(dp), intent(in) :: x(:, :), dt, r
     type(contact_state_t), intent(inout) :: cstate
     integer :: k, s, kind
+    real(dp) :: old_rate, old_mu, old_state
+    logical :: was_slipping
     do k = 1, size(this%pairs)
       if (this%pairs(k)%grid%needs_rebuild(this%pairs(k)%face_nodes, x)) &
         call this%pairs(k)%grid%build(face_coordinates(this%pairs(k), x), this%pairs(k)%reach)
     end do
+    this%change = 0.0_dp
+    this%change_node = 0
     do s = 1, size(this%slave_node)
+      was_slipping = cstate%status(s) == CONTACT_SLIP .and. cstate%slip_rate(s) > 0.0_dp
+      old_rate = cstate%slip_rate(s)
+      old_mu = cstate%mu(s)
+      old_state = cstate%friction_state(s)
       kind = EVENT_NONE
       if (this%event_r(s) <= r * (1.0_dp + 1.0e-9_dp)) kind = this%event_kind(s)
       select case (cstate%status(s))
@@ -591,11 +603,29 @@ contains
       if (cstate%face(s) /= 0) then
         if (.not. in_pattern(this, s, cstate%face(s))) this%pattern_dirty = .true.
       end if
+      if (was_slipping .and. cstate%status(s) == CONTACT_SLIP .and. cstate%slip_rate(s) > 0.0_dp) &
+        call record_changes(this, s, [abs(log(cstate%slip_rate(s) / old_rate)), abs(cstate%mu(s) - &
+                            old_mu), this%pairs(this%slave_pair(s))%law%state_change(old_state, &
+                            cstate%friction_state(s))])
     end do
     this%event_r = huge(1.0_dp)
     this%event_kind = EVENT_NONE
     this%switches = 0
   end subroutine system_update
+
+  !> Keep the largest changes of ln V, mu, ln(state) and where they happened.
+  subroutine record_changes(this, s, changes)
+    type(contact_system_t), intent(inout) :: this
+    integer, intent(in) :: s
+    real(dp), intent(in) :: changes(3)
+    integer :: i
+    do i = 1, 3
+      if (changes(i) > this%change(i)) then
+        this%change(i) = changes(i)
+        this%change_node(i) = this%slave_node(s)
+      end if
+    end do
+  end subroutine record_changes
 
   !> True when face f is the face of slave s's pattern clique or one of its neighbours.
   logical function in_pattern(this, s, f)

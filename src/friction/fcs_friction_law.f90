@@ -26,6 +26,7 @@ module fcs_friction_law
     procedure :: n_state => friction_law_n_state
     procedure :: initial_state => friction_law_initial_state
     procedure :: evolve_state => friction_law_evolve_state
+    procedure :: state_change => friction_law_state_change
     procedure :: mu => friction_law_mu
   end type friction_law_t
 
@@ -74,5 +75,13 @@ contains
     real(dp), intent(in) :: state, rate, dt
     new_state = state
   end function friction_law_evolve_state
+
+  !> A dimensionless measure of how much the state changed from `old` to `new`, for the
+  !> R-minimum step control (0 for laws without state).
+  pure real(dp) function friction_law_state_change(this, old, new) result(change)
+    class(friction_law_t), intent(in) :: this
+    real(dp), intent(in) :: old, new
+    change = 0.0_dp
+  end function friction_law_state_change
 
 end module fcs_friction_law

@@ -39,6 +39,7 @@ module fcs_rate_state_base
     procedure :: n_state => rate_state_n_state
     procedure :: initial_state => rate_state_initial_state
     procedure :: evolve_state => rate_state_evolve_state
+    procedure :: state_change => rate_state_state_change
   end type rate_state_base_t
 
 contains
@@ -113,5 +114,14 @@ contains
       y = (u - 1.0_dp) * x / log(u)
     end if
   end function exp_minus_one
+
+  !> |ln(theta_new / theta_old)|: the change of the state's contribution b ln(theta) to mu,
+  !> in units of b.
+  pure real(dp) function rate_state_state_change(this, old, new) result(change)
+    class(rate_state_base_t), intent(in) :: this
+    real(dp), intent(in) :: old, new
+    change = 0.0_dp
+    if (old > 0.0_dp .and. new > 0.0_dp) change = abs(log(new / old))
+  end function rate_state_state_change
 
 end module fcs_rate_state_base

@@ -23,6 +23,7 @@ module fcs_slip_weakening
     procedure :: name => slip_weakening_name
     procedure :: n_state => slip_weakening_n_state
     procedure :: evolve_state => slip_weakening_evolve_state
+    procedure :: state_change => slip_weakening_state_change
   end type slip_weakening_t
 
 contains
@@ -59,5 +60,12 @@ contains
     real(dp), intent(in) :: state, rate, dt
     new_state = state + rate * dt
   end function slip_weakening_evolve_state
+
+  !> Slip over the increment in units of DC.
+  pure real(dp) function slip_weakening_state_change(this, old, new) result(change)
+    class(slip_weakening_t), intent(in) :: this
+    real(dp), intent(in) :: old, new
+    change = abs(new - old) / this%dc
+  end function slip_weakening_state_change
 
 end module fcs_slip_weakening

@@ -242,7 +242,15 @@ contains
             'configuration, the tangent and the contact linearisation accurate.'), &
           p('EVENT TOLERANCE', PARAM_REAL, default='1e-3', unit='-', &
             description='Events (contact, stick/slip, yield) whose fractions r lie within this ' // &
-            'relative tolerance of the smallest are taken together in one increment.')]), &
+            'relative tolerance of the smallest are taken together in one increment.'), &
+          p('MAX LOG RATE CHANGE', PARAM_REAL, default='1', unit='-', description='Largest ' // &
+            'change of ln V (slip rate) of a slipping node from one increment to the next. ' // &
+            'Like the two below, it sets the next trial time increment: scaling an increment ' // &
+            'does not change its slip rate, so rate effects are resolved in time instead.'), &
+          p('MAX FRICTION CHANGE', PARAM_REAL, default='5e-3', unit='-', description='Largest ' // &
+            'change of mu of a slipping node from one increment to the next.'), &
+          p('MAX STATE CHANGE', PARAM_REAL, default='0.2', unit='-', description='Largest ' // &
+            'change of ln(state) (rate-and-state laws) from one increment to the next.')]), &
       kw('BOUNDARY', CONTEXT_ANY, 'CalculiX', 'Prescribed displacements (fixed or ' // &
          'given values) or velocities on nodes or node sets.', &
          'node or node set, first dof, last dof (default: first), value (default 0); ' // &

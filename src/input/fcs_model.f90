@@ -105,6 +105,12 @@ module fcs_model
     !> Events whose fractions are within this relative tolerance of the smallest are taken
     !> together in one increment [-].
     real(dp) :: event_tolerance = 1.0e-3_dp
+    !> Largest changes from one increment to the next at a slipping node: of ln V (slip
+    !> rate), of mu, and of ln(state) for laws with a state. They set the next trial time
+    !> increment (the slip rate does not change when an increment is scaled).
+    real(dp) :: max_log_rate_change = 1.0_dp
+    real(dp) :: max_friction_change = 5.0e-3_dp
+    real(dp) :: max_state_change = 0.2_dp
   end type rmin_settings_t
 
   !> One step (loading stage). The condition lists are complete: they hold every condition

@@ -24,7 +24,9 @@ module fcs_static_explicit
   use fcs_hex8_shape, only: N_GAUSS_HEX8
   use fcs_model, only: FORMULATION_BBAR
   use fcs_rmin_events, only: rmin_collector_t, rmin_event_t, EVENT_STRAIN_LIMIT, &
-                             EVENT_ROTATION_LIMIT, EVENT_YIELD, event_kind_name
+                             EVENT_ROTATION_LIMIT, EVENT_YIELD, event_kind_name, EVENT_NONE, &
+                             EVENT_FULL_INCREMENT, EVENT_SLIP_RATE_CHANGE, EVENT_FRICTION_CHANGE, &
+                             EVENT_STATE_CHANGE
   use fcs_timer, only: phase_timer_t
   use fcs_contact_system, only: contact_system_t
   use fcs_assembly, only: element_cliques
@@ -71,6 +73,11 @@ module fcs_static_explicit
     real(dp), allocatable :: f_contact(:)
     !> Coordinates the contact search and elements use (current positions X + u).
     real(dp), allocatable :: x_contact(:, :)
+    !> Trial time increment allowed by the friction-rate limits (0: no limit), and what set
+    !> it (event kind and node), from the changes over the last increment.
+    real(dp) :: friction_dt = 0.0_dp
+    integer :: friction_kind = EVENT_NONE
+    integer :: friction_node = 0
   end type analysis_t
 
 contains
@@ -84,10 +91,16 @@ contains
     type(error_t), allocatable, intent(out) :: err
     real(dp) :: t0, t1, dt, r
     integer :: pass, n_switched
+    logical :: limited_by_friction
     associate (step => model%steps(a%state%step), state => a%state)
       t0 = state%step_time
       dt = step%max_increment
       if (state%step_increment == 0) dt = step%initial_increment
+      limited_by_friction = .false.
+      if (a%friction_dt > 0.0_dp .and. max(a%friction_dt, step%min_increment) < dt) then
+        dt = max(a%friction_dt, step%min_increment)
+        limited_by_friction = .true.
+      end if
       dt = min(dt, a%loading%next_breakpoint(t0) - t0)
       t1 = t0 + dt
       record%trial_increment = dt
@@ -120,6 +133,8 @@ contains
       if (allocated(err)) return
       r = a%collector%taken_fraction(step%rmin%event_tolerance)
       record%limiting = a%collector%limiting
+      if (limited_by_friction .and. record%limiting%kind == EVENT_FULL_INCREMENT) &
+        record%limiting = rmin_event_t(1.0_dp, a%friction_kind, a%friction_node, 0)
       if (r * dt < step%min_increment .and. r < 1.0_dp) then
         if (a%collector%limiting%kind == EVENT_STRAIN_LIMIT .or. &
             a%collector%limiting%kind == EVENT_ROTATION_LIMIT) then
@@ -149,6 +164,7 @@ contains
       if (a%contact%n_slaves() > 0) then
         call contact_positions(a, model)
         call a%contact%update(a%x_contact, state%contact, state%step_time - t0, r)
+        call friction_step_control(a, step, state%step_time - t0)
       end if
       state%time = state%time + (state%step_time - t0)
       state%last_increment = state%step_time - t0
@@ -158,6 +174,33 @@ contains
       call a%timers%stop('update')
     end associate
   end subroutine take_increment
+
+  !> The trial time increment for the next increment from the friction changes over the last
+  !> one (duration dt): each change of ln V, mu, state at a slipping node may be at most its
+  !> *RMIN limit; the increment grows by at most a factor 2 when the changes are small, and
+  !> is not limited when no node slips. Scaling an increment does not change its slip rate,
+  !> so rate effects are controlled through the time increment (method notes 1.6).
+  subroutine friction_step_control(a, step, dt)
+    type(analysis_t), intent(inout) :: a
+    type(step_t), intent(in) :: step
+    real(dp), intent(in) :: dt
+    real(dp) :: limits(3), factors(3)
+    integer :: i, worst
+    integer, parameter :: kinds(3) = [EVENT_SLIP_RATE_CHANGE, EVENT_FRICTION_CHANGE, EVENT_STATE_CHANGE]
+    if (all(a%contact%change <= 0.0_dp) .or. dt <= 0.0_dp) then
+      a%friction_dt = 0.0_dp
+      return
+    end if
+    limits = [step%rmin%max_log_rate_change, step%rmin%max_friction_change, step%rmin%max_state_change]
+    factors = 2.0_dp
+    do i = 1, 3
+      if (a%contact%change(i) > 0.0_dp) factors(i) = min(2.0_dp, limits(i) / a%contact%change(i))
+    end do
+    worst = minloc(factors, 1)
+    a%friction_dt = dt * factors(worst)
+    a%friction_kind = kinds(worst)
+    a%friction_node = a%contact%change_node(worst)
+  end subroutine friction_step_control
 
   !> K + K_f + load stiffness and the internal, contact forces on the current state.
   subroutine assemble_system(a, model, step, t0, dt, err)
