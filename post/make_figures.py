@@ -173,6 +173,21 @@ def deck_pairs(deck):
     return pairs
 
 
+def deck_heading(deck):
+    """The first line after *HEADING (the run's title), or ''."""
+    with open(deck, encoding="utf-8", errors="replace") as handle:
+        lines = [line.strip() for line in handle if not line.startswith("**")]
+    for i, line in enumerate(lines[:-1]):
+        if line.upper().startswith("*HEADING"):
+            return lines[i + 1]
+    return ""
+
+
+def stamp(fig, arguments):
+    """The run's label (deck heading and results file) at the foot of a figure."""
+    fig.text(0.005, 0.002, arguments.label, fontsize=6, color="0.35", ha="left", va="bottom")
+
+
 def deck_time_points(deck, name="PAPER"):
     """The times of *TIME POINTS, NAME=<name> (explicit lists only), or None."""
     with open(deck, encoding="utf-8", errors="replace") as handle:
@@ -433,6 +448,7 @@ def mises_figure(results, maps, trace, times, name, arguments, summary):
     fig.suptitle(f"Mises stress on the x-y section z = {maps.z0:g} mm "
                  f"(values {low:.2f} .. {peak:.2f} MPa)", fontsize=10)
     path = os.path.join(arguments.out, f"{arguments.prefix}_mises_{name}.png")
+    stamp(fig, arguments)
     fig.savefig(path, dpi=arguments.dpi)
     plt.close(fig)
     written = [path]
@@ -444,6 +460,7 @@ def mises_figure(results, maps, trace, times, name, arguments, summary):
         ax.set_title(f"Mises stress [MPa], t = {time:g} s, z = {maps.z0:g} mm", fontsize=9)
         fig.colorbar(mappable, ax=ax, extend=extend)
         path = os.path.join(arguments.out, f"{arguments.prefix}_mises_t{time:07.2f}.png")
+        stamp(fig, arguments)
         fig.savefig(path, dpi=arguments.dpi)
         plt.close(fig)
         written.append(path)
@@ -544,6 +561,7 @@ def figure_histories(results, views, arguments, summary):
     fig.suptitle("Fault segments: means over the slave nodes of each segment "
                  f"({len(times)} frames)", fontsize=10)
     path = os.path.join(arguments.out, f"{arguments.prefix}_fault_histories.png")
+    stamp(fig, arguments)
     fig.savefig(path, dpi=arguments.dpi)
     plt.close(fig)
     for segment, h in histories.items():
@@ -628,6 +646,7 @@ def figure_stick_slip(results, views, trace, arguments, summary):
     axes[0].set_title(f"contact status (slave nodes at z = {z_row:g} mm)", fontsize=9)
     axes[1].set_title("slip rate (same nodes; blank: zero)", fontsize=9)
     path = os.path.join(arguments.out, f"{arguments.prefix}_stick_slip.png")
+    stamp(fig, arguments)
     fig.savefig(path, dpi=arguments.dpi)
     plt.close(fig)
     summary.append(f"stick-slip diagram: {n_nodes} slave nodes at z = {z_row:g} mm, "
@@ -691,6 +710,7 @@ def figure_loading(results, arguments, summary):
         ax.tick_params(labelsize=7)
     fig.suptitle(f"Loading of face B (x = {x[:, 0].max():g} mm, {len(on_b)} nodes)", fontsize=10)
     path = os.path.join(arguments.out, f"{arguments.prefix}_loading.png")
+    stamp(fig, arguments)
     fig.savefig(path, dpi=arguments.dpi)
     plt.close(fig)
     summary.append(f"loading: B = {len(on_b)} nodes on x = {x[:, 0].max():g} mm")
@@ -718,6 +738,8 @@ def main():
     parser.add_argument("--z", type=float, help="z of the section [mm] (default: mid-thickness)")
     parser.add_argument("--vmax", type=float, help="top of the Mises colour scale [MPa]")
     parser.add_argument("--prefix", default="fault_bend")
+    parser.add_argument("--label", help="text at the foot of every figure (default: the deck's "
+                        "*HEADING and the results file)")
     parser.add_argument("--dpi", type=int, default=130)
     arguments = parser.parse_args()
 
@@ -752,7 +774,11 @@ def main():
         pairs = {seg: (seg,) for seg, _, _ in fault_profile.SEGMENTS}
         pairs.update(COMBINED)
     pairs = {p: covered for p, covered in pairs.items() if f"contact_{p}" in grids}
-    summary = [f"results: {os.path.abspath(arguments.results)}",
+    if arguments.label is None:
+        heading = deck_heading(deck) if deck else ""
+        arguments.label = f"{heading}  [{os.path.abspath(arguments.results)}]".strip()
+    summary = [f"run: {arguments.label}",
+               f"results: {os.path.abspath(arguments.results)}",
                f"deck: {os.path.abspath(deck) if deck else 'none'}",
                f"frames: {len(results.frames)}, times {results.times.min():g} .. "
                f"{results.times.max():g} s"]

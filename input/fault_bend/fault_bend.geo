@@ -35,13 +35,17 @@
 // Geometry.AutoCoherence = 0 once both blocks are extruded: the two blocks then share no
 // point, curve or node, and each is meshed on its own.
 //
-// Mesh: each block's x-y face is meshed with quadrangles (Frontal-Delaunay, blossom full-quad
+// Mesh: each block's x-y face is meshed with quadrangles (Frontal-Delaunay triangles, full-quad
 // recombination) and extruded through the thickness in `layers` layers of hexahedra.
-// Along the fault the node spacing is uniform on each segment: about h_fault on the upper
-// (slave) side and h_fault * lower_fault_factor on the lower (master) side, so with
-// lower_fault_factor = 1 (default) the fault nodes of the two sides coincide in position (they
-// are still distinct nodes), and with any other factor they do not match. Away from the fault
-// the in-plane size grows linearly from h_fault to h_far over the distance h_grading.
+// Along the fault the node spacing is uniform on each segment, at most h_fault on the upper
+// (slave) side and at most h_fault * lower_fault_factor on the lower (master) side (an even
+// number of elements per segment). With the default lower_fault_factor = 1.25 the fault nodes
+// of the two sides match only at C, D, E, F, G and where the two divisions happen to agree;
+// with lower_fault_factor = 1 they all coincide in position (still distinct nodes). Away from
+// the fault the in-plane size grows linearly from h_fault to h_far over the distance h_grading.
+// gmsh warns "Full-quad recombination only compatible with transfinite meshes if those are
+// performed first" once per fault and boundary curve: expected, the mesh is checked by
+// post/check_fault_mesh.py.
 //
 // Physical groups (fcs3d set and surface names are the upper-cased names):
 //   volumes  UPPER, LOWER                               element sets (and node sets)
@@ -83,7 +87,7 @@ If (!Exists(h_fault))
   h_fault = 10;           // mm, in-plane element size along the fault (upper side)
 EndIf
 If (!Exists(lower_fault_factor))
-  lower_fault_factor = 1.25; // lower (master) side spacing = h_fault * this factor
+  lower_fault_factor = 1.25; // lower (master) side spacing / upper (slave) side spacing
 EndIf
 If (!Exists(h_far))
   h_far = 25;             // mm, in-plane element size far from the fault
@@ -249,7 +253,9 @@ Transfinite Curve{6} = n_left_u + 1 Using Progression 1 / q_left_u;
 // Boundary, counter-clockwise: (0,0) -> (width,0) (Y0) -> (width,height) (B) -> G (A)
 // -> F -> E -> D -> C (fault, reversed) -> (0,0) (X0). Corner points coinciding with C or G
 // are left out.
-z_build_offset = 1024;   // a power of two: z + 1024 - 1024 is exact for z = 0 and thickness
+// A power of two above twice the thickness: the two blocks never overlap while they are
+// built, and z + offset - offset gives z back exactly for z = 0 (and to round-off otherwise).
+z_build_offset = 2^Ceil(Log(4 * thickness) / Log(2));
 zl = z_build_offset;
 Point(11) = {xC, yC, zl, h_lower};
 Point(12) = {xD, yD, zl, h_lower};

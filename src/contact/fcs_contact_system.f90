@@ -34,6 +34,8 @@ module fcs_contact_system
 
   !> Gaps within this fraction of the mean master face size count as touching.
   real(dp), parameter :: GAP_TOLERANCE = 1.0e-8_dp
+  !> Largest penetration allowed, as a fraction of the mean master face size.
+  real(dp), parameter :: PENETRATION_LIMIT = 0.05_dp
   !> Contact points within this distance (natural coordinates) of a segment edge are on it.
   real(dp), parameter :: SEGMENT_EDGE_TOLERANCE = 1.0e-6_dp
 
@@ -97,6 +99,7 @@ module fcs_contact_system
     procedure :: traction => system_traction
     procedure :: forces => system_forces
     procedure :: local_values => system_local_values
+    procedure :: check_penetration => system_check_penetration
   end type contact_system_t
 
 contains
@@ -771,6 +774,39 @@ contains
       end if
     end associate
   end subroutine update_open
+
+  !> Before an increment du is applied: no contact node may end up deeper in its master
+  !> than PENETRATION_LIMIT times the mean master face size (gaps predicted linearly). A
+  !> deeper penetration means the penalty E_n is far too small for the load, or a slave node
+  !> went through a thin master body: the run must stop rather than go on with wrong forces.
+  subroutine system_check_penetration(this, model_node_id, x, cstate, du, err)
+    class(contact_system_t), intent(in) :: this
+    integer, intent(in) :: model_node_id(:)
+    real(dp), intent(in) :: x(:, :), du(:)
+    type(contact_state_t), intent(in) :: cstate
+    type(error_t), allocatable, intent(out) :: err
+    type(segment_point_t) :: p
+    real(dp) :: due(15), gap
+    integer :: s, a, nodes(5)
+    do s = 1, size(this%slave_node)
+      if (cstate%status(s) /= CONTACT_STICK .and. cstate%status(s) /= CONTACT_SLIP) cycle
+      nodes = element_nodes(this, s, cstate)
+      do a = 1, 5
+        due(3 * a - 2:3 * a) = du(3 * nodes(a) - 2:3 * nodes(a))
+      end do
+      p = segment_point(x(:, nodes(2:5)), cstate%xi(:, s))
+      gap = cstate%gap(s) + relative_normal(p, due)
+      associate (pair => this%pairs(this%slave_pair(s)))
+        if (-gap <= PENETRATION_LIMIT * pair%face_size) cycle
+        call fatal_error(err, 'excessive penetration: slave node ' // str(model_node_id(nodes(1))) // &
+          ' of contact pair ' // pair%name // ' would end ' // str(-gap) // ' deep in the master ' // &
+          'surface (more than ' // str(nint(100 * PENETRATION_LIMIT)) // '% of its face size ' // &
+          str(pair%face_size) // '): the normal penalty E_n = ' // str(pair%normal_stiffness) // &
+          ' is too small for the contact pressure, or the node went through the master body')
+        return
+      end associate
+    end do
+  end subroutine system_check_penetration
 
   !> Values of slave s in the local frame of its master face, as CalculiX prints them:
   !> relative displacement (normal = gap, tangential components of the accumulated

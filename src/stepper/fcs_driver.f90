@@ -341,7 +341,10 @@ contains
           exit
         end if
         call take_increment(a, model, record, err)
-        if (allocated(err)) exit
+        if (allocated(err)) then
+          call save_last_good(run, model, err)
+          exit
+        end if
         call log_increment(run, model, record)
         call increment_outputs(run, model, .false., err)
         if (.not. allocated(err)) call run%monitors%watch_events(model, a, state%time - &
@@ -359,6 +362,25 @@ contains
                                            str(state%increment + 1) // ', time ' // str(state%time))
     end associate
   end subroutine run_increments
+
+  !> An increment failed (the state is still that of the last good increment): write a
+  !> checkpoint and a results frame of that state, and say so in the error message.
+  subroutine save_last_good(run, model, err)
+    type(run_t), intent(inout) :: run
+    type(model_t), intent(in) :: model
+    type(error_t), intent(inout) :: err
+    type(error_t), allocatable :: secondary
+    call write_frame(run, model, secondary)
+    if (.not. allocated(secondary)) call checkpoint(run, model, secondary)
+    if (allocated(secondary)) then
+      err%message = err%message // new_line('a') // '(saving the last good state also failed: ' // &
+                    secondary%message // ')'
+    else
+      err%message = err%message // new_line('a') // 'the state of the last good increment (' // &
+        str(run%analysis%state%increment) // ', time ' // str(run%analysis%state%time) // &
+        ') is in the last frame of ' // run%job // '.h5 and in the checkpoint ' // run%job // '.rst.h5'
+    end if
+  end subroutine save_last_good
 
   !> SIGTERM or SIGINT: the increment is complete; write a checkpoint and stop.
   subroutine stop_on_signal(run, model, err)

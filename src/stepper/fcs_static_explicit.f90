@@ -152,6 +152,12 @@ contains
       call a%timers%stop('r-minimum')
       call a%timers%start('update')
       a%du = a%du_residual + r * a%du_load
+      ! Nothing of the state changes before every element is known to stay valid, so that an
+      ! error leaves the state of the last good increment (to checkpoint and report).
+      if (step%nlgeom) call check_new_geometry(a, model, err)
+      if (.not. allocated(err) .and. a%contact%n_slaves() > 0) &
+        call a%contact%check_penetration(model%mesh%node_id, a%x_contact, state%contact, a%du, err)
+      if (allocated(err)) return
       call update_elements(a, model, step, r, record, err)
       if (allocated(err)) return
       state%u = state%u + reshape(a%du, shape(state%u))
@@ -417,6 +423,28 @@ contains
     end do
     record%n_events_taken = count_taken(a, r)
   end subroutine update_elements
+
+  !> Every element must keep a positive Jacobian on the mid-increment and the end
+  !> configurations of the increment about to be applied.
+  subroutine check_new_geometry(a, model, err)
+    type(analysis_t), intent(in) :: a
+    type(model_t), intent(in) :: model
+    type(error_t), allocatable, intent(out) :: err
+    type(hex8_geometry_t) :: geo
+    real(dp) :: du(3, 8), x(3, 8)
+    integer :: e
+    logical :: ok_mid, ok_end
+    do e = 1, model%mesh%n_elements
+      du = element_increment(a%du, model%mesh%connectivity(:, e))
+      x = element_configuration(model, a%state, e, .true.)
+      call hex8_geometry(x + 0.5_dp * du, geo, ok_mid)
+      call hex8_geometry(x + du, geo, ok_end)
+      if (.not. (ok_mid .and. ok_end)) then
+        call inverted_element_error(model, e, err)
+        return
+      end if
+    end do
+  end subroutine check_new_geometry
 
   !> Rotate an engineering-shear strain like a stress (tensor shear in between).
   pure function rotate_strain(strain, spin) result(rotated)
