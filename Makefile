@@ -19,9 +19,19 @@ PACKAGES := gfortran liblapack-dev libopenblas-dev libsuitesparse-dev libhdf5-de
             gmsh python3-numpy python3-matplotlib python3-h5py calculix-ccx libmumps-seq-dev
 MPI_PACKAGES := openmpi-bin libopenmpi-dev libmumps-dev libmetis-dev
 
+ifeq ($(MPI),1)
+VARIANT := mpi
+FC := mpif90
+BIN := bin/fcs3d-mpi
+MUMPS_INC :=
+MUMPS_LIBS := -ldmumps -lmumps_common -lpord -lmetis
+else
 VARIANT := serial
-BUILD := build/$(VARIANT)
 BIN := bin/fcs3d
+MUMPS_INC := -I /usr/include/mumps_seq
+MUMPS_LIBS := -ldmumps_seq -lmumps_common_seq -lmpiseq_seq -lpord_seq
+endif
+BUILD := build/$(VARIANT)
 ifeq ($(DEBUG),1)
 FFLAGS_OPT := -O0 -g -fcheck=all -ffpe-trap=invalid,zero,overflow -fbacktrace -finit-real=snan
 BUILD := build/debug-$(VARIANT)
@@ -35,10 +45,9 @@ HDF5_LIB := /usr/lib/$(MULTIARCH)/hdf5/serial
 # -Wno-unused-dummy-argument: implementations of abstract interfaces need not use every dummy.
 FFLAGS := -std=f2008 -Wall -Wextra -Wno-compare-reals -Wno-maybe-uninitialized -Wno-uninitialized \
           -Wno-unused-dummy-argument -fimplicit-none \
-          $(FFLAGS_OPT) -J $(BUILD) -I $(BUILD) -I $(HDF5_INC) -I /usr/include/mumps_seq
+          $(FFLAGS_OPT) -J $(BUILD) -I $(BUILD) -I $(HDF5_INC) $(MUMPS_INC)
 LDLIBS := -L$(HDF5_LIB) -lhdf5_fortran -lhdf5 -lumfpack -lamd -lsuitesparseconfig \
-          -ldmumps_seq -lmumps_common_seq -lmpiseq_seq -lpord_seq \
-          -llapack -lblas -lpthread
+          $(MUMPS_LIBS) -llapack -lblas -lpthread
 
 LIB_SRC := $(shell find src -name '*.f90' ! -name main.f90 ! -path 'src/parallel/*/*' | sort) \
            $(sort $(wildcard src/parallel/$(VARIANT)/*.f90)) $(BUILD)/fcs_version.f90

@@ -23,7 +23,7 @@ program fcs3d
   if (.not. allocated(err) .and. action == ACTION_RUN) call run_job(options, err)
   if (allocated(err)) then
     flush (output_unit)
-    write (error_unit, '(a)') 'fcs3d: ' // err%message
+    if (.not. err%silent) write (error_unit, '(a)') 'fcs3d: ' // err%message
     flush (error_unit)
     call c_exit(int(err%exit_code, c_int))
   end if

@@ -336,11 +336,14 @@ contains
   !> of its neighbours. Appended to clique_ptr/clique_nodes. The faces are the current ones,
   !> or with `keep_centres` those of the last pattern (after a restart, so that the pattern,
   !> and with it every floating-point result, is the one of the interrupted run).
-  subroutine system_cliques(this, cstate, clique_ptr, clique_nodes, keep_centres)
+  !> Only the slaves marked in `owned` (all if absent) contribute cliques: each process
+  !> holds the contact elements it assembles.
+  subroutine system_cliques(this, cstate, clique_ptr, clique_nodes, keep_centres, owned)
     class(contact_system_t), intent(inout) :: this
     type(contact_state_t), intent(in) :: cstate
     integer, allocatable, intent(inout) :: clique_ptr(:), clique_nodes(:)
     logical, intent(in), optional :: keep_centres
+    logical, intent(in), optional :: owned(:)
     integer, allocatable :: nodes(:)
     integer :: s, j, f
     logical :: keep
@@ -350,6 +353,9 @@ contains
       if (.not. keep) this%pattern_face(s) = cstate%face(s)
       f = this%pattern_face(s)
       if (f == 0) cycle
+      if (present(owned)) then
+        if (.not. owned(s)) cycle
+      end if
       associate (pair => this%pairs(this%slave_pair(s)))
         nodes = [this%slave_node(s)]
         do j = pair%neighbor_ptr(f), pair%neighbor_ptr(f + 1) - 1
@@ -397,18 +403,22 @@ contains
   end function element_nodes
 
   !> Add K_f of every closed node to `matrix` and its forces R f to f_contact (3*n_nodes).
-  subroutine system_assemble(this, x, cstate, dt, matrix, f_contact, err)
+  subroutine system_assemble(this, x, cstate, dt, matrix, f_contact, err, owned)
     class(contact_system_t), intent(inout) :: this
     real(dp), intent(in) :: x(:, :), dt
     type(contact_state_t), intent(in) :: cstate
     type(sparse_matrix_t), intent(inout) :: matrix
     real(dp), intent(inout) :: f_contact(:)
     type(error_t), allocatable, intent(out) :: err
+    logical, intent(in), optional :: owned(:)
     type(contact_linear_t) :: lin
     integer :: s, a, nodes(5)
     logical :: missing
     do s = 1, size(this%slave_node)
       if (cstate%status(s) == CONTACT_OPEN) cycle
+      if (present(owned)) then
+        if (.not. owned(s)) cycle
+      end if
       call linearise(this, s, x, cstate, dt, lin)
       nodes = element_nodes(this, s, cstate)
       call matrix%add_matrix(nodes, lin%stiffness, missing)

@@ -21,6 +21,8 @@ module fcs_error
   type :: error_t
     character(len=:), allocatable :: message
     integer :: exit_code = EXIT_INTERNAL
+    !> Already reported (the other ranks of a parallel run): exit without printing it.
+    logical :: silent = .false.
   end type error_t
 
 contains

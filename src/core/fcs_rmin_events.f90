@@ -41,6 +41,8 @@ module fcs_rmin_events
     procedure :: offer => collector_offer
     procedure :: is_taken => collector_is_taken
     procedure :: taken_fraction => collector_taken_fraction
+    procedure :: band_fraction => collector_band_fraction
+    procedure :: limit_fraction => collector_limit_fraction
   end type rmin_collector_t
 
 contains
@@ -103,6 +105,29 @@ contains
       if (is_limit(this%events(i)%kind)) r = min(r, this%events(i)%r)
     end do
   end function collector_taken_fraction
+
+  !> The largest discrete-event fraction within `tolerance` of r_min (r_min if none): the
+  !> widening of the increment to near-simultaneous events, before the limits cap it.
+  pure real(dp) function collector_band_fraction(this, tolerance) result(r)
+    class(rmin_collector_t), intent(in) :: this
+    real(dp), intent(in) :: tolerance
+    integer :: i
+    r = this%r_min
+    do i = 1, this%n_events
+      if (is_limit(this%events(i)%kind)) cycle
+      if (this%events(i)%r <= this%r_min * (1.0_dp + tolerance)) r = max(r, this%events(i)%r)
+    end do
+  end function collector_band_fraction
+
+  !> The smallest fraction of the limits that are not events (strain, rotation); 1 if none.
+  pure real(dp) function collector_limit_fraction(this) result(r)
+    class(rmin_collector_t), intent(in) :: this
+    integer :: i
+    r = 1.0_dp
+    do i = 1, this%n_events
+      if (is_limit(this%events(i)%kind)) r = min(r, this%events(i)%r)
+    end do
+  end function collector_limit_fraction
 
   pure logical function is_limit(kind)
     integer, intent(in) :: kind

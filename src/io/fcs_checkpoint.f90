@@ -125,7 +125,7 @@ contains
       call put_real3(archive, '/state/material_state', state%material_state, err)
     if (.not. allocated(err)) call put_real1(archive, '/state/scalars', state_scalars(state), err)
     if (.not. allocated(err)) call put_int1(archive, '/state/counters', &
-      [state%step, state%increment, state%step_increment], err)
+      [state%step, state%increment, state%step_increment, state%friction_kind, state%friction_node], err)
     if (.not. allocated(err) .and. contact%n_slaves() > 0) &
       call write_contact(archive, state, contact, err)
   end subroutine write_contents
@@ -197,8 +197,9 @@ contains
 
   pure function state_scalars(state) result(values)
     type(state_t), intent(in) :: state
-    real(dp) :: values(5)
-    values = [state%time, state%step_time, state%last_increment, state%last_r, state%residual_norm]
+    real(dp) :: values(6)
+    values = [state%time, state%step_time, state%last_increment, state%last_r, state%residual_norm, &
+              state%friction_dt]
   end function state_scalars
 
   subroutine write_contact(archive, state, contact, err)
@@ -329,7 +330,7 @@ contains
     if (.not. allocated(err) .and. size(state%material_state, 1) > 0) &
       call get_real3(archive, '/state/material_state', state%material_state, err)
     if (allocated(err)) return
-    allocate (scalars(5), counters(3))
+    allocate (scalars(6), counters(5))
     call get_real1(archive, '/state/scalars', scalars, err)
     if (.not. allocated(err)) call get_int1(archive, '/state/counters', counters, err)
     if (allocated(err)) return
@@ -338,9 +339,12 @@ contains
     state%last_increment = scalars(3)
     state%last_r = scalars(4)
     state%residual_norm = scalars(5)
+    state%friction_dt = scalars(6)
     state%step = counters(1)
     state%increment = counters(2)
     state%step_increment = counters(3)
+    state%friction_kind = counters(4)
+    state%friction_node = counters(5)
   end subroutine read_state
 
   subroutine read_contact(archive, state, contact, err)

@@ -46,6 +46,8 @@ module fcs_event_catalog
     type(slip_event_t), allocatable :: events(:)
     integer :: n_events = 0
     character(len=:), allocatable :: csv_path
+    !> Whether this process writes the CSV (rank 0 of a parallel run).
+    logical :: writes = .true.
   contains
     procedure :: init => catalog_init
     procedure :: update => catalog_update
@@ -56,13 +58,15 @@ module fcs_event_catalog
 contains
 
   !> Watch `size(pair_sizes)` pairs with the given numbers of slave nodes.
-  subroutine catalog_init(this, threshold, min_slip, pair_sizes, csv_path, err)
+  subroutine catalog_init(this, threshold, min_slip, pair_sizes, csv_path, err, writes)
     class(event_catalog_t), intent(inout) :: this
     real(dp), intent(in) :: threshold, min_slip
     integer, intent(in) :: pair_sizes(:)
     character(len=*), intent(in) :: csv_path
     type(error_t), allocatable, intent(out) :: err
+    logical, intent(in), optional :: writes
     integer :: k, n
+    if (present(writes)) this%writes = writes
     this%threshold = threshold
     this%min_slip = min_slip
     this%csv_path = csv_path
@@ -176,6 +180,7 @@ contains
     type(error_t), allocatable, intent(out) :: err
     integer :: unit, stat
     character(len=256) :: msg
+    if (.not. this%writes) return
     open (newunit=unit, file=this%csv_path, action='write', position='append', iostat=stat, iomsg=msg)
     if (stat /= 0) then
       call fatal_error(err, 'writing the event catalog ' // this%csv_path // ': ' // trim(msg))
@@ -200,6 +205,7 @@ contains
     type(error_t), allocatable, intent(out) :: err
     integer :: unit, stat, i
     character(len=256) :: msg
+    if (.not. this%writes) return
     open (newunit=unit, file=this%csv_path, action='write', status='replace', iostat=stat, iomsg=msg)
     if (stat /= 0) then
       call fatal_error(err, 'writing the event catalog ' // this%csv_path // ': ' // trim(msg))

@@ -16,6 +16,9 @@ module fcs_history
     type(string_t), allocatable :: columns(:)
     real(dp), allocatable :: rows(:, :)
     integer :: n_rows = 0
+    !> Whether this process writes the CSV (rank 0 of a parallel run; every process keeps
+    !> the rows).
+    logical :: writes = .true.
   contains
     procedure :: create => table_create
     procedure :: append => table_append
@@ -27,11 +30,13 @@ module fcs_history
 contains
 
   !> A new table with its CSV file (header line written).
-  subroutine table_create(this, name, csv_path, columns, err)
+  subroutine table_create(this, name, csv_path, columns, err, writes)
     class(history_table_t), intent(inout) :: this
     character(len=*), intent(in) :: name, csv_path
     type(string_t), intent(in) :: columns(:)
     type(error_t), allocatable, intent(out) :: err
+    logical, intent(in), optional :: writes
+    if (present(writes)) this%writes = writes
     this%name = name
     this%csv_path = csv_path
     this%columns = columns
@@ -55,6 +60,7 @@ contains
     end if
     this%n_rows = this%n_rows + 1
     this%rows(:, this%n_rows) = values
+    if (.not. this%writes) return
     open (newunit=unit, file=this%csv_path, action='write', position='append', iostat=stat, iomsg=msg)
     if (stat /= 0) then
       call fatal_error(err, 'writing history ' // this%csv_path // ': ' // trim(msg))
@@ -70,6 +76,7 @@ contains
     type(error_t), allocatable, intent(out) :: err
     integer :: unit, stat, i
     character(len=256) :: msg
+    if (.not. this%writes) return
     open (newunit=unit, file=this%csv_path, action='write', status='replace', iostat=stat, iomsg=msg)
     if (stat /= 0) then
       call fatal_error(err, 'writing history ' // this%csv_path // ': ' // trim(msg))

@@ -21,6 +21,7 @@ module fcs_mumps
   use fcs_timer, only: wall_time
   use fcs_sparse, only: sparse_matrix_t
   use fcs_linear_solver, only: linear_solver_t
+  use fcs_comm, only: comm_t
   implicit none
   private
   public :: mumps_solver_t, MUMPS_SEQUENTIAL_COMM
@@ -40,6 +41,8 @@ module fcs_mumps
   integer, parameter :: MUMPS_NO_OUTPUT = -1, MUMPS_PRINT_NOTHING = 0
   !> ICNTL(5) = 0: assembled matrix; ICNTL(18) = 0: centralised on the host.
   integer, parameter :: MUMPS_ASSEMBLED = 0, MUMPS_CENTRALISED = 0
+  !> ICNTL(18) = 3: each process gives its own entries (distributed assembled input).
+  integer, parameter :: MUMPS_DISTRIBUTED = 3
   !> Automatic retries of a factorisation that ran out of workspace, each doubling the
   !> relaxation ICNTL(14) (percent of extra workspace over the analysis estimate).
   integer, parameter :: MAX_WORKSPACE_RETRIES = 2
@@ -80,6 +83,11 @@ module fcs_mumps
   !> keeps the default.
   type, extends(linear_solver_t) :: mumps_solver_t
     integer :: communicator = MUMPS_SEQUENTIAL_COMM
+    !> With more than one process (MPI build): every rank passes the entries of its own
+    !> matrix (summed by MUMPS), the right-hand side is read on rank 0 and the solution
+    !> broadcast to every rank. Set with `set_comm` before the first factorisation.
+    type(comm_t) :: comm
+    logical :: distributed = .false.
     type(dmumps_struc), allocatable, private :: id
     !> Order, stored entries and pattern version of the analysed matrix (-1: none yet).
     integer, private :: n = 0
@@ -91,6 +99,7 @@ module fcs_mumps
     procedure :: solve => mumps_solve
     procedure :: free => mumps_free
     procedure :: name => mumps_name
+    procedure :: set_comm => mumps_set_comm
   end type mumps_solver_t
 
 contains
@@ -115,7 +124,11 @@ contains
       this%stats%n_analyses = this%stats%n_analyses + 1
     end if
     started = wall_time()
-    this%id%A(:) = matrix%val
+    if (this%distributed) then
+      this%id%A_loc(:) = matrix%val
+    else
+      this%id%A(:) = matrix%val
+    end if
     call factorise_with_retries(this, err)
     if (allocated(err)) return
     this%factored = .true.
@@ -123,6 +136,15 @@ contains
     this%stats%n_factorisations = this%stats%n_factorisations + 1
     this%stats%factor_entries = factor_entries(this%id%INFOG(29))
   end subroutine mumps_factor
+
+  !> Run on the processes of `comm`; with more than one, in distributed mode.
+  subroutine mumps_set_comm(this, comm)
+    class(mumps_solver_t), intent(inout) :: this
+    type(comm_t), intent(in) :: comm
+    this%comm = comm
+    this%distributed = comm%size > 1
+    if (this%distributed) this%communicator = comm%fortran_handle()
+  end subroutine mumps_set_comm
 
   !> True when `matrix` is not the pattern analysed last.
   pure logical function needs_analysis(this, matrix)
@@ -137,7 +159,8 @@ contains
     class(mumps_solver_t), intent(inout) :: this
     type(error_t), allocatable, intent(out) :: err
     allocate (this%id)
-    nullify (this%id%IRN, this%id%JCN, this%id%A, this%id%RHS)
+    nullify (this%id%IRN, this%id%JCN, this%id%A, this%id%RHS, this%id%IRN_loc, this%id%JCN_loc, &
+             this%id%A_loc)
     ! JOB = -1 reads KEEP (to tell a fresh instance from a live one) before setting it.
     this%id%KEEP = 0
     this%id%COMM = this%communicator
@@ -152,6 +175,7 @@ contains
     this%id%ICNTL(4) = MUMPS_PRINT_NOTHING
     this%id%ICNTL(5) = MUMPS_ASSEMBLED
     this%id%ICNTL(18) = MUMPS_CENTRALISED
+    if (this%distributed) this%id%ICNTL(18) = MUMPS_DISTRIBUTED
   end subroutine mumps_initialise
 
   !> JOB = 1: coordinate copy of the pattern (and the current values, which the automatic
@@ -164,24 +188,47 @@ contains
     integer(i8) :: p
     this%analysed_version = -1
     call release_matrix_arrays(this)
-    allocate (this%id%IRN(matrix%nnz), this%id%JCN(matrix%nnz), this%id%A(matrix%nnz))
-    do row = 1, matrix%n
-      do p = matrix%row_ptr(row), matrix%row_ptr(row + 1) - 1
-        this%id%IRN(p) = row
+    if (this%distributed) then
+      call distributed_entries(this, matrix)
+    else
+      allocate (this%id%IRN(matrix%nnz), this%id%JCN(matrix%nnz), this%id%A(matrix%nnz))
+      do row = 1, matrix%n
+        do p = matrix%row_ptr(row), matrix%row_ptr(row + 1) - 1
+          this%id%IRN(p) = row
+        end do
       end do
-    end do
-    this%id%JCN(:) = matrix%col(1:matrix%nnz)
-    this%id%A(:) = matrix%val(1:matrix%nnz)
+      this%id%JCN(:) = matrix%col(1:matrix%nnz)
+      this%id%A(:) = matrix%val(1:matrix%nnz)
+      this%id%NNZ = matrix%nnz
+      this%id%NZ = 0
+      if (matrix%nnz <= huge(this%id%NZ)) this%id%NZ = int(matrix%nnz)
+    end if
     this%id%N = matrix%n
-    this%id%NNZ = matrix%nnz
-    this%id%NZ = 0
-    if (matrix%nnz <= huge(this%id%NZ)) this%id%NZ = int(matrix%nnz)
     call run_job(this, JOB_ANALYSE, 'analysis of ' // str(matrix%n) // ' equations', err)
     if (allocated(err)) return
     this%n = matrix%n
     this%nnz = matrix%nnz
     this%analysed_version = matrix%pattern_version
   end subroutine mumps_analyse
+
+  !> This rank's entries, in coordinate form (distributed assembled input, ICNTL(18) = 3).
+  subroutine distributed_entries(this, matrix)
+    class(mumps_solver_t), intent(inout) :: this
+    type(sparse_matrix_t), intent(in) :: matrix
+    integer :: row
+    integer(i8) :: p
+    allocate (this%id%IRN_loc(matrix%nnz), this%id%JCN_loc(matrix%nnz), this%id%A_loc(matrix%nnz))
+    do row = 1, matrix%n
+      do p = matrix%row_ptr(row), matrix%row_ptr(row + 1) - 1
+        this%id%IRN_loc(p) = row
+      end do
+    end do
+    this%id%JCN_loc(:) = matrix%col(1:matrix%nnz)
+    this%id%A_loc(:) = matrix%val(1:matrix%nnz)
+    this%id%NNZ_loc = matrix%nnz
+    this%id%NZ_loc = 0
+    if (matrix%nnz <= huge(this%id%NZ_loc)) this%id%NZ_loc = int(matrix%nnz)
+  end subroutine distributed_entries
 
   !> JOB = 2, repeated up to MAX_WORKSPACE_RETRIES times with a doubled ICNTL(14) when MUMPS
   !> reports a workspace too small for the factorisation (INFOG(1) = -8, -9, -17, -20). The
@@ -243,12 +290,14 @@ contains
       if (size(this%id%RHS) /= this%n) deallocate (this%id%RHS)
     end if
     if (.not. associated(this%id%RHS)) allocate (this%id%RHS(this%n))
+    ! Distributed: the right-hand side is read and the solution returned on rank 0 only.
     this%id%RHS(:) = b
     this%id%NRHS = 1
     this%id%LRHS = this%n
     call run_job(this, JOB_SOLVE, 'solve', err)
     if (allocated(err)) return
     x(:) = this%id%RHS
+    if (this%distributed) call this%comm%broadcast_real(x)
     this%stats%solve_seconds = wall_time() - started
   end subroutine mumps_solve
 
@@ -276,6 +325,9 @@ contains
     if (associated(this%id%IRN)) deallocate (this%id%IRN)
     if (associated(this%id%JCN)) deallocate (this%id%JCN)
     if (associated(this%id%A)) deallocate (this%id%A)
+    if (associated(this%id%IRN_loc)) deallocate (this%id%IRN_loc)
+    if (associated(this%id%JCN_loc)) deallocate (this%id%JCN_loc)
+    if (associated(this%id%A_loc)) deallocate (this%id%A_loc)
   end subroutine release_matrix_arrays
 
   !> The solver's name as the deck spells it.

@@ -36,6 +36,9 @@ module fcs_sparse
     procedure :: has_block => sparse_has_block
     procedure :: multiply => sparse_multiply
     procedure :: apply_dirichlet => sparse_apply_dirichlet
+    procedure :: free_diagonal_sum => sparse_free_diagonal_sum
+    procedure :: eliminate => sparse_eliminate
+    procedure :: set_diagonal => sparse_set_diagonal
     procedure :: diagonal => sparse_diagonal
     procedure :: free => sparse_free
   end type sparse_matrix_t
@@ -233,13 +236,30 @@ contains
   !> values move to the right-hand side of the free rows (rhs_i -= a_ij x_j, a_ij = 0), and each
   !> constrained row becomes `scale` times the identity with rhs = scale * value, `scale` being
   !> the mean absolute diagonal of the free rows (keeps the conditioning of the system).
+  !> (A distributed system calls the three steps below separately, summing between them.)
   subroutine sparse_apply_dirichlet(this, constrained, values, rhs)
     class(sparse_matrix_t), intent(inout) :: this
     logical, intent(in) :: constrained(:)
     real(dp), intent(in) :: values(:)
     real(dp), intent(inout) :: rhs(:)
     real(dp) :: scale, total
-    integer :: i, n_free
+    integer :: n_free
+    call this%free_diagonal_sum(constrained, total, n_free)
+    scale = 1.0_dp
+    if (n_free > 0) scale = total / n_free
+    if (scale <= 0.0_dp) scale = 1.0_dp
+    call this%eliminate(constrained, values, rhs)
+    call this%set_diagonal(constrained, scale)
+    where (constrained) rhs = scale * values
+  end subroutine sparse_apply_dirichlet
+
+  !> Sum of |a_ii| over the free rows, and their number.
+  subroutine sparse_free_diagonal_sum(this, constrained, total, n_free)
+    class(sparse_matrix_t), intent(in) :: this
+    logical, intent(in) :: constrained(:)
+    real(dp), intent(out) :: total
+    integer, intent(out) :: n_free
+    integer :: i
     integer(i8) :: p
     total = 0.0_dp
     n_free = 0
@@ -250,25 +270,45 @@ contains
       end do
       n_free = n_free + 1
     end do
-    scale = 1.0_dp
-    if (n_free > 0) scale = total / n_free
-    if (scale <= 0.0_dp) scale = 1.0_dp
+  end subroutine sparse_free_diagonal_sum
+
+  !> Move the known values of constrained columns to the right-hand side of the free rows
+  !> (rhs_i -= a_ij x_j) and zero those entries and every entry of the constrained rows.
+  subroutine sparse_eliminate(this, constrained, values, rhs)
+    class(sparse_matrix_t), intent(inout) :: this
+    logical, intent(in) :: constrained(:)
+    real(dp), intent(in) :: values(:)
+    real(dp), intent(inout) :: rhs(:)
+    integer :: i
+    integer(i8) :: p
     do i = 1, this%n
       if (constrained(i)) then
-        do p = this%row_ptr(i), this%row_ptr(i + 1) - 1
-          this%val(p) = merge(scale, 0.0_dp, this%col(p) == i)
-        end do
-        rhs(i) = scale * values(i)
-      else
-        do p = this%row_ptr(i), this%row_ptr(i + 1) - 1
-          if (constrained(this%col(p))) then
-            rhs(i) = rhs(i) - this%val(p) * values(this%col(p))
-            this%val(p) = 0.0_dp
-          end if
-        end do
+        this%val(this%row_ptr(i):this%row_ptr(i + 1) - 1) = 0.0_dp
+        cycle
       end if
+      do p = this%row_ptr(i), this%row_ptr(i + 1) - 1
+        if (constrained(this%col(p))) then
+          rhs(i) = rhs(i) - this%val(p) * values(this%col(p))
+          this%val(p) = 0.0_dp
+        end if
+      end do
     end do
-  end subroutine sparse_apply_dirichlet
+  end subroutine sparse_eliminate
+
+  !> a_ii = value on the constrained rows (the pattern must hold their diagonals).
+  subroutine sparse_set_diagonal(this, constrained, value)
+    class(sparse_matrix_t), intent(inout) :: this
+    logical, intent(in) :: constrained(:)
+    real(dp), intent(in) :: value
+    integer :: i
+    integer(i8) :: p
+    do i = 1, this%n
+      if (.not. constrained(i)) cycle
+      do p = this%row_ptr(i), this%row_ptr(i + 1) - 1
+        if (this%col(p) == i) this%val(p) = value
+      end do
+    end do
+  end subroutine sparse_set_diagonal
 
   subroutine sparse_free(this)
     class(sparse_matrix_t), intent(inout) :: this

@@ -36,6 +36,11 @@ module fcs_state
     real(dp) :: last_r = 1.0_dp
     !> Out-of-balance force norm at the start of the last increment.
     real(dp) :: residual_norm = 0.0_dp
+    !> Trial time increment allowed by the friction-rate limits (0: no limit), and what set
+    !> it (event kind and node), from the changes over the last increment.
+    real(dp) :: friction_dt = 0.0_dp
+    integer :: friction_kind = 0
+    integer :: friction_node = 0
     !> State of every contact slave node.
     type(contact_state_t) :: contact
   contains

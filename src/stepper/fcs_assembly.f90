@@ -45,16 +45,17 @@ contains
     end do
   end subroutine make_materials
 
-  !> Node lists of the elements as cliques for the sparse pattern.
-  subroutine element_cliques(model, clique_ptr, clique_nodes)
+  !> Node lists of the given elements as cliques for the sparse pattern.
+  subroutine element_cliques(model, elements, clique_ptr, clique_nodes)
     type(model_t), intent(in) :: model
+    integer, intent(in) :: elements(:)
     integer, allocatable, intent(out) :: clique_ptr(:), clique_nodes(:)
-    integer :: e, ne
-    ne = model%mesh%n_elements
+    integer :: i, ne
+    ne = size(elements)
     allocate (clique_ptr(ne + 1), clique_nodes(8 * ne))
-    do e = 1, ne
-      clique_ptr(e) = 8 * (e - 1) + 1
-      clique_nodes(8 * e - 7:8 * e) = model%mesh%connectivity(:, e)
+    do i = 1, ne
+      clique_ptr(i) = 8 * (i - 1) + 1
+      clique_nodes(8 * i - 7:8 * i) = model%mesh%connectivity(:, elements(i))
     end do
     clique_ptr(ne + 1) = 8 * ne + 1
   end subroutine element_cliques
@@ -84,22 +85,24 @@ contains
       'contact penalty crushes it; refine the mesh there or reduce the R-minimum limits')
   end subroutine inverted_element_error
 
-  !> Internal forces f_int (3*n_nodes) and, when `matrix` is present, the tangent K added
-  !> into it (values only: the caller zeroes it).
-  subroutine assemble_elements(model, state, slots, nlgeom, f_int, err, matrix)
+  !> Internal forces f_int (3*n_nodes) of the given elements and, when `matrix` is present,
+  !> their tangent K added into it (values only: the caller zeroes it).
+  subroutine assemble_elements(model, state, slots, nlgeom, elements, f_int, err, matrix)
     type(model_t), intent(in) :: model
     type(state_t), intent(in) :: state
     type(material_slot_t), intent(in) :: slots(:)
     logical, intent(in) :: nlgeom
+    integer, intent(in) :: elements(:)
     real(dp), intent(out) :: f_int(:)
     type(error_t), allocatable, intent(out) :: err
     type(sparse_matrix_t), intent(inout), optional :: matrix
     type(hex8_geometry_t) :: geo
     real(dp) :: k(24, 24), f(24), c(6, 6, N_GAUSS_HEX8)
-    integer :: e, q, a, node, s
+    integer :: e, q, a, node, s, i
     logical :: ok, bbar, missing
     f_int = 0.0_dp
-    do e = 1, model%mesh%n_elements
+    do i = 1, size(elements)
+      e = elements(i)
       call hex8_geometry(element_configuration(model, state, e, nlgeom), geo, ok)
       if (.not. ok) then
         call inverted_element_error(model, e, err)

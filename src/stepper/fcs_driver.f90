@@ -2,7 +2,8 @@
 !> outputs, runs every step increment by increment, and writes results at the output times.
 module fcs_driver
   use fcs_kinds, only: dp
-  use fcs_error, only: error_t, fatal_error, add_context, EXIT_INTERRUPTED
+  use fcs_error, only: error_t, fatal_error, input_error, add_context, EXIT_INTERRUPTED
+  use fcs_mesh, only: hex8_face_nodes
   use fcs_deck_lexer, only: deck_t
   use fcs_model, only: model_t, step_t, output_request_t, OUTPUT_NODE_PRINT, OUTPUT_EL_PRINT, &
                        OUTPUT_NODE_FILE, OUTPUT_EL_FILE, OUTPUT_CONTACT_PRINT, OUTPUT_CONTACT_FILE
@@ -10,9 +11,12 @@ module fcs_driver
   use fcs_run_options, only: run_options_t
   use fcs_state, only: state_t
   use fcs_loading, only: build_step_loading
-  use fcs_assembly, only: make_materials, assemble_elements
+  use fcs_assembly, only: make_materials
   use fcs_static_explicit, only: analysis_t, take_increment, increment_record_t, build_pattern, &
-                                 contact_positions
+                                 contact_positions, internal_forces, gather_element_fields
+  use fcs_comm, only: comm_t
+  use fcs_partition, only: partition_elements
+  use fcs_mumps, only: mumps_solver_t
   use fcs_solver_factory, only: create_linear_solver
   use fcs_results, only: results_file_t, GRID_POINTS
   use fcs_contact_system, only: pair_totals_t
@@ -47,6 +51,8 @@ module fcs_driver
     character(len=:), allocatable :: job
     real(dp) :: last_checkpoint = 0.0_dp
     type(monitors_t) :: monitors
+    !> Rank 0 of a parallel run writes every file and the terminal output.
+    logical :: writer = .true.
   end type run_t
 
 contains
@@ -60,14 +66,37 @@ contains
     type(run_t) :: run
     real(dp) :: t_start
     t_start = wall_time()
+    call run%analysis%comm%init(err)
+    if (allocated(err)) return
+    run%writer = run%analysis%comm%is_root()
+    call run_job_on_ranks(options, run, model, deck, t_start, err)
+    call run%analysis%comm%agree_error(err)
+    ! Every rank of a parallel run returns the same error; rank 0 reports it.
+    if (allocated(err) .and. .not. run%writer) err%silent = .true.
+    call run%analysis%comm%finalize()
+  end subroutine run_job
+
+  subroutine run_job_on_ranks(options, run, model, deck, t_start, err)
+    type(run_options_t), intent(in) :: options
+    type(run_t), intent(inout) :: run
+    type(model_t), intent(out) :: model
+    type(deck_t), intent(out) :: deck
+    real(dp), intent(in) :: t_start
+    type(error_t), allocatable, intent(out) :: err
     call build_model(options%deck_path, model, deck, err)
     if (allocated(err)) return
     if (len(options%solver) > 0) model%solver_name = to_upper(options%solver)
-    call write_echo(options%job // '.echo', deck, model, err)
+    if (run%writer) call write_echo(options%job // '.echo', deck, model, err)
     if (allocated(err)) return
-    call run%log%open(options%job // '.log', options%quiet, err, append=len(options%restart_file) > 0)
-    if (allocated(err)) return
+    if (run%writer) then
+      call run%log%open(options%job // '.log', options%quiet, err, append=len(options%restart_file) > 0)
+      if (allocated(err)) return
+    else
+      run%log%terminal = .false.
+    end if
     call describe_model(run%log, model, options)
+    if (run%analysis%comm%size > 1) call run%log%info('parallel run on ' // &
+      str(run%analysis%comm%size) // ' processes (elements partitioned by METIS, solver MUMPS)')
     if (options%check_only) then
       call run%log%info('check: the deck and the model are valid (echo in ' // options%job // '.echo)')
       call run%log%close()
@@ -90,7 +119,7 @@ contains
     end if
     if (.not. allocated(err)) call summary(run, model)
     call close_outputs(run)
-  end subroutine run_job
+  end subroutine run_job_on_ranks
 
   subroutine describe_model(log, model, options)
     type(logger_t), intent(inout) :: log
@@ -123,9 +152,21 @@ contains
         call a%contact%init(model, a%x_contact, a%state%contact, err)
         if (allocated(err)) return
       end if
+      call distribute_work(run, model, err)
+      if (allocated(err)) return
       call build_pattern(a, model)
       call create_linear_solver(model%solver_name, a%solver, err)
       if (allocated(err)) return
+      select type (solver => a%solver)
+      type is (mumps_solver_t)
+        call solver%set_comm(a%comm)
+      class default
+        if (a%comm%size > 1) then
+          call input_error(err, 'a parallel run needs the MUMPS solver (*SOLVER, TYPE=MUMPS or ' // &
+                           '--solver MUMPS); ' // model%solver_name // ' runs on one process only')
+          return
+        end if
+      end select
       n = 3 * model%mesh%n_nodes
       allocate (a%f_int(n), a%f_ext0(n), a%f_ext1(n), a%rhs(n), a%du(n), a%prescribed(n), &
                 a%constrained(n), a%f_contact(n), a%du_load(n), a%du_residual(n), a%rhs_residual(n))
@@ -135,17 +176,49 @@ contains
     run%total_time = sum(model%steps(:)%period)
   end subroutine setup
 
+  !> This process's share of the work: its elements (METIS partition), its contact slaves
+  !> (equal consecutive blocks), and the pressure faces whose load stiffness rank 0 adds.
+  subroutine distribute_work(run, model, err)
+    type(run_t), intent(inout) :: run
+    type(model_t), intent(in) :: model
+    type(error_t), allocatable, intent(out) :: err
+    integer, allocatable :: owner(:)
+    integer :: e, n, k, i, j, m
+    associate (a => run%analysis)
+      call partition_elements(a%comm, model%mesh%connectivity, model%mesh%n_nodes, owner, err)
+      if (allocated(err)) return
+      a%my_elements = pack([(e, e = 1, model%mesh%n_elements)], owner == a%comm%rank)
+      n = a%contact%n_slaves()
+      allocate (a%owns_slave(n))
+      a%owns_slave = [((i - 1) * a%comm%size / max(n, 1) == a%comm%rank, i = 1, n)]
+      m = 0
+      do k = 1, size(model%steps)
+        m = m + size(model%steps(k)%pressures)
+      end do
+      allocate (a%pressure_cliques(4, m))
+      j = 0
+      do k = 1, size(model%steps)
+        do i = 1, size(model%steps(k)%pressures)
+          j = j + 1
+          a%pressure_cliques(:, j) = hex8_face_nodes(model%mesh, model%steps(k)%pressures(i)%element, &
+                                                     model%steps(k)%pressures(i)%face)
+        end do
+      end do
+    end associate
+  end subroutine distribute_work
+
   !> New output files, with the initial frame.
   subroutine open_outputs(run, model, err)
     type(run_t), intent(inout) :: run
     type(model_t), intent(in) :: model
     type(error_t), allocatable, intent(out) :: err
-    call run%dat%open(run%job // '.dat', err)
-    if (allocated(err)) return
-    call run%results%create(run%job, model%mesh%node_id, model%mesh%x, model%mesh%element_id, &
-                            model%mesh%connectivity, err)
-    if (allocated(err)) return
-    call define_contact_grids(run, err)
+    if (run%writer) then
+      call run%dat%open(run%job // '.dat', err)
+      if (.not. allocated(err)) call run%results%create(run%job, model%mesh%node_id, model%mesh%x, &
+                                                          model%mesh%element_id, model%mesh%connectivity, err)
+      if (.not. allocated(err)) call define_contact_grids(run, err)
+    end if
+    call run%analysis%comm%agree_error(err)
     if (allocated(err)) return
     call run%monitors%init(model, run%analysis, run%job, err)
     if (allocated(err)) return
@@ -170,30 +243,52 @@ contains
     if (len(warning) > 0) call run%log%warn(warning)
     call run%log%info('restart from ' // path // ': time ' // str(info%time) // ', step ' // &
                       str(info%step) // ', increment ' // str(info%increment))
+    if (run%writer) call reopen_outputs(run, model, info, err)
+    call run%analysis%comm%agree_error(err)
+  end subroutine resume_outputs
+
+  !> Cut the text and results files back to the checkpoint and reopen them.
+  subroutine reopen_outputs(run, model, info, err)
+    type(run_t), intent(inout) :: run
+    type(model_t), intent(in) :: model
+    type(checkpoint_info_t), intent(in) :: info
+    type(error_t), allocatable, intent(out) :: err
     if (file_size(run%job // '.dat') >= 0) call truncate_file(run%job // '.dat', info%dat_size, err)
     if (allocated(err)) return
     call run%dat%open(run%job // '.dat', err, append=.true.)
     if (allocated(err)) return
     if (file_size(run%job // '.h5') >= 0) then
       call run%results%open_append(run%job, err, keep_until_increment=info%increment)
-      if (.not. allocated(err)) call define_contact_grids(run, err)
     else
       call run%results%create(run%job, model%mesh%node_id, model%mesh%x, model%mesh%element_id, &
                               model%mesh%connectivity, err)
-      if (.not. allocated(err)) call define_contact_grids(run, err)
     end if
-  end subroutine resume_outputs
+    if (.not. allocated(err)) call define_contact_grids(run, err)
+  end subroutine reopen_outputs
 
   !> Write a checkpoint now and note the time.
   subroutine checkpoint(run, model, err)
     type(run_t), intent(inout) :: run
     type(model_t), intent(in) :: model
     type(error_t), allocatable, intent(out) :: err
-    call save_checkpoint(run%job, run%analysis, run%monitors, model, err)
+    call gather_element_fields(run%analysis)
+    if (run%writer) call save_checkpoint(run%job, run%analysis, run%monitors, model, err)
+    call run%analysis%comm%agree_error(err)
     run%last_checkpoint = wall_time()
     if (.not. allocated(err)) call run%log%detail('checkpoint written: ' // run%job // '.rst.h5 ' // &
       '(time ' // str(run%analysis%state%time) // ', increment ' // str(run%analysis%state%increment) // ')')
   end subroutine checkpoint
+
+  !> True on every rank when `flag` is true on some rank (signals and wall-clock checks
+  !> differ between processes; all must act together).
+  logical function any_rank(run, flag)
+    type(run_t), intent(in) :: run
+    logical, intent(in) :: flag
+    real(dp) :: value
+    value = merge(1.0_dp, 0.0_dp, flag)
+    call run%analysis%comm%max_real(value)
+    any_rank = value > 0.0_dp
+  end function any_rank
 
   !> Whether a periodic checkpoint is due after this increment.
   logical function checkpoint_due(run, model)
@@ -351,11 +446,11 @@ contains
                                                                  state%last_increment, run%log, err)
         if (.not. allocated(err)) call sample_histories(run, model, .false., err)
         if (allocated(err)) exit
-        if (signal_received() /= 0) then
+        if (any_rank(run, signal_received() /= 0)) then
           call stop_on_signal(run, model, err)
           return
         end if
-        if (checkpoint_due(run, model)) call checkpoint(run, model, err)
+        if (any_rank(run, checkpoint_due(run, model))) call checkpoint(run, model, err)
         if (allocated(err)) exit
       end do
       if (allocated(err)) call add_context(err, 'step ' // str(k) // ', increment ' // &
@@ -388,7 +483,7 @@ contains
     type(model_t), intent(in) :: model
     type(error_t), allocatable, intent(out) :: err
     integer :: signal
-    signal = signal_received()
+    signal = max(signal_received(), 0)
     call checkpoint(run, model, err)
     if (allocated(err)) return
     allocate (err)
@@ -472,14 +567,15 @@ contains
         end select
       end do
       if (.not. (need_frame .or. need_print)) return
-      call assemble_elements(model, state, run%analysis%materials, step%nlgeom, &
-                             run%analysis%f_int, err)
+      call internal_forces(run%analysis, model, step%nlgeom, run%analysis%f_int, err)
       if (allocated(err)) return
+      call gather_element_fields(run%analysis)
       run%analysis%f_contact = 0.0_dp
       if (run%analysis%contact%n_slaves() > 0) call run%analysis%contact%forces( &
         run%analysis%x_contact, state%contact, run%analysis%f_contact)
       state%reaction = reshape(run%analysis%f_int - run%analysis%f_contact, shape(state%reaction))
       do i = 1, size(step%outputs)
+        if (.not. run%writer) exit
         if (.not. is_due(model, step, step%outputs(i), state, end_of_step)) cycle
         select case (step%outputs(i)%kind)
         case (OUTPUT_NODE_PRINT)
@@ -593,6 +689,8 @@ contains
     type(error_t), allocatable, intent(out) :: err
     real(dp), allocatable :: nodal(:, :), cell_mises(:, :), nodal_mises(:, :)
     integer :: q
+    call gather_element_fields(run%analysis)
+    if (.not. run%writer) return
     associate (state => run%analysis%state)
       call run%results%begin_frame(state%time, state%step, state%increment, err)
       if (allocated(err)) return

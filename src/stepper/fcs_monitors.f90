@@ -5,8 +5,7 @@ module fcs_monitors
   use fcs_error, only: error_t
   use fcs_model, only: model_t, history_request_t, HISTORY_NSET_U, HISTORY_NSET_RF, &
                        HISTORY_CONTACT, HISTORY_ENERGY
-  use fcs_static_explicit, only: analysis_t
-  use fcs_assembly, only: assemble_elements
+  use fcs_static_explicit, only: analysis_t, internal_forces
   use fcs_history, only: history_table_t
   use fcs_event_catalog, only: event_catalog_t
   use fcs_contact_system, only: pair_totals_t
@@ -20,6 +19,8 @@ module fcs_monitors
   public :: monitors_t
 
   type :: monitors_t
+    !> Only this process writes the files (rank 0); every process keeps the same rows.
+    logical :: writer = .true.
     type(history_table_t), allocatable :: tables(:)
     logical :: catalog_on = .false.
     type(event_catalog_t) :: catalog
@@ -41,10 +42,11 @@ contains
     type(error_t), allocatable, intent(out) :: err
     integer :: k
     integer, allocatable :: sizes(:)
+    this%writer = a%comm%is_root()
     allocate (this%tables(size(model%histories)))
     do k = 1, size(model%histories)
       call this%tables(k)%create(model%histories(k)%name, job // '_' // to_lower_name( &
-        model%histories(k)%name) // '.csv', column_names(model, model%histories(k)), err)
+        model%histories(k)%name) // '.csv', column_names(model, model%histories(k)), err, this%writer)
       if (allocated(err)) return
     end do
     this%catalog_on = model%event_threshold > 0.0_dp .and. a%contact%n_slaves() > 0
@@ -53,7 +55,8 @@ contains
       do k = 1, size(a%contact%pairs)
         sizes(k) = a%contact%pairs(k)%last - a%contact%pairs(k)%first + 1
       end do
-      call this%catalog%init(model%event_threshold, model%event_min_slip, sizes, job // '_events.csv', err)
+      call this%catalog%init(model%event_threshold, model%event_min_slip, sizes, job // '_events.csv', &
+                             err, this%writer)
     end if
     if (any([(has_energy(model%histories(k)), k = 1, size(model%histories))])) call reference_volumes(this, model)
   end subroutine monitors_init
@@ -154,8 +157,7 @@ contains
     type(error_t), allocatable, intent(out) :: err
     real(dp), allocatable :: f_int(:), f_contact(:)
     allocate (f_int(3 * model%mesh%n_nodes), f_contact(3 * model%mesh%n_nodes))
-    call assemble_elements(model, a%state, a%materials, model%steps(min(a%state%step, &
-                           size(model%steps)))%nlgeom, f_int, err)
+    call internal_forces(a, model, model%steps(min(a%state%step, size(model%steps)))%nlgeom, f_int, err)
     if (allocated(err)) return
     f_contact = 0.0_dp
     if (a%contact%n_slaves() > 0) call a%contact%forces(a%x_contact, a%state%contact, f_contact)

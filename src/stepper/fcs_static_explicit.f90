@@ -30,10 +30,12 @@ module fcs_static_explicit
   use fcs_timer, only: phase_timer_t
   use fcs_contact_system, only: contact_system_t
   use fcs_assembly, only: element_cliques
+  use fcs_comm, only: comm_t
   use fcs_strings, only: str
   implicit none
   private
   public :: analysis_t, take_increment, increment_record_t, build_pattern, contact_positions
+  public :: internal_forces, gather_element_fields
 
   !> What one increment did, for the log.
   type :: increment_record_t
@@ -73,11 +75,14 @@ module fcs_static_explicit
     real(dp), allocatable :: f_contact(:)
     !> Coordinates the contact search and elements use (current positions X + u).
     real(dp), allocatable :: x_contact(:, :)
-    !> Trial time increment allowed by the friction-rate limits (0: no limit), and what set
-    !> it (event kind and node), from the changes over the last increment.
-    real(dp) :: friction_dt = 0.0_dp
-    integer :: friction_kind = EVENT_NONE
-    integer :: friction_node = 0
+    !> The processes of the run and the work of this one (replicated state, distributed
+    !> work): the elements it assembles and updates, and the contact slaves it assembles.
+    !> Everything else (displacements, contact states) is the same on every process.
+    type(comm_t) :: comm
+    integer, allocatable :: my_elements(:)
+    logical, allocatable :: owns_slave(:)
+    !> Nodes loaded by face pressures in any step (their load stiffness goes to rank 0).
+    integer, allocatable :: pressure_cliques(:, :)
   end type analysis_t
 
 contains
@@ -97,8 +102,8 @@ contains
       dt = step%max_increment
       if (state%step_increment == 0) dt = step%initial_increment
       limited_by_friction = .false.
-      if (a%friction_dt > 0.0_dp .and. max(a%friction_dt, step%min_increment) < dt) then
-        dt = max(a%friction_dt, step%min_increment)
+      if (a%state%friction_dt > 0.0_dp .and. max(a%state%friction_dt, step%min_increment) < dt) then
+        dt = max(a%state%friction_dt, step%min_increment)
         limited_by_friction = .true.
       end if
       dt = min(dt, a%loading%next_breakpoint(t0) - t0)
@@ -117,10 +122,10 @@ contains
           record%force_norm = norm2(a%f_int)
           state%residual_norm = record%residual_norm
         end if
-        a%rhs = a%f_ext1 - a%f_ext0
         a%rhs_residual = merge(0.0_dp, a%f_ext0 + a%f_contact - a%f_int, a%constrained)
-        call a%matrix%apply_dirichlet(a%constrained, a%prescribed, a%rhs)
+        call impose_constraints(a)
         call solve_system(a, err)
+        call a%comm%agree_error(err)
         if (allocated(err)) return
         if (a%contact%n_slaves() == 0) exit
         a%du = a%du_residual + a%du_load
@@ -130,11 +135,12 @@ contains
       end do
       call a%timers%start('r-minimum')
       call collect_events(a, model, step, err)
+      call a%comm%agree_error(err)
       if (allocated(err)) return
-      r = a%collector%taken_fraction(step%rmin%event_tolerance)
+      call global_fraction(a, step%rmin%event_tolerance, r)
       record%limiting = a%collector%limiting
       if (limited_by_friction .and. record%limiting%kind == EVENT_FULL_INCREMENT) &
-        record%limiting = rmin_event_t(1.0_dp, a%friction_kind, a%friction_node, 0)
+        record%limiting = rmin_event_t(1.0_dp, a%state%friction_kind, a%state%friction_node, 0)
       if (r * dt < step%min_increment .and. r < 1.0_dp) then
         if (a%collector%limiting%kind == EVENT_STRAIN_LIMIT .or. &
             a%collector%limiting%kind == EVENT_ROTATION_LIMIT) then
@@ -155,10 +161,12 @@ contains
       ! Nothing of the state changes before every element is known to stay valid, so that an
       ! error leaves the state of the last good increment (to checkpoint and report).
       if (step%nlgeom) call check_new_geometry(a, model, err)
+      call a%comm%agree_error(err)
       if (.not. allocated(err) .and. a%contact%n_slaves() > 0) &
         call a%contact%check_penetration(model%mesh%node_id, a%x_contact, state%contact, a%du, err)
       if (allocated(err)) return
       call update_elements(a, model, step, r, record, err)
+      call a%comm%agree_error(err)
       if (allocated(err)) return
       state%u = state%u + reshape(a%du, shape(state%u))
       if (step%nlgeom) state%x = state%x + reshape(a%du, shape(state%x))
@@ -194,7 +202,7 @@ contains
     integer :: i, worst
     integer, parameter :: kinds(3) = [EVENT_SLIP_RATE_CHANGE, EVENT_FRICTION_CHANGE, EVENT_STATE_CHANGE]
     if (all(a%contact%change <= 0.0_dp) .or. dt <= 0.0_dp) then
-      a%friction_dt = 0.0_dp
+      a%state%friction_dt = 0.0_dp
       return
     end if
     limits = [step%rmin%max_log_rate_change, step%rmin%max_friction_change, step%rmin%max_state_change]
@@ -203,12 +211,15 @@ contains
       if (a%contact%change(i) > 0.0_dp) factors(i) = min(2.0_dp, limits(i) / a%contact%change(i))
     end do
     worst = minloc(factors, 1)
-    a%friction_dt = dt * factors(worst)
-    a%friction_kind = kinds(worst)
-    a%friction_node = a%contact%change_node(worst)
+    a%state%friction_dt = dt * factors(worst)
+    a%state%friction_kind = kinds(worst)
+    a%state%friction_node = a%contact%change_node(worst)
   end subroutine friction_step_control
 
-  !> K + K_f + load stiffness and the internal, contact forces on the current state.
+  !> K + K_f + load stiffness and the internal, contact forces on the current state. Each
+  !> process adds its elements and contact slaves to its own matrix (the solver sums the
+  !> processes' entries) and the forces are summed over the processes; the load stiffness of
+  !> pressures is added once, by rank 0.
   subroutine assemble_system(a, model, step, t0, dt, err)
     type(analysis_t), intent(inout) :: a
     type(model_t), intent(in) :: model
@@ -217,17 +228,102 @@ contains
     type(error_t), allocatable, intent(out) :: err
     real(dp), allocatable :: scratch(:)
     call a%matrix%zero()
-    call assemble_elements(model, a%state, a%materials, step%nlgeom, a%f_int, err, a%matrix)
+    call assemble_elements(model, a%state, a%materials, step%nlgeom, a%my_elements, a%f_int, err, &
+                           a%matrix)
+    call a%comm%agree_error(err)
     if (allocated(err)) return
-    if (step%nlgeom) then
+    if (step%nlgeom .and. a%comm%is_root()) then
       allocate (scratch(size(a%f_int)))
       scratch = 0.0_dp
       call assemble_pressures(model, a%loading, t0, a%state, .true., scratch, a%matrix)
     end if
     a%f_contact = 0.0_dp
     if (a%contact%n_slaves() > 0) call a%contact%assemble(a%x_contact, a%state%contact, dt, &
-                                                          a%matrix, a%f_contact, err)
+                                                          a%matrix, a%f_contact, err, a%owns_slave)
+    call a%comm%agree_error(err)
+    if (allocated(err)) return
+    call a%comm%sum_real(a%f_int)
+    call a%comm%sum_real(a%f_contact)
   end subroutine assemble_system
+
+  !> Internal forces of the current state (all elements, summed over the processes).
+  subroutine internal_forces(a, model, nlgeom, f_int, err)
+    type(analysis_t), intent(in) :: a
+    type(model_t), intent(in) :: model
+    logical, intent(in) :: nlgeom
+    real(dp), intent(out) :: f_int(:)
+    type(error_t), allocatable, intent(out) :: err
+    call assemble_elements(model, a%state, a%materials, nlgeom, a%my_elements, f_int, err)
+    call a%comm%agree_error(err)
+    if (.not. allocated(err)) call a%comm%sum_real(f_int)
+  end subroutine internal_forces
+
+  !> Make the integration-point fields complete on every process: each process holds
+  !> current values for its own elements only; their sum with zeros elsewhere is exact.
+  subroutine gather_element_fields(a)
+    type(analysis_t), intent(inout) :: a
+    logical, allocatable :: mine(:)
+    integer :: e
+    if (a%comm%size == 1) return
+    allocate (mine(a%state%n_elements))
+    mine = .false.
+    mine(a%my_elements) = .true.
+    do e = 1, a%state%n_elements
+      if (mine(e)) cycle
+      a%state%stress(:, :, e) = 0.0_dp
+      a%state%strain(:, :, e) = 0.0_dp
+      a%state%material_state(:, :, e) = 0.0_dp
+    end do
+    call a%comm%sum_real(a%state%stress)
+    call a%comm%sum_real(a%state%strain)
+    if (size(a%state%material_state) > 0) call a%comm%sum_real(a%state%material_state)
+  end subroutine gather_element_fields
+
+  !> Prescribed values on a system spread over processes: each eliminates the known values
+  !> from its own entries (their right-hand-side parts are summed), rank 0 puts `scale` on
+  !> the constrained diagonals, scale being the mean absolute diagonal of the free rows of
+  !> the summed matrix (approximated by the sum of the processes' diagonals).
+  subroutine impose_constraints(a)
+    type(analysis_t), intent(inout) :: a
+    real(dp) :: total(2), scale
+    integer :: n_free
+    call a%matrix%free_diagonal_sum(a%constrained, total(1), n_free)
+    total(2) = real(n_free, dp)
+    call a%comm%sum_real(total)
+    scale = 1.0_dp
+    if (total(2) > 0.0_dp) scale = total(1) / (total(2) / a%comm%size)
+    if (.not. (scale > 0.0_dp)) scale = 1.0_dp
+    a%rhs = 0.0_dp
+    call a%matrix%eliminate(a%constrained, a%prescribed, a%rhs)
+    call a%comm%sum_real(a%rhs)
+    a%rhs = a%rhs + a%f_ext1 - a%f_ext0
+    where (a%constrained) a%rhs = scale * a%prescribed
+    if (a%comm%is_root()) call a%matrix%set_diagonal(a%constrained, scale)
+  end subroutine impose_constraints
+
+  !> The fraction of the trial increment taken, over all processes: the smallest event
+  !> fraction (and its event, from the process that has it), widened to the near-simultaneous
+  !> discrete events within `tolerance`, never beyond a strain or rotation limit.
+  subroutine global_fraction(a, tolerance, r)
+    type(analysis_t), intent(inout) :: a
+    real(dp), intent(in) :: tolerance
+    real(dp), intent(out) :: r
+    real(dp) :: r_min, band, limit
+    integer :: owner, event(4)
+    r_min = a%collector%r_min
+    call a%comm%min_real(r_min, owner)
+    event = [a%collector%limiting%kind, a%collector%limiting%entity, a%collector%limiting%detail, 0]
+    call a%comm%broadcast_int(event, owner)
+    a%collector%r_min = r_min
+    a%collector%limiting = rmin_event_t(r_min, event(1), event(2), event(3))
+    band = a%collector%band_fraction(tolerance)
+    limit = a%collector%limit_fraction()
+    call a%comm%max_real(band)
+    call a%comm%min_real(limit)
+    r = min(band, limit)
+    if (event(1) == EVENT_STRAIN_LIMIT .or. event(1) == EVENT_ROTATION_LIMIT .or. &
+        event(1) == EVENT_FULL_INCREMENT) r = r_min
+  end subroutine global_fraction
 
   !> Sparse pattern from the element cliques and the contact cliques (slave node with the
   !> nodes of its master face and the neighbouring faces).
@@ -236,9 +332,21 @@ contains
     type(model_t), intent(in) :: model
     logical, intent(in), optional :: keep_centres
     integer, allocatable :: clique_ptr(:), clique_nodes(:)
-    call element_cliques(model, clique_ptr, clique_nodes)
+    integer :: k, node
+    call element_cliques(model, a%my_elements, clique_ptr, clique_nodes)
     if (a%contact%n_slaves() > 0) call a%contact%cliques(a%state%contact, clique_ptr, clique_nodes, &
-                                                         keep_centres)
+                                                         keep_centres, a%owns_slave)
+    if (a%comm%size > 1 .and. a%comm%is_root()) then
+      ! Rank 0 also holds every diagonal (constrained rows) and the pressure load stiffness.
+      do node = 1, model%mesh%n_nodes
+        clique_nodes = [clique_nodes, node]
+        clique_ptr = [clique_ptr, clique_ptr(size(clique_ptr)) + 1]
+      end do
+      do k = 1, size(a%pressure_cliques, 2)
+        clique_nodes = [clique_nodes, a%pressure_cliques(:, k)]
+        clique_ptr = [clique_ptr, clique_ptr(size(clique_ptr)) + 4]
+      end do
+    end if
     call a%matrix%build(model%mesh%n_nodes, clique_ptr, clique_nodes)
   end subroutine build_pattern
 
@@ -326,13 +434,14 @@ contains
     real(dp) :: strain(6, N_GAUSS_HEX8), spin(3, 3, N_GAUSS_HEX8), equivalent(N_GAUSS_HEX8)
     real(dp) :: angle(N_GAUSS_HEX8), du(3, 8), stress_increment(6), strain_fixed(6, N_GAUSS_HEX8)
     real(dp) :: tangent(6, 6), stress_start(6)
-    integer :: e, q, s
+    integer :: e, q, s, i
     logical :: ok, bbar
     call a%collector%reset()
     if (a%contact%n_slaves() > 0) call a%contact%events(a%x_contact, a%state%contact, a%du_residual, &
                                                         a%du_load, a%collector)
     if (.not. (step%nlgeom .or. a%materials_have_states)) return
-    do e = 1, model%mesh%n_elements
+    do i = 1, size(a%my_elements)
+      e = a%my_elements(i)
       call hex8_geometry(element_configuration(model, a%state, e, step%nlgeom), geo, ok)
       if (.not. ok) then
         call inverted_element_error(model, e, err)
@@ -386,10 +495,11 @@ contains
     type(hex8_geometry_t) :: geo
     real(dp) :: strain(6, N_GAUSS_HEX8), spin(3, 3, N_GAUSS_HEX8), equivalent(N_GAUSS_HEX8)
     real(dp) :: angle(N_GAUSS_HEX8), du(3, 8), x(3, 8), updated(6), increment(6)
-    integer :: e, q, s
+    integer :: e, q, s, i
     logical :: ok, bbar, nlgeom
     nlgeom = step%nlgeom
-    do e = 1, model%mesh%n_elements
+    do i = 1, size(a%my_elements)
+      e = a%my_elements(i)
       du = element_increment(a%du, model%mesh%connectivity(:, e))
       x = element_configuration(model, a%state, e, nlgeom)
       if (nlgeom) x = x + 0.5_dp * du
@@ -432,9 +542,10 @@ contains
     type(error_t), allocatable, intent(out) :: err
     type(hex8_geometry_t) :: geo
     real(dp) :: du(3, 8), x(3, 8)
-    integer :: e
+    integer :: e, i
     logical :: ok_mid, ok_end
-    do e = 1, model%mesh%n_elements
+    do i = 1, size(a%my_elements)
+      e = a%my_elements(i)
       du = element_increment(a%du, model%mesh%connectivity(:, e))
       x = element_configuration(model, a%state, e, .true.)
       call hex8_geometry(x + 0.5_dp * du, geo, ok_mid)

@@ -18,6 +18,8 @@ Figures per run:
                                   "Factoring the system" to the stress calculation after it.
   wall                            elapsed time of the whole process (/usr/bin/time -v),
                                   including reading the deck and writing the results.
+  CPU                             user + system time of the whole process (/usr/bin/time -v),
+                                  all threads: less sensitive than wall times to other load.
   peak memory                     maximum resident set size (/usr/bin/time -v); fcs3d also
                                   prints its own VmHWM in the log (same figure).
 Memory guard: every run is limited to 90% of the machine's memory (RLIMIT_AS), so that a run
@@ -69,14 +71,15 @@ def limit_memory(limit_mib):
 
 
 def gnu_time(path):
-    """Wall seconds and peak RSS (MiB) from a /usr/bin/time -v report."""
+    """Wall seconds, peak RSS (MiB) and CPU seconds (user + system) from /usr/bin/time -v."""
     text = open(path).read()
+    cpu = sum(float(v) for v in re.findall(r"(?:User|System) time \(seconds\): ([\d.]+)", text))
     wall = re.search(r"Elapsed \(wall clock\) time.*: (?:(\d+):)?(\d+):([\d.]+)", text)
     seconds = None
     if wall:
         seconds = int(wall.group(1) or 0) * 3600 + int(wall.group(2)) * 60 + float(wall.group(3))
     rss = re.search(r"Maximum resident set size \(kbytes\): (\d+)", text)
-    return seconds, (int(rss.group(1)) / 1024.0 if rss else None)
+    return seconds, (int(rss.group(1)) / 1024.0 if rss else None), cpu
 
 
 def duration(text):
@@ -125,7 +128,7 @@ def run_fcs3d(fcs3d, deck, solver, workdir, env, timeout, limit_mib):
         tail = open(os.path.join(outdir, "stdout.txt")).read().strip().splitlines()[-3:]
         row["failed"] = f"exit status {status}: " + " / ".join(tail)
         return row
-    row["wall"], row["peak"] = gnu_time(time_file)
+    row["wall"], row["peak"], row["cpu"] = gnu_time(time_file)
     phases = fcs3d_phases(os.path.join(outdir, job + ".log"))
     row.update(assembly=phases.get("assembly"), factor=phases.get("factorisation"),
                solve=phases.get("solve"), log_peak=phases.get("log_peak"))
@@ -159,7 +162,7 @@ def run_ccx(deck, workdir, env, timeout, limit_mib):
     if status != 0 or not any("Job finished" in text for _, text in stamps):
         row["failed"] = f"exit status {status}"
         return row
-    row["wall"], row["peak"] = gnu_time(time_file)
+    row["wall"], row["peak"], row["cpu"] = gnu_time(time_file)
 
     def first(pattern, after=0.0):
         for stamp, text in stamps:
@@ -204,14 +207,15 @@ def ratio(reference, value):
 
 def table_row(dofs, row, reference):
     if "failed" in row:
-        return f"| {dofs:,} | {row['program']} | {row['failed']} |" + " |" * 10
+        return f"| {dofs:,} | {row['program']} | {row['failed']} |" + " |" * 12
     difference = monitor_difference(row, reference) if row is not reference else None
     return (f"| {dofs:,} | {row['program']} | {fmt(row.get('assembly'), 2)} | "
             f"{fmt(row.get('factor'))} | {fmt(row.get('solve'))} | "
-            f"{fmt(row.get('factor_solve'), 2)} | {fmt(row.get('wall'), 2)} | "
+            f"{fmt(row.get('factor_solve'), 2)} | {fmt(row.get('wall'), 2)} | {fmt(row.get('cpu'), 1)} | "
             f"{fmt(row.get('peak'), 0)} | "
             f"{ratio(reference.get('factor_solve'), row.get('factor_solve'))} | "
             f"{ratio(reference.get('wall'), row.get('wall'))} | "
+            f"{ratio(reference.get('cpu'), row.get('cpu'))} | "
             f"{ratio(reference.get('peak'), row.get('peak'))} | "
             f"{'-' if difference is None else f'{difference:.1e}'} | {fmt(row.get('load'))} |")
 
@@ -262,9 +266,10 @@ def main():
              f"threads: OMP_NUM_THREADS = OPENBLAS_NUM_THREADS = CCX_NPROC_* = {threads}",
              f"memory limit per run: {limit_mib / 1024:.1f} GiB"]
     header = ("| DOF | program, solver | assembly [s] | factorisation [s] | solve [s] | "
-              "factor+solve [s] | wall [s] | peak memory [MiB] | ccx/fcs3d factor+solve | "
-              "ccx/fcs3d wall | ccx/fcs3d memory | corner u vs ccx | load |")
-    lines = [header, "|" + "---|" * 13]
+              "factor+solve [s] | wall [s] | CPU [s] | peak memory [MiB] | "
+              "ccx/fcs3d factor+solve | ccx/fcs3d wall | ccx/fcs3d CPU | ccx/fcs3d memory | "
+              "corner u vs ccx | load |")
+    lines = [header, "|" + "---|" * 15]
     print("\n".join(notes + [""] + lines), flush=True)
     previous = {}
 

@@ -69,12 +69,14 @@ STEP_CARDS = {
 }
 
 
-def deck_text(steps=2, frequency=2, generations=3, young='1000.', history_frequency=1,
-              frame_frequency=10, threshold=THRESHOLD, step_changes=None, restart=True):
+def deck_text(steps=2, frequency=4, generations=3, young='1000.', history_frequency=1,
+              frame_frequency=10, threshold=THRESHOLD, min_slip=None, step_changes=None,
+              restart=True):
     """The deck as text. steps: 1, 2 or 3 (each deck is the start of the longer ones: same
     model section, same earlier steps). frequency, generations: *RESTART, WRITE (restart=False:
     no *RESTART card). young: Young's modulus as written in the deck. frame_frequency: *NODE FILE
-    and *CONTACT FILE frequency in every step. step_changes: {step: (old, new)} text
+    and *CONTACT FILE frequency in every step. threshold, min_slip: *EVENT CATALOG, SLIP RATE=,
+    MIN SLIP= (None: not given). step_changes: {step: (old, new)} text
     replacements in that step's cards."""
     lower_nodes, lower_elements, lower = _block(0, 4, 0, 4, -1, 0, 4, 0)
     upper_nodes, upper_elements, upper = _block(1.1, 3.1, 1.1, 3.1, 0, 1, 3, 10000)
@@ -99,7 +101,8 @@ def deck_text(steps=2, frequency=2, generations=3, young='1000.', history_freque
             '*BOUNDARY', 'BASE, 1, 3', 'TOP, 1, 2',
             '*HISTORY, NAME=%s, FREQUENCY=%d' % (HISTORY, history_frequency),
             'CONTACT, %s' % PAIR, 'NSET, TOP, RF', 'NSET, TOP, U', 'ENERGY',
-            '*EVENT CATALOG, SLIP RATE=%g' % threshold]
+            '*EVENT CATALOG, SLIP RATE=%r' % threshold +
+            (', MIN SLIP=%r' % min_slip if min_slip is not None else '')]
     if restart:
         out.append('*RESTART, WRITE, FREQUENCY=%d, GENERATIONS=%d' % (frequency, generations))
     for k in range(1, steps + 1):
@@ -157,6 +160,13 @@ def seeded_random(name):
     seed = int(seed) if seed else int(time.time() * 1000) % 1000000
     print('%s: seed %d (repeat with FCS3D_TEST_SEED=%d)' % (name, seed, seed))
     return random.Random(seed)
+
+
+def remove_checkpoints(job_dir, job):
+    """Delete <job>.rst*.h5, so that a checkpoint found later is the new run's."""
+    for name in os.listdir(job_dir):
+        if name.startswith(job + '.rst.'):
+            os.remove(os.path.join(job_dir, name))
 
 
 def start(job_dir, job, *args):
@@ -264,22 +274,62 @@ def compare_files(reference_dir, other_dir, names):
     return problems
 
 
+def xdmf_frames(path):
+    """The frames of an XDMF file as comparable data: per frame its time and, per grid, the
+    topology, geometry and the attributes sorted by name (after a restart fcs3d rebuilds the
+    XDMF of the earlier frames from job.h5 and lists their attributes in the file's
+    alphabetical order instead of the order written: same content, other order)."""
+    import xml.etree.ElementTree as ET
+
+    def item(element):
+        return (element.tag, tuple(sorted(element.attrib.items())), (element.text or '').strip(),
+                tuple(item(child) for child in element))
+
+    root = ET.parse(path).getroot()
+    series = root.find('Domain/Grid')
+    frames = []
+    for frame in series.findall('Grid'):
+        grids = frame.findall('Grid') or [frame]
+        described = []
+        for grid in grids:
+            fixed = tuple(item(c) for c in grid if c.tag != 'Attribute')
+            attributes = sorted(item(c) for c in grid if c.tag == 'Attribute')
+            described.append((grid.get('Name'), fixed, tuple(attributes)))
+        frames.append((frame.find('Time').get('Value'), tuple(described)))
+    return frames
+
+
+def compare_xdmf(reference, other):
+    a, b = xdmf_frames(reference), xdmf_frames(other)
+    if a == b:
+        return []
+    if len(a) != len(b):
+        return ['%s: %d frames, %d in %s' % (other, len(b), len(a), reference)]
+    first = next(i for i in range(len(a)) if a[i] != b[i])
+    return ['%s: frame %d (time %s) differs from %s' % (other, first + 1, b[first][0], reference)]
+
+
 def output_names(job):
-    return [job + '.dat', '%s_%s.csv' % (job, HISTORY), job + '_events.csv', job + '.xdmf']
+    return [job + '.dat', '%s_%s.csv' % (job, HISTORY), job + '_events.csv']
 
 
 def compare_runs(reference_dir, other_dir, job, what):
-    """All outputs of two runs of `job`; prints and returns the differences."""
+    """All outputs of two runs of `job` (h5 bit for bit, text files byte for byte, the XDMF
+    frame by frame); prints and returns the differences."""
     problems = compare_h5(os.path.join(reference_dir, job + '.h5'),
                           os.path.join(other_dir, job + '.h5'))
     problems += compare_files(reference_dir, other_dir, output_names(job))
+    problems += compare_xdmf(os.path.join(reference_dir, job + '.xdmf'),
+                             os.path.join(other_dir, job + '.xdmf'))
     if problems:
         print('%s: the outputs differ from the one-go run:' % what)
         for p in problems[:30]:
             print('  ' + p)
+        if len(problems) > 30:
+            print('  ... %d differences in all' % len(problems))
     else:
-        print('%s: %s.h5 (every dataset and attribute), %s identical to the one-go run' % (
-            what, job, ', '.join(output_names(job))))
+        print('%s: %s.h5 (every dataset and attribute), %s and the frames of %s.xdmf identical '
+              'to the one-go run' % (what, job, ', '.join(output_names(job)), job))
     return problems
 
 

@@ -1,0 +1,202 @@
+!> The communicator of a run, MPI build (Open MPI through mpi_f08): a duplicate of
+!> MPI_COMM_WORLD held in a comm_t, with the few collective operations fcs3d needs. The
+!> serial build has a module of the same name and interface (src/parallel/serial/).
+module fcs_comm
+  use mpi_f08, only: MPI_Comm, MPI_COMM_WORLD, MPI_Init, MPI_Initialized, MPI_Finalize, &
+                     MPI_Finalized, MPI_Comm_dup, MPI_Comm_free, MPI_Comm_rank, MPI_Comm_size, &
+                     MPI_Abort, MPI_Barrier, MPI_Allreduce, MPI_Bcast, MPI_IN_PLACE, MPI_SUM, &
+                     MPI_MIN, MPI_MAX, MPI_MINLOC, MPI_DOUBLE_PRECISION, MPI_INTEGER, &
+                     MPI_2DOUBLE_PRECISION, MPI_CHARACTER, MPI_SUCCESS
+  use fcs_kinds, only: dp
+  use fcs_error, only: error_t, fatal_error
+  implicit none
+  private
+  public :: comm_t, COMM_VARIANT
+
+  character(len=*), parameter :: COMM_VARIANT = 'mpi'
+
+  type :: comm_t
+    integer :: rank = 0
+    integer :: size = 1
+    type(MPI_Comm) :: handle
+    logical :: owns_mpi = .false.
+  contains
+    procedure :: init => comm_init
+    procedure :: finalize => comm_finalize
+    procedure :: is_root => comm_is_root
+    procedure :: fortran_handle => comm_fortran_handle
+    procedure :: abort => comm_abort
+    procedure :: barrier => comm_barrier
+    procedure :: sum_int => comm_sum_int
+    procedure :: min_real => comm_min_real
+    procedure :: max_real => comm_max_real
+    procedure :: broadcast_int => comm_broadcast_int
+    procedure :: agree_error => comm_agree_error
+    procedure, private :: sum_real_1, sum_real_2, sum_real_3
+    procedure, private :: broadcast_real_1, broadcast_real_2
+    generic :: sum_real => sum_real_1, sum_real_2, sum_real_3
+    generic :: broadcast_real => broadcast_real_1, broadcast_real_2
+  end type comm_t
+
+contains
+
+  !> Start MPI (if nobody did) and duplicate MPI_COMM_WORLD.
+  subroutine comm_init(this, err)
+    class(comm_t), intent(inout) :: this
+    type(error_t), allocatable, intent(out) :: err
+    logical :: started
+    integer :: status
+    call MPI_Initialized(started, status)
+    if (.not. started) then
+      call MPI_Init(status)
+      if (status /= MPI_SUCCESS) then
+        call fatal_error(err, 'MPI_Init failed (status ' // itoa(status) // ')')
+        return
+      end if
+      this%owns_mpi = .true.
+    end if
+    call MPI_Comm_dup(MPI_COMM_WORLD, this%handle, status)
+    if (status == MPI_SUCCESS) call MPI_Comm_rank(this%handle, this%rank, status)
+    if (status == MPI_SUCCESS) call MPI_Comm_size(this%handle, this%size, status)
+    if (status /= MPI_SUCCESS) call fatal_error(err, 'setting up the MPI communicator failed')
+  end subroutine comm_init
+
+  subroutine comm_finalize(this)
+    class(comm_t), intent(inout) :: this
+    logical :: finished
+    integer :: status
+    call MPI_Finalized(finished, status)
+    if (finished) return
+    call MPI_Comm_free(this%handle, status)
+    if (this%owns_mpi) call MPI_Finalize(status)
+  end subroutine comm_finalize
+
+  pure logical function comm_is_root(this)
+    class(comm_t), intent(in) :: this
+    comm_is_root = this%rank == 0
+  end function comm_is_root
+
+  !> The Fortran (mpif.h) handle of the communicator, for MUMPS.
+  pure integer function comm_fortran_handle(this)
+    class(comm_t), intent(in) :: this
+    comm_fortran_handle = this%handle%MPI_VAL
+  end function comm_fortran_handle
+
+  !> Stop every rank (an internal error on one rank; STYLE.md "Errors").
+  subroutine comm_abort(this, code)
+    class(comm_t), intent(in) :: this
+    integer, intent(in) :: code
+    integer :: status
+    call MPI_Abort(this%handle, code, status)
+  end subroutine comm_abort
+
+  subroutine comm_barrier(this)
+    class(comm_t), intent(in) :: this
+    integer :: status
+    call MPI_Barrier(this%handle, status)
+  end subroutine comm_barrier
+
+  subroutine comm_sum_int(this, value)
+    class(comm_t), intent(in) :: this
+    integer, intent(inout) :: value
+    integer :: status
+    call MPI_Allreduce(MPI_IN_PLACE, value, 1, MPI_INTEGER, MPI_SUM, this%handle, status)
+  end subroutine comm_sum_int
+
+  !> Global minimum of `value`; `owner` returns the lowest rank holding it.
+  subroutine comm_min_real(this, value, owner)
+    class(comm_t), intent(in) :: this
+    real(dp), intent(inout) :: value
+    integer, intent(out), optional :: owner
+    real(dp) :: pair(2)
+    integer :: status
+    pair = [value, real(this%rank, dp)]
+    call MPI_Allreduce(MPI_IN_PLACE, pair, 1, MPI_2DOUBLE_PRECISION, MPI_MINLOC, this%handle, status)
+    value = pair(1)
+    if (present(owner)) owner = nint(pair(2))
+  end subroutine comm_min_real
+
+  subroutine comm_max_real(this, value)
+    class(comm_t), intent(in) :: this
+    real(dp), intent(inout) :: value
+    integer :: status
+    call MPI_Allreduce(MPI_IN_PLACE, value, 1, MPI_DOUBLE_PRECISION, MPI_MAX, this%handle, status)
+  end subroutine comm_max_real
+
+  subroutine comm_broadcast_int(this, values, root)
+    class(comm_t), intent(in) :: this
+    integer, intent(inout) :: values(:)
+    integer, intent(in) :: root
+    integer :: status
+    call MPI_Bcast(values, size(values), MPI_INTEGER, root, this%handle, status)
+  end subroutine comm_broadcast_int
+
+  !> If any rank has an error, every rank gets it (the message of the lowest such rank).
+  subroutine comm_agree_error(this, err)
+    class(comm_t), intent(in) :: this
+    type(error_t), allocatable, intent(inout) :: err
+    integer :: failing, status, length, code(2)
+    character(len=:), allocatable :: message
+    failing = this%size
+    if (allocated(err)) failing = this%rank
+    call MPI_Allreduce(MPI_IN_PLACE, failing, 1, MPI_INTEGER, MPI_MIN, this%handle, status)
+    if (failing == this%size) return
+    code = 0
+    if (this%rank == failing) code = [len(err%message), err%exit_code]
+    call MPI_Bcast(code, 2, MPI_INTEGER, failing, this%handle, status)
+    length = code(1)
+    allocate (character(len=length) :: message)
+    if (this%rank == failing) message = err%message
+    call MPI_Bcast(message, length, MPI_CHARACTER, failing, this%handle, status)
+    if (.not. allocated(err)) allocate (err)
+    err%message = message
+    err%exit_code = code(2)
+  end subroutine comm_agree_error
+
+  subroutine sum_real_1(this, values)
+    class(comm_t), intent(in) :: this
+    real(dp), intent(inout) :: values(:)
+    integer :: status
+    call MPI_Allreduce(MPI_IN_PLACE, values, size(values), MPI_DOUBLE_PRECISION, MPI_SUM, &
+                       this%handle, status)
+  end subroutine sum_real_1
+
+  subroutine sum_real_2(this, values)
+    class(comm_t), intent(in) :: this
+    real(dp), intent(inout) :: values(:, :)
+    integer :: status
+    call MPI_Allreduce(MPI_IN_PLACE, values, size(values), MPI_DOUBLE_PRECISION, MPI_SUM, &
+                       this%handle, status)
+  end subroutine sum_real_2
+
+  subroutine sum_real_3(this, values)
+    class(comm_t), intent(in) :: this
+    real(dp), intent(inout) :: values(:, :, :)
+    integer :: status
+    call MPI_Allreduce(MPI_IN_PLACE, values, size(values), MPI_DOUBLE_PRECISION, MPI_SUM, &
+                       this%handle, status)
+  end subroutine sum_real_3
+
+  subroutine broadcast_real_1(this, values)
+    class(comm_t), intent(in) :: this
+    real(dp), intent(inout) :: values(:)
+    integer :: status
+    call MPI_Bcast(values, size(values), MPI_DOUBLE_PRECISION, 0, this%handle, status)
+  end subroutine broadcast_real_1
+
+  subroutine broadcast_real_2(this, values)
+    class(comm_t), intent(in) :: this
+    real(dp), intent(inout) :: values(:, :)
+    integer :: status
+    call MPI_Bcast(values, size(values), MPI_DOUBLE_PRECISION, 0, this%handle, status)
+  end subroutine broadcast_real_2
+
+  pure function itoa(value) result(text)
+    integer, intent(in) :: value
+    character(len=:), allocatable :: text
+    character(len=16) :: buffer
+    write (buffer, '(i0)') value
+    text = trim(buffer)
+  end function itoa
+
+end module fcs_comm
