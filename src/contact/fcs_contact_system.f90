@@ -617,14 +617,28 @@ contains
         if (.not. in_pattern(this, s, cstate%face(s))) this%pattern_dirty = .true.
       end if
       if (was_slipping .and. cstate%status(s) == CONTACT_SLIP .and. cstate%slip_rate(s) > 0.0_dp) &
-        call record_changes(this, s, [abs(log(cstate%slip_rate(s) / old_rate)), abs(cstate%mu(s) - &
-                            old_mu), this%pairs(this%slave_pair(s))%law%state_change(old_state, &
-                            cstate%friction_state(s))])
+        call record_friction_changes(this, s, old_rate, old_mu, old_state, cstate)
     end do
     this%event_r = huge(1.0_dp)
     this%event_kind = EVENT_NONE
     this%switches = 0
   end subroutine system_update
+
+  !> The changes of slipping node s over the increment that matter to its friction law: ln V
+  !> for rate-dependent laws, mu, and the law's own state measure.
+  subroutine record_friction_changes(this, s, old_rate, old_mu, old_state, cstate)
+    type(contact_system_t), intent(inout) :: this
+    integer, intent(in) :: s
+    real(dp), intent(in) :: old_rate, old_mu, old_state
+    type(contact_state_t), intent(in) :: cstate
+    real(dp) :: log_rate
+    associate (law => this%pairs(this%slave_pair(s))%law)
+      log_rate = 0.0_dp
+      if (law%rate_dependent()) log_rate = abs(log(cstate%slip_rate(s) / old_rate))
+      call record_changes(this, s, [log_rate, abs(cstate%mu(s) - old_mu), &
+                                    law%state_change(old_state, cstate%friction_state(s))])
+    end associate
+  end subroutine record_friction_changes
 
   !> Keep the largest changes of ln V, mu, ln(state) and where they happened.
   subroutine record_changes(this, s, changes)

@@ -27,6 +27,7 @@ module fcs_friction_law
     procedure :: initial_state => friction_law_initial_state
     procedure :: evolve_state => friction_law_evolve_state
     procedure :: state_change => friction_law_state_change
+    procedure :: rate_dependent => friction_law_rate_dependent
     procedure :: mu => friction_law_mu
   end type friction_law_t
 
@@ -83,5 +84,11 @@ contains
     real(dp), intent(in) :: old, new
     change = 0.0_dp
   end function friction_law_state_change
+
+  !> Whether mu depends on the slip rate (the R-minimum rate limits apply only then).
+  pure logical function friction_law_rate_dependent(this)
+    class(friction_law_t), intent(in) :: this
+    friction_law_rate_dependent = .false.
+  end function friction_law_rate_dependent
 
 end module fcs_friction_law

@@ -37,6 +37,7 @@ module fcs_rate_dependent
   contains
     procedure :: evaluate => rate_dependent_evaluate
     procedure :: name => rate_dependent_name
+    procedure :: rate_dependent => always_rate_dependent
   end type rate_dependent_t
 
 contains
@@ -66,5 +67,11 @@ contains
     character(len=:), allocatable :: name
     name = 'RATE DEPENDENT'
   end function rate_dependent_name
+
+  !> mu depends on the slip rate.
+  pure logical function always_rate_dependent(this)
+    class(rate_dependent_t), intent(in) :: this
+    always_rate_dependent = .true.
+  end function always_rate_dependent
 
 end module fcs_rate_dependent

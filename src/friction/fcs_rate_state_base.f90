@@ -40,6 +40,7 @@ module fcs_rate_state_base
     procedure :: initial_state => rate_state_initial_state
     procedure :: evolve_state => rate_state_evolve_state
     procedure :: state_change => rate_state_state_change
+    procedure :: rate_dependent => always_rate_dependent
   end type rate_state_base_t
 
 contains
@@ -123,5 +124,11 @@ contains
     change = 0.0_dp
     if (old > 0.0_dp .and. new > 0.0_dp) change = abs(log(new / old))
   end function rate_state_state_change
+
+  !> mu depends on the slip rate.
+  pure logical function always_rate_dependent(this)
+    class(rate_state_base_t), intent(in) :: this
+    always_rate_dependent = .true.
+  end function always_rate_dependent
 
 end module fcs_rate_state_base

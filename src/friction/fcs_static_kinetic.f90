@@ -22,6 +22,7 @@ module fcs_static_kinetic
   contains
     procedure :: evaluate => static_kinetic_evaluate
     procedure :: name => static_kinetic_name
+    procedure :: rate_dependent => always_rate_dependent
   end type static_kinetic_t
 
 contains
@@ -43,5 +44,11 @@ contains
     character(len=:), allocatable :: name
     name = 'STATIC KINETIC'
   end function static_kinetic_name
+
+  !> mu depends on the slip rate.
+  pure logical function always_rate_dependent(this)
+    class(static_kinetic_t), intent(in) :: this
+    always_rate_dependent = .true.
+  end function always_rate_dependent
 
 end module fcs_static_kinetic

@@ -39,8 +39,10 @@ module fcs_checkpoint
     !> Time within the step (0: the checkpoint is at the start of `step`).
     real(dp) :: step_time = 0.0_dp
     integer :: step = 0, increment = 0
-    !> Size of the job's text outputs when the checkpoint was written [bytes].
+    !> Size of the job's text outputs when the checkpoint was written [bytes], and the number
+    !> of complete frames in its results file.
     integer(i8) :: dat_size = 0
+    integer :: n_frames = 0
   end type checkpoint_info_t
 
   !> The file being written or read, with the running checksum over all datasets.
@@ -242,7 +244,7 @@ contains
                                                               info%step_hashes // ' ', err)
     if (.not. allocated(err)) call archive%h5%write_attribute('/meta', 'build', info%build, err)
     if (.not. allocated(err)) call put_int1(archive, '/meta/sizes', [info%n_nodes, info%n_elements, &
-      info%n_slaves, info%n_material_state, info%step, info%increment], err)
+      info%n_slaves, info%n_material_state, info%step, info%increment, info%n_frames], err)
     if (.not. allocated(err)) call put_real1(archive, '/meta/values', [info%time, &
       real(info%dat_size, dp), info%step_time], err)
     call archive%total%add_text(info%model_hash // info%step_hashes // info%build)
@@ -467,7 +469,7 @@ contains
     if (.not. allocated(err)) call archive%h5%read_attribute('/meta', 'build', info%build, err)
     if (allocated(err)) return
     info%step_hashes = trim(info%step_hashes)
-    allocate (sizes(6), values(3))
+    allocate (sizes(7), values(3))
     call get_int1(archive, '/meta/sizes', sizes, err)
     if (.not. allocated(err)) call get_real1(archive, '/meta/values', values, err)
     if (allocated(err)) return
@@ -477,6 +479,7 @@ contains
     info%n_material_state = sizes(4)
     info%step = sizes(5)
     info%increment = sizes(6)
+    info%n_frames = sizes(7)
     info%time = values(1)
     info%dat_size = int(values(2), i8)
     info%step_time = values(3)

@@ -150,17 +150,17 @@ contains
   end subroutine results_create
 
   !> Reopen `<path_stem>.h5` to add frames after its last complete one. A trailing incomplete
-  !> frame is deleted; the XDMF is rebuilt from the file. With `keep_until_increment`, frames
-  !> of later increments are deleted too (a restart from a checkpoint taken at that increment
-  !> writes them again).
-  subroutine results_open_append(this, path_stem, err, keep_until_increment)
+  !> frame is deleted; the XDMF is rebuilt from the file. With `keep_frames`, only that many
+  !> frames are kept and later ones deleted (a restart from a checkpoint taken when the file
+  !> had that many frames writes them again).
+  subroutine results_open_append(this, path_stem, err, keep_frames)
     class(results_file_t), intent(inout) :: this
     character(len=*), intent(in) :: path_stem
     type(error_t), allocatable, intent(out) :: err
-    integer, intent(in), optional :: keep_until_increment
+    integer, intent(in), optional :: keep_frames
     integer :: limit
     limit = huge(1)
-    if (present(keep_until_increment)) limit = keep_until_increment
+    if (present(keep_frames)) limit = keep_frames
     call start(this, path_stem, OPENING, err)
     if (allocated(err)) return
     call this%h5%open(this%h5_path, .true., err, file_locking=.false.)
@@ -868,7 +868,7 @@ contains
     integer, intent(in) :: limit
     type(error_t), allocatable, intent(out) :: err
     type(string_t), allocatable :: names(:)
-    integer :: i, number, complete, increment
+    integer :: i, number, complete
     logical :: ok, keeping
     call this%h5%list_group('/frames', names, err)
     if (allocated(err)) return
@@ -887,12 +887,7 @@ contains
           if (allocated(err)) return
         end if
       end if
-      keeping = keeping .and. complete == 1
-      if (keeping) then
-        call this%h5%read_attribute(frame_path(i), 'increment', increment, err)
-        if (allocated(err)) return
-        keeping = increment <= limit
-      end if
+      keeping = keeping .and. complete == 1 .and. i <= limit
       if (keeping) then
         call load_frame(this, i, err)
         if (allocated(err)) return

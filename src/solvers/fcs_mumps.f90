@@ -21,7 +21,7 @@ module fcs_mumps
   use fcs_timer, only: wall_time
   use fcs_sparse, only: sparse_matrix_t
   use fcs_linear_solver, only: linear_solver_t
-  use fcs_comm, only: comm_t
+  use fcs_comm, only: comm_t, COMM_VARIANT
   implicit none
   private
   public :: mumps_solver_t, MUMPS_SEQUENTIAL_COMM
@@ -143,7 +143,9 @@ contains
     type(comm_t), intent(in) :: comm
     this%comm = comm
     this%distributed = comm%size > 1
-    if (this%distributed) this%communicator = comm%fortran_handle()
+    ! The parallel library needs the real communicator even on one process (MUMPS
+    ! duplicates it); the sequential one keeps its stub handle.
+    if (COMM_VARIANT == 'mpi') this%communicator = comm%fortran_handle()
   end subroutine mumps_set_comm
 
   !> True when `matrix` is not the pattern analysed last.

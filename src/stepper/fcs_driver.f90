@@ -258,7 +258,7 @@ contains
     call run%dat%open(run%job // '.dat', err, append=.true.)
     if (allocated(err)) return
     if (file_size(run%job // '.h5') >= 0) then
-      call run%results%open_append(run%job, err, keep_until_increment=info%increment)
+      call run%results%open_append(run%job, err, keep_frames=info%n_frames)
     else
       call run%results%create(run%job, model%mesh%node_id, model%mesh%x, model%mesh%element_id, &
                               model%mesh%connectivity, err)
@@ -272,7 +272,8 @@ contains
     type(model_t), intent(in) :: model
     type(error_t), allocatable, intent(out) :: err
     call gather_element_fields(run%analysis)
-    if (run%writer) call save_checkpoint(run%job, run%analysis, run%monitors, model, err)
+    if (run%writer) call save_checkpoint(run%job, run%analysis, run%monitors, model, &
+                                         run%results%n_frames(), err)
     call run%analysis%comm%agree_error(err)
     run%last_checkpoint = wall_time()
     if (.not. allocated(err)) call run%log%detail('checkpoint written: ' // run%job // '.rst.h5 ' // &

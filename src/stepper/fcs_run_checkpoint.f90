@@ -26,11 +26,12 @@ contains
   end function build_id
 
   !> Write the checkpoint of the analysis now (generation 0 of `<job>.rst.h5`).
-  subroutine save_checkpoint(job, a, monitors, model, err)
+  subroutine save_checkpoint(job, a, monitors, model, n_frames, err)
     character(len=*), intent(in) :: job
     type(analysis_t), intent(in) :: a
     type(monitors_t), intent(in) :: monitors
     type(model_t), intent(in) :: model
+    integer, intent(in) :: n_frames
     type(error_t), allocatable, intent(out) :: err
     type(checkpoint_info_t) :: info
     info%model_hash = model%model_hash
@@ -45,6 +46,7 @@ contains
     info%step = a%state%step
     info%increment = a%state%increment
     info%dat_size = max(0_i8, file_size(job // '.dat'))
+    info%n_frames = n_frames
     call write_checkpoint(job, a%state, a%contact, monitors%tables, monitors%catalog, info, &
                           model%checkpoint%generations, err)
   end subroutine save_checkpoint
