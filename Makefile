@@ -16,8 +16,8 @@ PYTHON := /usr/bin/python3
 MULTIARCH := $(shell gcc -print-multiarch 2>/dev/null || echo x86_64-linux-gnu)
 
 PACKAGES := gfortran liblapack-dev libopenblas-dev libsuitesparse-dev libhdf5-dev hdf5-tools \
-            gmsh python3-numpy python3-matplotlib python3-h5py calculix-ccx libmumps-seq-dev
-MPI_PACKAGES := openmpi-bin libopenmpi-dev libmumps-dev libmetis-dev
+            gmsh python3-numpy python3-matplotlib python3-h5py calculix-ccx libmumps-seq-dev \
+            openmpi-bin libopenmpi-dev libmumps-dev libmetis-dev
 
 ifeq ($(MPI),1)
 VARIANT := mpi
@@ -104,7 +104,9 @@ unit-tests: $(TEST_BIN)
 
 test: packages
 	@$(MAKE) --no-print-directory build unit-tests
-	@FCS3D=$(abspath $(BIN)) UNIT_DIR=$(abspath $(BUILD)/tests) PYTHON=$(PYTHON) \
+	@$(MAKE) --no-print-directory MPI=1 build
+	@FCS3D=$(abspath $(BIN)) FCS3D_MPI=$(abspath bin/fcs3d-mpi) UNIT_DIR=$(abspath $(BUILD)/tests) \
+	  PYTHON=$(PYTHON) OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 \
 	  sh tests/run_tests.sh
 
 run: packages
