@@ -22,12 +22,12 @@ PACKAGES := gfortran liblapack-dev libopenblas-dev libsuitesparse-dev libhdf5-de
 ifeq ($(MPI),1)
 VARIANT := mpi
 FC := mpif90
-BIN := bin/fcs3d-mpi
+BIN_NAME := fcs3d-mpi
 MUMPS_INC :=
 MUMPS_LIBS := -ldmumps -lmumps_common -lpord -lmetis
 else
 VARIANT := serial
-BIN := bin/fcs3d
+BIN_NAME := fcs3d
 MUMPS_INC := -I /usr/include/mumps_seq
 MUMPS_LIBS := -ldmumps_seq -lmumps_common_seq -lmpiseq_seq -lpord_seq
 endif
@@ -38,6 +38,16 @@ BUILD := build/debug-$(VARIANT)
 else
 FFLAGS_OPT := -O2 -g -funroll-loops
 endif
+# bin/ holds the default builds only; a DEBUG=1 build or one in another BUILD directory keeps
+# its executable there, so that no build silently replaces bin/fcs3d with another's.
+ifeq ($(BUILD),build/$(VARIANT))
+BIN := bin/$(BIN_NAME)
+else
+BIN := $(BUILD)/$(BIN_NAME)
+endif
+# Where `make test` builds the MPI variant next to this one.
+MPI_BUILD := $(if $(findstring serial,$(BUILD)),$(subst serial,mpi,$(BUILD)),$(BUILD)-mpi)
+MPI_BIN := $(if $(filter build/mpi,$(MPI_BUILD)),bin/fcs3d-mpi,$(MPI_BUILD)/fcs3d-mpi)
 HDF5_INC := /usr/include/hdf5/serial
 HDF5_LIB := /usr/lib/$(MULTIARCH)/hdf5/serial
 # -Wno-uninitialized: gfortran 12 reports false positives on every allocatable assignment
@@ -94,7 +104,8 @@ $(BUILD)/libfcs3d.a: $(LIB_OBJ)
 	@rm -f $@
 	ar rcs $@ $^
 
-$(BIN): $(BUILD)/main.o $(BUILD)/libfcs3d.a | bin
+$(BIN): $(BUILD)/main.o $(BUILD)/libfcs3d.a
+	@mkdir -p $(dir $@)
 	$(FC) $(FFLAGS) -o $@ $^ $(LDLIBS)
 
 $(BUILD)/tests/%: $(BUILD)/%.o $(TEST_SUPPORT) $(BUILD)/libfcs3d.a | $(BUILD)/tests
@@ -104,8 +115,9 @@ unit-tests: $(TEST_BIN)
 
 test: packages
 	@$(MAKE) --no-print-directory build unit-tests
-	@$(MAKE) --no-print-directory MPI=1 build
-	@FCS3D=$(abspath $(BIN)) FCS3D_MPI=$(abspath bin/fcs3d-mpi) UNIT_DIR=$(abspath $(BUILD)/tests) \
+	@$(MAKE) --no-print-directory MPI=1 BUILD=$(MPI_BUILD) build
+	@FCS3D=$(abspath $(BIN)) FCS3D_MPI=$(abspath $(MPI_BIN)) \
+	  UNIT_DIR=$(abspath $(BUILD)/tests) \
 	  PYTHON=$(PYTHON) OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 \
 	  sh tests/run_tests.sh
 

@@ -3,13 +3,16 @@
 !>
 !> Conditions follow the Abaqus/CalculiX rules: *BOUNDARY in the model definition holds in
 !> every step; in a step, OP=MOD (default) adds to or changes the conditions of the previous
-!> step and OP=NEW first removes all of them. The same holds for *CLOAD and *DSLOAD.
+!> step and OP=NEW first removes all of them. The same holds for *CLOAD and *DSLOAD. Within
+!> one scope (the model data, or one step) a degree of freedom takes one condition: two
+!> different ones (say a node in both a fixed set and a prescribed set) are an error naming
+!> both lines, where CalculiX would silently keep the later.
 module fcs_build_step
   use fcs_kinds, only: dp
   use fcs_deck_lexer, only: card_t, data_line_t
   use fcs_deck_fields, only: param_upper, param_value, has_flag, line_real, line_int, &
                              line_optional_real, resolve_nodes, resolve_elements, is_integer_text
-  use fcs_diagnostics, only: diagnostics_t
+  use fcs_diagnostics, only: diagnostics_t, source_loc_t
   use fcs_builder_state, only: builder_t
   use fcs_mesh, only: SURFACE_FACES
   use fcs_model, only: model_t, step_t, dof_condition_t, face_load_t, amplitude_t, &
@@ -20,6 +23,9 @@ module fcs_build_step
   public :: handle_step, handle_static, handle_end_step, handle_boundary, handle_cload
   public :: handle_dsload, handle_amplitude, handle_time_points, find_amplitude, find_time_points
   public :: handle_rmin
+
+  !> Clashing conditions named per card; the rest are counted in one message.
+  integer, parameter :: MAX_CLASHES_NAMED = 5
 
 contains
 
@@ -43,6 +49,7 @@ contains
     end if
     state%step%max_increments = increments
     state%step%period = -1.0_dp
+    state%scope = size(state%steps) + 1
     state%boundary_renewed = .false.
     state%loads_renewed = .false.
     state%pressures_renewed = .false.
@@ -184,9 +191,10 @@ contains
     type(diagnostics_t), intent(inout) :: diag
     type(dof_condition_t) :: c
     integer, allocatable :: nodes(:)
-    integer :: i, j, first, last, dof, amplitude
+    integer :: i, j, first, last, dof, amplitude, origin, clash, n_clashes
     real(dp) :: value
     if (.not. amplitude_param(card, model, diag, amplitude)) return
+    n_clashes = 0
     if (param_upper(card, 'OP') == 'NEW' .and. .not. (state%in_step .and. state%boundary_renewed)) then
       call state%boundary%clear()
       state%boundary_renewed = state%in_step
@@ -211,16 +219,71 @@ contains
         c%kind = merge(BC_VELOCITY, BC_DISPLACEMENT, param_upper(card, 'TYPE') == 'VELOCITY')
         c%value = value
         c%amplitude = amplitude
+        origin = record_line(state, line%loc)
         do j = 1, size(nodes)
           c%node = nodes(j)
           do dof = first, last
             c%dof = dof
-            call state%boundary%put(c)
+            call state%boundary%put(c, state%scope, origin, clash)
+            if (clash > 0) call report_clash(state, model, line%loc, 'BOUNDARY', c, clash, &
+                                             n_clashes, diag)
           end do
         end do
       end associate
     end do
+    call report_more_clashes(card%loc, 'BOUNDARY', n_clashes, diag)
   end subroutine handle_boundary
+
+  !> Remember the data line `loc` that sets conditions; its index is their origin.
+  integer function record_line(state, loc) result(origin)
+    type(builder_t), intent(inout) :: state
+    type(source_loc_t), intent(in) :: loc
+    type(source_loc_t), allocatable :: grown(:)
+    if (.not. allocated(state%condition_lines)) allocate (state%condition_lines(16))
+    if (state%n_condition_lines == size(state%condition_lines)) then
+      allocate (grown(2 * size(state%condition_lines)))
+      grown(1:state%n_condition_lines) = state%condition_lines(1:state%n_condition_lines)
+      call move_alloc(grown, state%condition_lines)
+    end if
+    state%n_condition_lines = state%n_condition_lines + 1
+    origin = state%n_condition_lines
+    state%condition_lines(origin) = loc
+  end function record_line
+
+  !> Report that `c` contradicts the condition set by line `clash` in the same scope (the
+  !> first MAX_CLASHES_NAMED of a card; the rest are counted).
+  subroutine report_clash(state, model, loc, keyword, c, clash, n_clashes, diag)
+    type(builder_t), intent(in) :: state
+    type(model_t), intent(in) :: model
+    type(source_loc_t), intent(in) :: loc
+    character(len=*), intent(in) :: keyword
+    type(dof_condition_t), intent(in) :: c
+    integer, intent(in) :: clash
+    integer, intent(inout) :: n_clashes
+    type(diagnostics_t), intent(inout) :: diag
+    character(len=:), allocatable :: scope
+    n_clashes = n_clashes + 1
+    if (n_clashes > MAX_CLASHES_NAMED) return
+    scope = 'the model data'
+    if (state%in_step) scope = 'this step'
+    associate (earlier => state%condition_lines(clash))
+      call diag%report(loc, '*' // keyword // ': node ' // str(model%mesh%node_id(c%node)) // &
+        ', degree of freedom ' // str(c%dof) // ' already has a different value in ' // scope // &
+        ' (set at ' // earlier%file // ':' // str(earlier%line) // '); a degree of freedom ' // &
+        'takes one value per step: take the node out of one of the sets, or give the values ' // &
+        'in different steps')
+    end associate
+  end subroutine report_clash
+
+  subroutine report_more_clashes(loc, keyword, n_clashes, diag)
+    type(source_loc_t), intent(in) :: loc
+    character(len=*), intent(in) :: keyword
+    integer, intent(in) :: n_clashes
+    type(diagnostics_t), intent(inout) :: diag
+    if (n_clashes <= MAX_CLASHES_NAMED) return
+    call diag%report(loc, '*' // keyword // ': ' // str(n_clashes - MAX_CLASHES_NAMED) // &
+      ' more degrees of freedom with two different conditions in the same step')
+  end subroutine report_more_clashes
 
   logical function valid_dofs(line, first, last, diag) result(ok)
     type(data_line_t), intent(in) :: line
@@ -245,9 +308,10 @@ contains
     type(diagnostics_t), intent(inout) :: diag
     type(dof_condition_t) :: c
     integer, allocatable :: nodes(:)
-    integer :: i, j, dof, amplitude
+    integer :: i, j, dof, amplitude, origin, clash, n_clashes
     real(dp) :: value
     if (.not. amplitude_param(card, model, diag, amplitude)) return
+    n_clashes = 0
     if (param_upper(card, 'OP') == 'NEW' .and. .not. state%loads_renewed) then
       call state%loads%clear()
       state%loads_renewed = .true.
@@ -268,12 +332,16 @@ contains
         c%dof = dof
         c%value = value
         c%amplitude = amplitude
+        origin = record_line(state, line%loc)
         do j = 1, size(nodes)
           c%node = nodes(j)
-          call state%loads%put(c)
+          call state%loads%put(c, state%scope, origin, clash)
+          if (clash > 0) call report_clash(state, model, line%loc, 'CLOAD', c, clash, &
+                                           n_clashes, diag)
         end do
       end associate
     end do
+    call report_more_clashes(card%loc, 'CLOAD', n_clashes, diag)
   end subroutine handle_cload
 
   !> *DSLOAD: surface, P, pressure (or element/set, P1..P6, pressure).

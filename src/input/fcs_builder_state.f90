@@ -2,6 +2,7 @@
 !> the step being built, and the running lists of boundary conditions and loads that carry
 !> over from step to step (Abaqus/CalculiX OP=MOD / OP=NEW semantics).
 module fcs_builder_state
+  use fcs_diagnostics, only: source_loc_t
   use fcs_int_map, only: int_map_t
   use fcs_model, only: step_t, dof_condition_t, face_load_t
   implicit none
@@ -9,8 +10,12 @@ module fcs_builder_state
   public :: builder_t, condition_list_t, pressure_list_t
 
   !> Conditions on degrees of freedom, at most one per (node, dof): a new one replaces the old.
+  !> Each remembers the scope (model data or a step) and the data line that set it, so that
+  !> two different conditions on one degree of freedom in the same scope can be reported.
   type :: condition_list_t
     type(dof_condition_t), allocatable :: items(:)
+    integer, allocatable :: scope(:)
+    integer, allocatable :: origin(:)
     integer :: n = 0
     type(int_map_t) :: slot
   contains
@@ -36,6 +41,11 @@ module fcs_builder_state
     !> Interaction that *SURFACE BEHAVIOR and *FRICTION apply to (0: none yet).
     integer :: interaction = 0
     logical :: in_step = .false.
+    !> 0 for the model data, k while step k is read: conditions of one scope must agree.
+    integer :: scope = 0
+    !> Data lines that set conditions (`origin` of condition_list_t indexes them).
+    type(source_loc_t), allocatable :: condition_lines(:)
+    integer :: n_condition_lines = 0
     type(step_t) :: step
     !> Whether this step already applied OP=NEW to each list (only the first NEW clears).
     logical :: boundary_renewed = .false.
@@ -52,32 +62,57 @@ contains
   subroutine condition_list_clear(this)
     class(condition_list_t), intent(inout) :: this
     this%n = 0
-    if (.not. allocated(this%items)) allocate (this%items(64))
+    if (.not. allocated(this%items)) allocate (this%items(64), this%scope(64), this%origin(64))
     call this%slot%init(64)
   end subroutine condition_list_clear
 
-  !> Add `c`, replacing an existing condition on the same (node, dof).
-  subroutine condition_list_put(this, c)
+  !> Add `c` (set in `scope` by data line `origin`), replacing an existing condition on the
+  !> same (node, dof). `clash` is the origin of a different condition that the same scope
+  !> already gave this degree of freedom (0: none).
+  subroutine condition_list_put(this, c, scope, origin, clash)
     class(condition_list_t), intent(inout) :: this
     type(dof_condition_t), intent(in) :: c
-    type(dof_condition_t), allocatable :: grown(:)
+    integer, intent(in) :: scope, origin
+    integer, intent(out) :: clash
     integer :: key, k
+    clash = 0
     if (.not. allocated(this%items)) call this%clear()
     key = 3 * (c%node - 1) + c%dof
     k = this%slot%get(key)
     if (k > 0) then
-      this%items(k) = c
-      return
+      if (this%scope(k) == scope .and. .not. same_condition(this%items(k), c)) clash = this%origin(k)
+    else
+      if (this%n == size(this%items)) call grow(this)
+      this%n = this%n + 1
+      k = this%n
+      call this%slot%set(key, k)
     end if
-    if (this%n == size(this%items)) then
-      allocate (grown(2 * size(this%items)))
-      grown(1:this%n) = this%items(1:this%n)
-      call move_alloc(grown, this%items)
-    end if
-    this%n = this%n + 1
-    this%items(this%n) = c
-    call this%slot%set(key, this%n)
+    this%items(k) = c
+    this%scope(k) = scope
+    this%origin(k) = origin
   end subroutine condition_list_put
+
+  subroutine grow(this)
+    class(condition_list_t), intent(inout) :: this
+    type(dof_condition_t), allocatable :: grown(:)
+    integer, allocatable :: grown_int(:)
+    integer :: capacity
+    capacity = 2 * size(this%items)
+    allocate (grown(capacity))
+    grown(1:this%n) = this%items(1:this%n)
+    call move_alloc(grown, this%items)
+    allocate (grown_int(capacity))
+    grown_int(1:this%n) = this%scope(1:this%n)
+    call move_alloc(grown_int, this%scope)
+    allocate (grown_int(capacity))
+    grown_int(1:this%n) = this%origin(1:this%n)
+    call move_alloc(grown_int, this%origin)
+  end subroutine grow
+
+  pure logical function same_condition(a, b)
+    type(dof_condition_t), intent(in) :: a, b
+    same_condition = a%kind == b%kind .and. a%value == b%value .and. a%amplitude == b%amplitude
+  end function same_condition
 
   function condition_list_to_array(this) result(out)
     class(condition_list_t), intent(in) :: this

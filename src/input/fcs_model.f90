@@ -201,6 +201,9 @@ module fcs_model
     type(section_t), allocatable :: sections(:)
     !> Section index of every element (0 = none, an error after building).
     integer, allocatable :: element_section(:)
+    !> Nodes in no element (gmsh geometry points, construction nodes): their displacements
+    !> are held at zero, so that they add no singular rows.
+    logical, allocatable :: free_node(:)
     type(amplitude_t), allocatable :: amplitudes(:)
     type(time_points_t), allocatable :: time_points(:)
     type(step_t), allocatable :: steps(:)

@@ -1,10 +1,12 @@
 !> Checks of the finished model that no single card can make: every element has a section
-!> with an elastic material, no element is inverted, the deck has steps.
+!> with an elastic material, no element is inverted, the deck has steps, every body is held
+!> (fcs_model_supports).
 module fcs_model_checks
   use fcs_kinds, only: dp
   use fcs_diagnostics, only: diagnostics_t
   use fcs_hex8_shape, only: hex8_min_jacobian_ratio
   use fcs_model, only: model_t
+  use fcs_model_supports, only: check_supports
   use fcs_strings, only: str
   implicit none
   private
@@ -33,6 +35,7 @@ contains
       call diag%report_plain(model%deck_path // ': the deck defines no step (*STEP ... *END STEP): ' // &
                              'nothing to compute')
     end if
+    if (.not. diag%has_errors()) call check_supports(model, diag)
   end subroutine check_model
 
   !> element_section(e) from the *SOLID SECTIONs; an element in two sections or in none is an error.

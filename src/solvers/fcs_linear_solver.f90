@@ -11,7 +11,16 @@ module fcs_linear_solver
   use fcs_sparse, only: sparse_matrix_t
   implicit none
   private
-  public :: linear_solver_t, solver_stats_t
+  public :: linear_solver_t, solver_stats_t, NEAR_SINGULAR_PIVOT_RATIO
+
+  !> A factorisation whose smallest pivot is below NEAR_SINGULAR_PIVOT_RATIO times the scale
+  !> of its matrix (UMFPACK: the reciprocal condition estimate min|u_ii| / max|u_ii|; MUMPS:
+  !> null-pivot detection, CNTL(3), relative to the norm of the scaled matrix) is refused as
+  !> numerically singular. An unsupported body gives ~1e-16 (round-off of a zero pivot); the
+  !> contact models of the test suite 1e-2..1e-6. Below 1e-13 a solution keeps at most 3
+  !> significant digits, so nothing usable is lost. The skyline solver's own test is
+  !> SKYLINE_PIVOT_TOLERANCE (row-scaled).
+  real(dp), parameter :: NEAR_SINGULAR_PIVOT_RATIO = 1.0e-13_dp
 
   !> Figures a solver reports about its last factorisation (0 when unknown).
   type :: solver_stats_t
@@ -25,6 +34,9 @@ module fcs_linear_solver
 
   type, abstract :: linear_solver_t
     type(solver_stats_t) :: stats
+    !> The user's node numbers (node_id(k) of the k-th node; degrees of freedom 3k-2..3k), for
+    !> messages naming a degree of freedom; unset: the node's index is named instead.
+    integer, allocatable :: node_id(:)
   contains
     procedure(factor_interface), deferred :: factor
     procedure(solve_interface), deferred :: solve

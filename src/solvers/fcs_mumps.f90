@@ -20,7 +20,7 @@ module fcs_mumps
   use fcs_strings, only: str
   use fcs_timer, only: wall_time
   use fcs_sparse, only: sparse_matrix_t
-  use fcs_linear_solver, only: linear_solver_t
+  use fcs_linear_solver, only: linear_solver_t, NEAR_SINGULAR_PIVOT_RATIO
   use fcs_comm, only: comm_t, COMM_VARIANT
   implicit none
   private
@@ -43,6 +43,9 @@ module fcs_mumps
   integer, parameter :: MUMPS_ASSEMBLED = 0, MUMPS_CENTRALISED = 0
   !> ICNTL(18) = 3: each process gives its own entries (distributed assembled input).
   integer, parameter :: MUMPS_DISTRIBUTED = 3
+  !> ICNTL(24) = 1: null-pivot detection; with CNTL(3) > 0 a pivot is null when its row is
+  !> below CNTL(3) times the norm of the scaled matrix, and INFOG(28) counts them.
+  integer, parameter :: MUMPS_DETECT_NULL_PIVOTS = 1
   !> Automatic retries of a factorisation that ran out of workspace, each doubling the
   !> relaxation ICNTL(14) (percent of extra workspace over the analysis estimate).
   integer, parameter :: MAX_WORKSPACE_RETRIES = 2
@@ -131,6 +134,13 @@ contains
     end if
     call factorise_with_retries(this, err)
     if (allocated(err)) return
+    if (this%id%INFOG(28) > 0) then
+      call fatal_error(err, 'MUMPS factorisation: the matrix is singular or nearly so (' // &
+        str(this%id%INFOG(28)) // ' null pivot(s) below ' // str(NEAR_SINGULAR_PIVOT_RATIO, 3) // &
+        ' times the norm of the scaled matrix); check that every body is supported ' // &
+        '(rigid-body modes) and that contact is closed')
+      return
+    end if
     this%factored = .true.
     this%stats%factor_seconds = wall_time() - started
     this%stats%n_factorisations = this%stats%n_factorisations + 1
@@ -178,6 +188,8 @@ contains
     this%id%ICNTL(5) = MUMPS_ASSEMBLED
     this%id%ICNTL(18) = MUMPS_CENTRALISED
     if (this%distributed) this%id%ICNTL(18) = MUMPS_DISTRIBUTED
+    this%id%ICNTL(24) = MUMPS_DETECT_NULL_PIVOTS
+    this%id%CNTL(3) = NEAR_SINGULAR_PIVOT_RATIO
   end subroutine mumps_initialise
 
   !> JOB = 1: coordinate copy of the pattern (and the current values, which the automatic

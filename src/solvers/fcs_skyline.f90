@@ -246,6 +246,7 @@ contains
     dof = this%dof_order(j)
     node = (dof - 1) / DOFS_PER_NODE + 1
     direction = mod(dof - 1, DOFS_PER_NODE) + 1
+    if (allocated(this%node_id)) node = this%node_id(node)
     call fatal_error(err, 'skyline solver: zero or tiny pivot ' // str(pivot, 3) // &
       ' (largest entry of the row ' // str(this%row_scale(j), 3) // ') at degree of freedom ' // &
       str(dof) // ' (node ' // str(node) // ', direction ' // DIRECTION_NAMES(direction) // &

@@ -16,7 +16,7 @@ module fcs_umfpack
   use fcs_strings, only: str
   use fcs_timer, only: wall_time
   use fcs_sparse, only: sparse_matrix_t
-  use fcs_linear_solver, only: linear_solver_t
+  use fcs_linear_solver, only: linear_solver_t, NEAR_SINGULAR_PIVOT_RATIO
   use fcs_umfpack_c, only: umfpack_dl_defaults, umfpack_dl_symbolic, umfpack_dl_numeric, &
     umfpack_dl_solve, umfpack_dl_free_symbolic, umfpack_dl_free_numeric, UMFPACK_INFO, &
     UMFPACK_CONTROL, UMFPACK_At, UMFPACK_LNZ, UMFPACK_UNZ, UMFPACK_UDIAG_NZ, UMFPACK_RCOND, &
@@ -84,6 +84,13 @@ contains
     this%stats%factor_seconds = wall_time() - started
     this%stats%n_factorisations = this%stats%n_factorisations + 1
     this%stats%factor_entries = real(this%info(UMFPACK_LNZ + 1) + this%info(UMFPACK_UNZ + 1), dp)
+    if (this%info(UMFPACK_RCOND + 1) < NEAR_SINGULAR_PIVOT_RATIO) then
+      call fatal_error(err, 'UMFPACK numeric factorisation: the matrix is singular or nearly ' // &
+        'so (reciprocal condition estimate ' // str(real(this%info(UMFPACK_RCOND + 1), dp), 3) // &
+        ' < ' // str(NEAR_SINGULAR_PIVOT_RATIO, 3) // '); check that every body is supported ' // &
+        '(rigid-body modes) and that contact is closed')
+      call release_numeric(this)
+    end if
   end subroutine umfpack_factor
 
   !> True when `matrix` is not the pattern analysed last.

@@ -134,6 +134,9 @@ contains
                   str(model%mesh%n_elements) // ' hexahedra, ' // str(3 * model%mesh%n_nodes) // &
                   ' degrees of freedom, ' // str(size(model%steps)) // ' step(s); solver ' // &
                   model%solver_name)
+    if (count(model%free_node) > 0) call log%info('note: ' // str(count(model%free_node)) // &
+      ' node(s) belong to no element (node ' // str(model%mesh%node_id(findloc(model%free_node, &
+      .true., 1))) // ' first); they are held fixed')
   end subroutine describe_model
 
   !> State, materials, contact, sparse pattern, solver.
@@ -157,6 +160,7 @@ contains
       call build_pattern(a, model)
       call create_linear_solver(model%solver_name, a%solver, err)
       if (allocated(err)) return
+      a%solver%node_id = model%mesh%node_id(1:model%mesh%n_nodes)
       select type (solver => a%solver)
       type is (mumps_solver_t)
         call solver%set_comm(a%comm)

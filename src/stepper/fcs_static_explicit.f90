@@ -124,7 +124,7 @@ contains
         end if
         a%rhs_residual = merge(0.0_dp, a%f_ext0 + a%f_contact - a%f_int, a%constrained)
         call impose_constraints(a)
-        call solve_system(a, err)
+        call solve_system(a, model%mesh%node_id, err)
         call a%comm%agree_error(err)
         if (allocated(err)) return
         if (a%contact%n_slaves() == 0) exit
@@ -373,7 +373,8 @@ contains
     call assemble_pressures(model, a%loading, t1, a%state, nlgeom, a%f_ext1)
   end subroutine external_forces
 
-  !> Constrained degrees of freedom and their prescribed increments over [t0, t1].
+  !> Constrained degrees of freedom and their prescribed increments over [t0, t1]. Nodes in
+  !> no element are held where they are.
   subroutine prescribed_increments(a, model, t0, t1)
     type(analysis_t), intent(inout) :: a
     type(model_t), intent(in) :: model
@@ -381,6 +382,9 @@ contains
     integer :: i, dof, node, direction
     a%constrained = .false.
     a%prescribed = 0.0_dp
+    do node = 1, model%mesh%n_nodes
+      if (model%free_node(node)) a%constrained(3 * node - 2:3 * node) = .true.
+    end do
     do i = 1, size(a%loading%bc_dof)
       dof = a%loading%bc_dof(i)
       node = (dof - 1) / 3 + 1
@@ -393,8 +397,9 @@ contains
 
   !> Factorise once and solve for both parts of the trial increment; a non-finite solution is
   !> an error.
-  subroutine solve_system(a, err)
+  subroutine solve_system(a, node_id, err)
     type(analysis_t), intent(inout) :: a
+    integer, intent(in) :: node_id(:)
     type(error_t), allocatable, intent(out) :: err
     call a%timers%start('factorisation')
     call a%solver%factor(a%matrix, err)
@@ -405,20 +410,21 @@ contains
     if (.not. allocated(err)) call a%solver%solve(a%matrix, a%rhs_residual, a%du_residual, err)
     call a%timers%stop('solve')
     if (allocated(err)) return
-    call check_finite(a%du_load, err)
-    if (.not. allocated(err)) call check_finite(a%du_residual, err)
+    call check_finite(a%du_load, node_id, err)
+    if (.not. allocated(err)) call check_finite(a%du_residual, node_id, err)
   end subroutine solve_system
 
-  subroutine check_finite(du, err)
+  subroutine check_finite(du, node_id, err)
     real(dp), intent(in) :: du(:)
+    integer, intent(in) :: node_id(:)
     type(error_t), allocatable, intent(out) :: err
     integer :: i
     do i = 1, size(du)
       if (.not. (abs(du(i)) <= huge(1.0_dp))) then
         call fatal_error(err, 'the solution is not finite (NaN or Inf) at node ' // &
-          str((i - 1) / 3 + 1) // ', direction ' // str(i - 3 * ((i - 1) / 3)) // &
-          ': the system is singular or badly conditioned (an unsupported body, or a penalty ' // &
-          'stiffness far larger than the material stiffness)')
+          str(node_id((i - 1) / 3 + 1)) // ', direction ' // str(i - 3 * ((i - 1) / 3)) // &
+          ': a load or prescribed value overflows, or the system is badly conditioned (a ' // &
+          'penalty stiffness far larger than the material stiffness)')
         return
       end if
     end do

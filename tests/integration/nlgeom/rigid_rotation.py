@@ -85,7 +85,7 @@ def rotation_time(steps, angle):
 
 def make_deck(path, steps, spacing, rotation_limit):
     block = fc.Block()
-    sets = {'Z0': block.face(2, 0), 'X1': block.face(0, 1)}
+    sets = {'Z0': block.face(2, 0), 'X0': block.face(0, 0), 'X1': block.face(0, 1)}
     phase = phases(steps)
     lines = ['*HEADING', 'Rigid rotation of a pre-stressed block, %d step(s), amplitude points '
              'every %g degrees (tests/integration/nlgeom/rigid_rotation.py)' % (steps, spacing)]
@@ -111,7 +111,9 @@ def make_deck(path, steps, spacing, rotation_limit):
         lines += fc.amplitude_card('STRETCH_HOLD', [0.0, phase['stretch'][1], 1.0],
                                    [0.0, 1.0, 1.0])
         lines += ['*STEP, NLGEOM, NAME=PRESTRESS', '*STATIC', '1., 1.',
-                  '*BOUNDARY', 'ALL_NODES, 1, 2, 0.',
+                  # x held on the face x = 0 and stretched on x = 1, y held everywhere: one
+                  # value per degree of freedom and step (fcs3d refuses two).
+                  '*BOUNDARY', 'ALL_NODES, 2, 2, 0.', 'X0, 1, 1, 0.',
                   '*BOUNDARY, AMPLITUDE=STRETCH_HOLD', 'X1, 1, 1, %.17g' % DELTA,
                   '*EL PRINT, ELSET=ALL_ELEMENTS', 'S', '*END STEP']
     lines += ['*STEP, NLGEOM, NAME=ROTATION', '*STATIC', '1., 1.']
