@@ -1,5 +1,12 @@
-!> 64-bit checksums of arrays (FNV-1a over 64-bit words), to verify checkpoint data on read.
-!> Not cryptographic: it detects truncation, bit flips and mismatched data, which is its job.
+!> 64-bit checksums of arrays (FNV-1a over 64-bit words, each step followed by a xor-shift),
+!> to verify checkpoint data on read. Not cryptographic: it detects truncation, bit flips and
+!> mismatched data, which is its job.
+!>
+!> Plain word-wise FNV-1a (xor, then multiply by an odd prime modulo 2**64) only carries a
+!> change of bit k of a word into bits k..63 of the hash: a change of the top bits (the sign
+!> and high exponent bits of a real) was detected with a probability of 1/2 (sign) to 1/2**9,
+!> e.g. an even number of sign flips never. The xor-shift folds the high half into the low
+!> half at every word, so that every bit of every word reaches every bit of the result.
 module fcs_checksum
   use fcs_kinds, only: dp, i8
   implicit none
@@ -21,10 +28,12 @@ module fcs_checksum
 
 contains
 
-  !> Mix one 64-bit word (FNV-1a applied word-wise; integer overflow wraps, as intended).
+  !> Mix one 64-bit word (FNV-1a applied word-wise, integer overflow wraps as intended; then
+  !> h xor (h >> 32), which carries high bits down).
   elemental integer(i8) function mix(h, word)
     integer(i8), intent(in) :: h, word
     mix = ieor(h, word) * FNV_PRIME
+    mix = ieor(mix, shiftr(mix, 32))
   end function mix
 
   !> Add the bit patterns of real values.

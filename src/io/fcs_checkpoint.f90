@@ -10,7 +10,7 @@
 !> refused instead of silently continuing from wrong data.
 module fcs_checkpoint
   use fcs_kinds, only: dp, i8
-  use fcs_error, only: error_t, fatal_error, input_error, add_context
+  use fcs_error, only: error_t, fatal_error, input_error, add_context, EXIT_INPUT
   use fcs_hdf5, only: h5_file_t, h5_library_open
   use fcs_files, only: rename_file, remove_file, sync_file
   use fcs_checksum, only: checksum_t, checksum_text
@@ -25,7 +25,11 @@ module fcs_checkpoint
   public :: checkpoint_generation_path, CHECKPOINT_FORMAT
 
   character(len=*), parameter :: CHECKPOINT_FORMAT = 'fcs3d checkpoint'
-  integer, parameter :: CHECKPOINT_VERSION = 1
+  !> Version of the layout and checksums; a checkpoint of another version is refused.
+  !> 2: checksums with the xor-shift step (fcs_checksum); the layouts since 418dfd4
+  !> (friction step control in /state/scalars and /state/counters, the frame count in
+  !> /meta/sizes), which version-1 files may lack.
+  integer, parameter :: CHECKPOINT_VERSION = 2
 
   !> What a checkpoint says about itself (the /meta attributes).
   type :: checkpoint_info_t
@@ -269,6 +273,7 @@ contains
     character(len=*), intent(in) :: path
     type(error_t), allocatable, intent(out) :: err
     character(len=:), allocatable :: format
+    integer :: version
     archive%path = path
     if (.not. file_exists(path)) then
       call input_error(err, 'the file does not exist')
@@ -287,7 +292,15 @@ contains
     end if
     call archive%h5%read_attribute('/meta', 'format', format, err)
     if (allocated(err)) return
-    if (format /= CHECKPOINT_FORMAT) call input_error(err, 'not an fcs3d checkpoint ("' // format // '")')
+    if (format /= CHECKPOINT_FORMAT) then
+      call input_error(err, 'not an fcs3d checkpoint ("' // format // '")')
+      return
+    end if
+    call archive%h5%read_attribute('/meta', 'version', version, err)
+    if (allocated(err)) return
+    if (version /= CHECKPOINT_VERSION) call input_error(err, 'checkpoint format version ' // &
+      str(version) // '; this fcs3d reads version ' // str(CHECKPOINT_VERSION) // &
+      ' only (restart with the fcs3d that wrote it)')
   end subroutine open_archive
 
   !> Read and verify a checkpoint into `state` (already set up for the model, so that its
@@ -314,7 +327,12 @@ contains
         call input_error(err, 'the overall checksum does not match (the file is damaged)')
     end if
     if (archive%h5%is_open()) call close_quietly(archive)
-    if (allocated(err)) call add_context(err, 'reading checkpoint ' // path)
+    if (allocated(err)) then
+      ! Whatever failed (HDF5 could not open a damaged object, a checksum...), the file is
+      ! bad input to this run, not an internal failure.
+      err%exit_code = EXIT_INPUT
+      call add_context(err, 'reading checkpoint ' // path)
+    end if
   end subroutine read_checkpoint
 
   subroutine read_state(archive, state, err)
@@ -432,7 +450,6 @@ contains
       call read_watch(archive, catalog, k, err)
       if (allocated(err)) return
     end do
-    call catalog%rewrite_csv(err)
   end subroutine read_monitors
 
   subroutine read_watch(archive, catalog, k, err)

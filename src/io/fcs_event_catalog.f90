@@ -57,7 +57,8 @@ module fcs_event_catalog
 
 contains
 
-  !> Watch `size(pair_sizes)` pairs with the given numbers of slave nodes.
+  !> Watch `size(pair_sizes)` pairs with the given numbers of slave nodes. The CSV is not
+  !> written yet (rewrite_csv, once the run is known to go ahead).
   subroutine catalog_init(this, threshold, min_slip, pair_sizes, csv_path, err, writes)
     class(event_catalog_t), intent(inout) :: this
     real(dp), intent(in) :: threshold, min_slip
@@ -82,7 +83,6 @@ contains
       this%watch(k)%last_slip = 0.0_dp
       this%watch(k)%last_shear = 0.0_dp
     end do
-    call this%rewrite_csv(err)
   end subroutine catalog_init
 
   !> After an increment from t_start to t_end: the slip rate, accumulated slip and shear

@@ -1,7 +1,9 @@
 !> A history table: rows of samples (first column the time) kept in memory, appended to a CSV
 !> file as they come (flushed, so a crash loses nothing written), and stored in the results
-!> file by the caller. After a restart the rows come from the checkpoint and the CSV is
-!> rewritten from them.
+!> file by the caller. The CSV is (re)written whole by `rewrite_csv`, which the caller calls
+!> once the run is known to go ahead: for a new run, and after a restart (rows from the
+!> checkpoint) only once the checkpoint was accepted, so that a refused restart leaves the
+!> CSV of the earlier run as it was.
 module fcs_history
   use fcs_kinds, only: dp
   use fcs_error, only: error_t, fatal_error
@@ -29,7 +31,7 @@ module fcs_history
 
 contains
 
-  !> A new table with its CSV file (header line written).
+  !> A new, empty table for the CSV file `csv_path` (not written yet: see rewrite_csv).
   subroutine table_create(this, name, csv_path, columns, err, writes)
     class(history_table_t), intent(inout) :: this
     character(len=*), intent(in) :: name, csv_path
@@ -42,7 +44,6 @@ contains
     this%columns = columns
     allocate (this%rows(size(columns), 64))
     this%n_rows = 0
-    call this%rewrite_csv(err)
   end subroutine table_create
 
   !> Add a row (memory and CSV).
@@ -111,7 +112,7 @@ contains
     values = this%rows(:, 1:this%n_rows)
   end function table_values
 
-  !> Replace the rows (restart) and rewrite the CSV.
+  !> Replace the rows (restart; the CSV is rewritten by the caller, see rewrite_csv).
   subroutine table_set_rows(this, values, err)
     class(history_table_t), intent(inout) :: this
     real(dp), intent(in) :: values(:, :)
@@ -120,7 +121,6 @@ contains
     allocate (this%rows(size(values, 1), max(64, size(values, 2))))
     this%rows(:, 1:size(values, 2)) = values
     this%n_rows = size(values, 2)
-    call this%rewrite_csv(err)
   end subroutine table_set_rows
 
 end module fcs_history

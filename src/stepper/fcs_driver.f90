@@ -225,6 +225,7 @@ contains
     call run%analysis%comm%agree_error(err)
     if (allocated(err)) return
     call run%monitors%init(model, run%analysis, run%job, err)
+    if (.not. allocated(err)) call run%monitors%write_files(err)
     if (allocated(err)) return
     call run%monitors%sample(model, run%analysis, spread(.true., 1, size(model%histories)), err)
     if (allocated(err)) return
@@ -233,6 +234,8 @@ contains
 
   !> Continue from a checkpoint: restore the analysis, and cut the outputs back to what they
   !> held when the checkpoint was written (a killed run may have written more after it).
+  !> Nothing is written before the checkpoint is read and accepted: a refused restart leaves
+  !> the outputs of the earlier run as they were.
   subroutine resume_outputs(run, model, path, err)
     type(run_t), intent(inout) :: run
     type(model_t), intent(in) :: model
@@ -257,6 +260,8 @@ contains
     type(model_t), intent(in) :: model
     type(checkpoint_info_t), intent(in) :: info
     type(error_t), allocatable, intent(out) :: err
+    call run%monitors%write_files(err)
+    if (allocated(err)) return
     if (file_size(run%job // '.dat') >= 0) call truncate_file(run%job // '.dat', info%dat_size, err)
     if (allocated(err)) return
     call run%dat%open(run%job // '.dat', err, append=.true.)

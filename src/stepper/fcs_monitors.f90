@@ -28,6 +28,7 @@ module fcs_monitors
     real(dp), allocatable :: volume(:, :)
   contains
     procedure :: init => monitors_init
+    procedure :: write_files => monitors_write_files
     procedure :: sample => monitors_sample
     procedure :: watch_events => monitors_watch_events
   end type monitors_t
@@ -60,6 +61,19 @@ contains
     end if
     if (any([(has_energy(model%histories(k)), k = 1, size(model%histories))])) call reference_volumes(this, model)
   end subroutine monitors_init
+
+  !> Write every history CSV and the event catalog CSV whole from what is in memory: at the
+  !> start of a new run (headers), or after a restart was accepted (the checkpoint's rows).
+  subroutine monitors_write_files(this, err)
+    class(monitors_t), intent(inout) :: this
+    type(error_t), allocatable, intent(out) :: err
+    integer :: k
+    do k = 1, size(this%tables)
+      call this%tables(k)%rewrite_csv(err)
+      if (allocated(err)) return
+    end do
+    if (this%catalog_on) call this%catalog%rewrite_csv(err)
+  end subroutine monitors_write_files
 
   pure logical function has_energy(history)
     type(history_request_t), intent(in) :: history

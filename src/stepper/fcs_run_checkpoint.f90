@@ -5,13 +5,15 @@
 module fcs_run_checkpoint
   use fcs_kinds, only: dp, i8
   use fcs_error, only: error_t, input_error, add_context
+  use fcs_state, only: state_t
+  use fcs_contact_system, only: contact_system_t
   use fcs_model, only: model_t
   use fcs_static_explicit, only: analysis_t, build_pattern, contact_positions
   use fcs_checkpoint, only: checkpoint_info_t, write_checkpoint, read_checkpoint, &
-                            read_checkpoint_info, checkpoint_generation_path
+                            checkpoint_generation_path
   use fcs_files, only: file_size
   use fcs_monitors, only: monitors_t
-  use fcs_strings, only: str, join_strings, string_t
+  use fcs_strings, only: str, join_strings, string_t, parse_int, file_exists
   use fcs_version, only: FCS3D_VERSION, FCS3D_REVISION
   implicit none
   private
@@ -65,7 +67,7 @@ contains
     warning = ''
     call read_checkpoint(path, a%state, a%contact, monitors%tables, monitors%catalog, info, err)
     if (allocated(err)) then
-      call offer_older_generation(path, err)
+      call offer_older_generation(path, a, monitors, err)
       return
     end if
     call check_deck(model, info, err)
@@ -131,21 +133,33 @@ contains
     end do
   end function words
 
-  !> When a checkpoint cannot be read, say which older generation can.
-  subroutine offer_older_generation(path, err)
+  !> When a checkpoint cannot be read, name the newest OLDER generation that can be read in
+  !> full: read as a restart reads it (every dataset and the overall checksum verified) into
+  !> scratch copies of the state, contact bookkeeping and monitors.
+  subroutine offer_older_generation(path, a, monitors, err)
     character(len=*), intent(in) :: path
+    type(analysis_t), intent(in) :: a
+    type(monitors_t), intent(in) :: monitors
     type(error_t), intent(inout) :: err
     type(checkpoint_info_t) :: info
     type(error_t), allocatable :: other_err
+    type(state_t) :: state
+    type(contact_system_t) :: contact
+    type(monitors_t) :: scratch
     character(len=:), allocatable :: stem, candidate
-    integer :: g, k
+    integer :: g, k, own
     k = index(path, '.rst.', back=.true.)
     if (k == 0) return
     stem = path(1:k - 1)
-    do g = 0, 9
+    own = generation_of(path(k + 5:))
+    if (own < 0) return
+    do g = own + 1, own + 100
       candidate = checkpoint_generation_path(stem, g)
-      if (candidate == path) cycle
-      call read_checkpoint_info(candidate, info, other_err)
+      if (.not. file_exists(candidate)) exit
+      state = a%state
+      contact = a%contact
+      scratch = monitors
+      call read_checkpoint(candidate, state, contact, scratch%tables, scratch%catalog, info, other_err)
       if (allocated(other_err)) then
         deallocate (other_err)
         cycle
@@ -156,5 +170,20 @@ contains
       return
     end do
   end subroutine offer_older_generation
+
+  !> The generation of a checkpoint from its name after ".rst.": "h5" is 0, "<g>.h5" is g;
+  !> -1 for anything else.
+  integer function generation_of(tail) result(g)
+    character(len=*), intent(in) :: tail
+    logical :: ok
+    g = -1
+    if (tail == 'h5') then
+      g = 0
+    else if (len(tail) > 3) then
+      if (tail(len(tail) - 2:) /= '.h5') return
+      call parse_int(tail(1:len(tail) - 3), g, ok)
+      if (.not. ok .or. g < 1) g = -1
+    end if
+  end function generation_of
 
 end module fcs_run_checkpoint

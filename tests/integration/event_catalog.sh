@@ -8,8 +8,8 @@
 # stated in restart/event_catalog.py. By hand:
 #   FCS3D=$PWD/bin/fcs3d sh -c 'cd $(mktemp -d) && sh '$PWD'/tests/integration/event_catalog.sh'
 set -u
-here=$(cd "$(dirname "$0")" && pwd)
+tests=$(cd "$(dirname "$0")/.." && pwd)
 py=${PYTHON:-/usr/bin/python3}
 "$py" -c 'import numpy, h5py' 2>/dev/null || { echo "numpy or h5py not available to $py"; exit 77; }
 mkdir -p event_catalog || exit 1
-cd "$here/restart" && "$py" event_catalog.py "$OLDPWD/event_catalog"
+cd "$tests/integration/restart" && "$py" event_catalog.py "$OLDPWD/event_catalog"

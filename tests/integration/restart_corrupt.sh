@@ -7,8 +7,8 @@
 # bit; with no older generation there is no offer. Details in restart/corrupt.py. By hand:
 #   FCS3D=$PWD/bin/fcs3d sh -c 'cd $(mktemp -d) && sh '$PWD'/tests/integration/restart_corrupt.sh'
 set -u
-here=$(cd "$(dirname "$0")" && pwd)
+tests=$(cd "$(dirname "$0")/.." && pwd)
 py=${PYTHON:-/usr/bin/python3}
 "$py" -c 'import numpy, h5py' 2>/dev/null || { echo "numpy or h5py not available to $py"; exit 77; }
 mkdir -p restart_corrupt || exit 1
-cd "$here/restart" && "$py" corrupt.py "$OLDPWD/restart_corrupt"
+cd "$tests/integration/restart" && "$py" corrupt.py "$OLDPWD/restart_corrupt"

@@ -7,8 +7,8 @@
 # taken before it began. Details in restart/deck_changes.py. By hand:
 #   FCS3D=$PWD/bin/fcs3d sh -c 'cd $(mktemp -d) && sh '$PWD'/tests/integration/restart_deck_changes.sh'
 set -u
-here=$(cd "$(dirname "$0")" && pwd)
+tests=$(cd "$(dirname "$0")/.." && pwd)
 py=${PYTHON:-/usr/bin/python3}
 "$py" -c 'import numpy, h5py' 2>/dev/null || { echo "numpy or h5py not available to $py"; exit 77; }
 mkdir -p restart_deck_changes || exit 1
-cd "$here/restart" && "$py" deck_changes.py "$OLDPWD/restart_deck_changes"
+cd "$tests/integration/restart" && "$py" deck_changes.py "$OLDPWD/restart_deck_changes"

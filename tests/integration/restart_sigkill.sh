@@ -9,8 +9,8 @@
 # the seed is printed. By hand:
 #   FCS3D=$PWD/bin/fcs3d sh -c 'cd $(mktemp -d) && sh '$PWD'/tests/integration/restart_sigkill.sh'
 set -u
-here=$(cd "$(dirname "$0")" && pwd)
+tests=$(cd "$(dirname "$0")/.." && pwd)
 py=${PYTHON:-/usr/bin/python3}
 "$py" -c 'import numpy, h5py' 2>/dev/null || { echo "numpy or h5py not available to $py"; exit 77; }
 mkdir -p restart_sigkill || exit 1
-cd "$here/restart" && "$py" sigkill.py "$OLDPWD/restart_sigkill"
+cd "$tests/integration/restart" && "$py" sigkill.py "$OLDPWD/restart_sigkill"

@@ -6,8 +6,8 @@
 # restart/sigterm.py; the moments are seeded from $FCS3D_TEST_SEED (else the clock). By hand:
 #   FCS3D=$PWD/bin/fcs3d sh -c 'cd $(mktemp -d) && sh '$PWD'/tests/integration/restart_sigterm.sh'
 set -u
-here=$(cd "$(dirname "$0")" && pwd)
+tests=$(cd "$(dirname "$0")/.." && pwd)
 py=${PYTHON:-/usr/bin/python3}
 "$py" -c 'import numpy, h5py' 2>/dev/null || { echo "numpy or h5py not available to $py"; exit 77; }
 mkdir -p restart_sigterm || exit 1
-cd "$here/restart" && "$py" sigterm.py "$OLDPWD/restart_sigterm"
+cd "$tests/integration/restart" && "$py" sigterm.py "$OLDPWD/restart_sigterm"

@@ -41,6 +41,16 @@ def xdmf_readable(directory, what):
     return check.returncode == 0
 
 
+def newest(directory):
+    """The newest checkpoint after a kill: job.rst.h5, or job.rst.1.h5 when the kill fell
+    between the renames of a checkpoint being written (doc/restart.md, "Atomic writing")."""
+    name = JOB + '.rst.h5'
+    if not os.path.exists(os.path.join(directory, name)):
+        name = JOB + '.rst.1.h5'
+        print('  job.rst.h5 missing (killed between the renames of a checkpoint); using ' + name)
+    return name
+
+
 def kill_at_random(directory, rng, window, restart_from=None, newer_than=-1):
     """Start fcs3d (from checkpoint restart_from, if given), wait for a checkpoint newer than
     increment `newer_than`, kill -9 after a random delay in [0, window]. Tries again with
@@ -57,7 +67,7 @@ def kill_at_random(directory, rng, window, restart_from=None, newer_than=-1):
             process.send_signal(signal.SIGKILL)
         status = process.wait()
         if status == -signal.SIGKILL:
-            step, increment, t, _ = rc.checkpoint_info(checkpoint)
+            step, increment, t, _ = rc.checkpoint_info(os.path.join(directory, newest(directory)))
             print('  killed %.3f s after checkpoint %d appeared; newest checkpoint: step %d, '
                   'increment %d, time %.6g' % (delay, seen, step, increment, t))
             return increment
@@ -92,12 +102,12 @@ def main():
     failures += not xdmf_readable(killed, 'after the kill')
     # A copy, so that a second attempt starts from the same checkpoint.
     saved = os.path.join(killed, 'first.rst.h5')
-    shutil.copy(os.path.join(killed, JOB + '.rst.h5'), saved)
+    shutil.copy(os.path.join(killed, newest(killed)), saved)
     print('kill 2 (the run restarted from that checkpoint):')
     kill_at_random(killed, rng, 0.7 * wall * (total - first) / total,
                    restart_from='first.rst.h5', newer_than=first)
     os.remove(saved)
-    rc.run(killed, JOB, '--restart', JOB + '.rst.h5')
+    rc.run(killed, JOB, '--restart', newest(killed))
     failures += bool(rc.compare_runs(reference, killed, JOB, 'killed twice, restarted twice'))
 
     boundary = rc.fresh_dir(os.path.join(work, 'boundary'))

@@ -10,7 +10,8 @@ one-go run's outputs.
    holds increment N and time t (the increment under way was finished, not cut); the restart
    from it ends with status 0 and every output (job.h5 bit for bit, job.dat, CSVs, XDMF
    frames) equals the one-go run's;
-3. the same with SIGINT (signal 2), as Ctrl-C sends.
+3. SIGINT (signal 2, as Ctrl-C sends): the same exit status, messages and checkpoint (the
+   restart from it is not repeated).
 usage: sigterm.py WORKDIR
 """
 import os
@@ -93,7 +94,7 @@ def main():
         print(name + ':')
         status, message = stop(directory, sig, rng, 0.6 * wall)
         problems, increment = check_stop(directory, sig, status, message)
-        if not problems:
+        if not problems and sig == signal.SIGTERM:
             code, text = rc.run(directory, JOB, '--restart', JOB + '.rst.h5', check=False)
             if code != 0:
                 problems.append('the restart from job.rst.h5 failed (exit status %d): %s' % (

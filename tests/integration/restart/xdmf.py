@@ -1,9 +1,9 @@
 """restart_xdmf.sh: the XDMF index after a restart that drops frames.
 
-The stick-slip deck with checkpoints every 40 increments, 5 generations (job.rst.4.h5 is the
-one of increment 40, early in step 2) and a frame every 10 increments, run to its end; then
-restarted from job.rst.4.h5: the frames written after increment 40 must be deleted from
-job.h5 and the XDMF, and written again. Checks: post/check_xdmf.py accepts job.xdmf with as
+The stick-slip deck with checkpoints every 20 increments, 8 generations (all kept) and a frame
+every 10 increments, run to its end; then restarted from its earliest checkpoint within step
+2 (increment 20): the frames written after it must be deleted from job.h5 and the XDMF, and
+written again. Checks: post/check_xdmf.py accepts job.xdmf with as
 many frames as the one-go run; the frame times strictly increase (none twice); each frame's
 (step, increment) appears once; the frames (times, grids, attributes, DataItems) and every
 dataset of job.h5 equal the one-go run's; and, when VTK's Xdmf reader is installed,
@@ -27,21 +27,28 @@ def main():
     work = sys.argv[1]
     failures = 0
     reference = rc.fresh_dir(os.path.join(work, 'reference'))
-    rc.write_deck(os.path.join(reference, JOB + '.inp'), frequency=40, generations=5)
+    rc.write_deck(os.path.join(reference, JOB + '.inp'), frequency=20, generations=8)
     rc.run(reference, JOB)
     directory = rc.fresh_dir(os.path.join(work, 'restarted'))
     for name in os.listdir(reference):
         shutil.copy(os.path.join(reference, name), directory)
-    step, increment, t, _ = rc.checkpoint_info(os.path.join(directory, 'job.rst.4.h5'))
+    within = []
+    for name in os.listdir(directory):
+        if name.startswith(JOB + '.rst.'):
+            step, increment, t, step_time = rc.checkpoint_info(os.path.join(directory, name))
+            if step == 2 and step_time > 0.0:
+                within.append((increment, name))
+    increment, checkpoint = min(within)
+    step, increment, t, _ = rc.checkpoint_info(os.path.join(directory, checkpoint))
     with h5py.File(os.path.join(reference, JOB + '.h5'), 'r') as f:
         later = sum(1 for g in f['frames'].values() if g.attrs['increment'] > increment)
         n_frames = len(f['frames'])
-    print('one-go run: %d frames; restart from job.rst.4.h5 (step %d, increment %d, time %.6g): '
-          '%d frames after it' % (n_frames, step, increment, t, later))
+    print('one-go run: %d frames; restart from %s (step %d, increment %d, time %.6g): '
+          '%d frames after it' % (n_frames, checkpoint, step, increment, t, later))
     if later < 5:
         print('FAIL the restart should have at least 5 frames to drop')
         failures += 1
-    rc.run(directory, JOB, '--restart', 'job.rst.4.h5')
+    rc.run(directory, JOB, '--restart', checkpoint)
 
     xdmf = os.path.join(directory, JOB + '.xdmf')
     check = subprocess.run([sys.executable, os.path.join(POST, 'check_xdmf.py'), '--frames',
