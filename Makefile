@@ -32,6 +32,7 @@ MUMPS_INC := -I /usr/include/mumps_seq
 MUMPS_LIBS := -ldmumps_seq -lmumps_common_seq -lmpiseq_seq -lpord_seq
 endif
 BUILD := build/$(VARIANT)
+comma := ,
 ifeq ($(DEBUG),1)
 FFLAGS_OPT := -O0 -g -fcheck=all -ffpe-trap=invalid,zero,overflow -fbacktrace -finit-real=snan
 BUILD := build/debug-$(VARIANT)
@@ -69,7 +70,7 @@ vpath %.f90 $(sort $(dir $(LIB_SRC) $(TEST_SRC))) src
 
 # The version module is regenerated on every make, but rewritten only when the revision changes.
 $(BUILD)/fcs_version.f90: FORCE | $(BUILD)
-	@sh tools/gen_version.sh $@
+	@sh tools/gen_version.sh $@ "$(VARIANT)$(if $(filter 1,$(DEBUG)),$(comma) debug)"
 .PHONY: FORCE
 FORCE:
 

@@ -1,6 +1,8 @@
 #!/bin/sh
-# Write the fcs_version module (version and git revision) to $1, only when it changes.
+# Write the fcs_version module (version, git revision, build kind) to $1, only when it changes.
+# Usage: sh tools/gen_version.sh <output .f90> [build kind, e.g. "serial" or "serial, debug"]
 out=$1
+build=${2:-serial}
 version=$(sed -n 's/^VERSION *:= *//p' Makefile)
 revision=$(git describe --always --dirty --abbrev=12 2>/dev/null || echo unknown)
 tmp="$out.tmp"
@@ -9,9 +11,14 @@ cat > "$tmp" <<F90
 module fcs_version
   implicit none
   private
-  public :: FCS3D_VERSION, FCS3D_REVISION
+  public :: FCS3D_VERSION, FCS3D_REVISION, FCS3D_BUILD, FCS3D_IDENTITY
   character(len=*), parameter :: FCS3D_VERSION = '$version'
   character(len=*), parameter :: FCS3D_REVISION = '$revision'
+  !> The variant and options of this build (MPI or serial; debug: bounds checks and
+  !> floating-point traps, under which an overflow stops the run with a backtrace).
+  character(len=*), parameter :: FCS3D_BUILD = '$build'
+  !> "fcs3d 0.1.0 (git abc123, serial)": written to --version, the log, echo and results.
+  character(len=*), parameter :: FCS3D_IDENTITY = 'fcs3d $version (git $revision, $build)'
 end module fcs_version
 F90
 if cmp -s "$tmp" "$out" 2>/dev/null; then rm -f "$tmp"; else mv "$tmp" "$out"; fi

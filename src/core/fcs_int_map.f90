@@ -56,9 +56,19 @@ contains
     class(int_map_t), intent(inout) :: this
     integer, intent(in) :: key, value
     integer, intent(out), optional :: previous
-    integer :: slot, capacity
+    integer :: old
     if (.not. allocated(this%keys)) call this%init(64)
     if (2 * (this%count + 1) > size(this%keys)) call grow(this)
+    call insert(this, key, value, old)
+    if (present(previous)) previous = old
+  end subroutine int_map_set
+
+  !> Insert or overwrite without growing (the table has a free slot); `previous` as in set.
+  subroutine insert(this, key, value, previous)
+    type(int_map_t), intent(inout) :: this
+    integer, intent(in) :: key, value
+    integer, intent(out) :: previous
+    integer :: slot, capacity
     capacity = size(this%keys)
     slot = slot_of(key, capacity)
     do
@@ -66,16 +76,16 @@ contains
         this%keys(slot) = key
         this%values(slot) = value
         this%count = this%count + 1
-        if (present(previous)) previous = 0
+        previous = 0
         return
       else if (this%keys(slot) == key) then
-        if (present(previous)) previous = this%values(slot)
+        previous = this%values(slot)
         this%values(slot) = value
         return
       end if
       slot = modulo(slot + 1, capacity)
     end do
-  end subroutine int_map_set
+  end subroutine insert
 
   !> Value stored for `key`, or 0 when absent.
   pure integer function int_map_get(this, key) result(value)
@@ -99,12 +109,12 @@ contains
   subroutine grow(this)
     type(int_map_t), intent(inout) :: this
     integer, allocatable :: old_keys(:), old_values(:)
-    integer :: i
+    integer :: i, previous
     call move_alloc(this%keys, old_keys)
     call move_alloc(this%values, old_values)
     call this%init(size(old_keys))
     do i = 0, size(old_keys) - 1
-      if (old_keys(i) /= EMPTY_SLOT) call this%set(old_keys(i), old_values(i))
+      if (old_keys(i) /= EMPTY_SLOT) call insert(this, old_keys(i), old_values(i), previous)
     end do
   end subroutine grow
 

@@ -6,6 +6,7 @@ module fcs_echo
   use fcs_deck_lexer, only: deck_t, card_t
   use fcs_model, only: model_t
   use fcs_strings, only: str, join_strings
+  use fcs_version, only: FCS3D_IDENTITY
   implicit none
   private
   public :: write_echo
@@ -25,6 +26,7 @@ contains
       call fatal_error(err, 'writing the echo ' // path // ': ' // trim(msg))
       return
     end if
+    write (unit, '(a)') '** ' // FCS3D_IDENTITY
     write (unit, '(a)') '** fcs3d echo of ' // model%deck_path // ': the deck as read, with ' // &
                         'every default filled in'
     write (unit, '(a)') '** model: ' // str(model%mesh%n_nodes) // ' nodes, ' // &

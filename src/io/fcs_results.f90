@@ -46,6 +46,7 @@ module fcs_results
   use fcs_xdmf, only: xdmf_series_t, xdmf_frame_t, xdmf_grid_t, xdmf_attribute_t, xdmf_data_t, &
     XDMF_HEXAHEDRON, XDMF_QUADRILATERAL, XDMF_POLYVERTEX, XDMF_NODE, XDMF_CELL, &
     XDMF_SCALAR, XDMF_VECTOR, XDMF_TENSOR6, XDMF_MATRIX
+  use fcs_version, only: FCS3D_IDENTITY
   implicit none
   private
   public :: results_file_t, GRID_POINTS, GRID_QUADS
@@ -297,7 +298,7 @@ contains
     call this%h5%write_attribute('/', 'format', RESULTS_FORMAT, err)
     if (.not. allocated(err)) call this%h5%write_attribute('/', 'format_version', &
       RESULTS_FORMAT_VERSION, err)
-    if (.not. allocated(err)) call this%h5%write_attribute('/', 'creator', 'fcs3d', err)
+    if (.not. allocated(err)) call this%h5%write_attribute('/', 'creator', FCS3D_IDENTITY, err)
     if (.not. allocated(err)) call this%h5%write_attribute('/', 'tensor6_order', &
       TENSOR6_COMPONENTS, err)
     if (.not. allocated(err)) call this%h5%write_dataset('/mesh/node_ids', node_ids, err)

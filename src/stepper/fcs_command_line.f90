@@ -5,7 +5,7 @@ module fcs_command_line
   use fcs_run_options, only: run_options_t
   use fcs_solver_factory, only: LINEAR_SOLVER_NAMES
   use fcs_strings, only: to_upper, basename, path_stem, join_path
-  use fcs_version, only: FCS3D_VERSION, FCS3D_REVISION
+  use fcs_version, only: FCS3D_IDENTITY
   implicit none
   private
   public :: parse_command_line, ACTION_RUN, ACTION_DONE
@@ -41,7 +41,7 @@ contains
         action = ACTION_DONE
         return
       case ('--version')
-        write (output_unit, '(a)') 'fcs3d ' // FCS3D_VERSION // ' (git ' // FCS3D_REVISION // ')'
+        write (output_unit, '(a)') FCS3D_IDENTITY
         action = ACTION_DONE
         return
       case ('--list-keywords')

@@ -35,6 +35,7 @@ module fcs_driver
   use fcs_files, only: truncate_file, file_size
   use fcs_monitors, only: monitors_t
   use fcs_event_catalog, only: EVENT_COLUMNS
+  use fcs_version, only: FCS3D_IDENTITY
   implicit none
   private
   public :: run_job
@@ -125,6 +126,7 @@ contains
     type(logger_t), intent(inout) :: log
     type(model_t), intent(in) :: model
     type(run_options_t), intent(in) :: options
+    call log%detail(FCS3D_IDENTITY)
     if (len(model%title) > 0) then
       call log%info('fcs3d: ' // options%deck_path // ': ' // model%title)
     else
