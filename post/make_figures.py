@@ -21,6 +21,11 @@ Figures written to --out (PNG), each skipped with a message when the data it nee
                                 rate against distance from C and time.
   <prefix>_loading.png          the force on face B (sum of the x nodal forces of the nodes on
                                 x = max x) against B's displacement and against time.
+  <prefix>_history.png          from the *HISTORY tables (<job>_<name>.csv, every increment):
+                                per pair normal and tangential force, their ratio, mean slip,
+                                largest slip rate, share of nodes slipping; event onsets marked.
+  <prefix>_events.png           the slip-event catalog (<job>_events.csv): onsets per pair,
+                                peak slip rate, largest slip, stress drop.
 and <prefix>_summary.txt: the numbers behind the figures (times of the frames used, first
 stick->slip event of stage 2 from the .log, B force at the paper's times).
 
@@ -185,7 +190,7 @@ def deck_heading(deck):
 
 def stamp(fig, arguments):
     """The run's label (deck heading and results file) at the foot of a figure."""
-    fig.text(0.005, 0.002, arguments.label, fontsize=6, color="0.35", ha="left", va="bottom")
+    fig.supxlabel(arguments.label, x=0.005, ha="left", fontsize=5.5, color="0.35", wrap=True)
 
 
 def deck_time_points(deck, name="PAPER"):
@@ -432,7 +437,8 @@ def mises_figure(results, maps, trace, times, name, arguments, summary):
     n = len(panels)
     columns = min(4, n)
     rows = (n + columns - 1) // columns
-    fig, axes = plt.subplots(rows, columns, figsize=(3.3 * columns + 1.2, 3.3 * rows + 0.6),
+    fig, axes = plt.subplots(rows, columns, figsize=(max(3.3 * columns + 1.2, 6.5),
+                                                     3.3 * rows + 0.8),
                              squeeze=False, constrained_layout=True)
     mappable = None
     for ax, (time, values) in zip(axes.flat, panels):
@@ -453,7 +459,7 @@ def mises_figure(results, maps, trace, times, name, arguments, summary):
     plt.close(fig)
     written = [path]
     for time, values in panels:
-        fig, ax = plt.subplots(figsize=(5.2, 4.4), constrained_layout=True)
+        fig, ax = plt.subplots(figsize=(5.6, 4.8), constrained_layout=True)
         mappable = maps.draw(ax, values, vmin, vmax, cmap)
         draw_trace(ax, trace)
         setup_plan_axes(ax, results)
@@ -670,7 +676,157 @@ def cell_edges(centres):
                            [centres[-1] + (centres[-1] - middle[-1])]])
 
 
-def figure_loading(results, arguments, summary):
+def read_csv_table(path):
+    """{column: array} of a CSV written by fcs3d (*HISTORY, *EVENT CATALOG), or None."""
+    if not os.path.exists(path):
+        return None
+    with open(path, encoding="utf-8") as handle:
+        header = handle.readline().strip().split(",")
+        rows = [line.split(",") for line in handle if line.strip()]
+    if not header or header == [""]:
+        return None
+    table = {}
+    for k, name in enumerate(header):
+        values = []
+        for row in rows:
+            try:
+                values.append(float(row[k]))
+            except (IndexError, ValueError):
+                values.append(np.nan)
+        table[name] = np.array(values)
+    return table
+
+
+def history_tables(results_path):
+    """{name: table} of the *HISTORY CSV files next to the results (<job>_<name>.csv)."""
+    stem = os.path.splitext(results_path)[0]
+    directory, job = os.path.split(stem)
+    tables = {}
+    for entry in sorted(os.listdir(directory or ".")):
+        if entry.startswith(job + "_") and entry.endswith(".csv") and \
+                entry != job + "_events.csv":
+            table = read_csv_table(os.path.join(directory, entry))
+            if table is not None and "time" in table:
+                tables[entry[len(job) + 1:-4]] = table
+    return tables
+
+
+def figure_history_output(tables, events, pairs, arguments, summary):
+    """The *HISTORY tables (every sample, not only the frames): per pair the normal and
+    tangential force, their ratio, the mean slip, the largest slip rate and the share of
+    slipping nodes; the loading of B; the energies; event onsets marked."""
+    columns = {}
+    for table in tables.values():
+        columns.update(table)
+    names = [p for p in pairs if f"{p}_FN" in columns]
+    if not names:
+        message("history figure skipped: no *HISTORY table with CONTACT items next to the "
+                "results")
+        return []
+    time = None
+    for table in tables.values():
+        if f"{names[0]}_FN" in table:
+            time = table["time"]
+    panels = [("normal force [kN]", lambda p: columns[f"{p}_FN"] / 1000.0, False),
+              ("tangential force [kN]", lambda p: np.sqrt(sum(columns[f"{p}_FT{k}"] ** 2
+                                                              for k in (1, 2, 3))) / 1000.0,
+               False),
+              ("tangential / normal force", lambda p: np.sqrt(sum(
+                  columns[f"{p}_FT{k}"] ** 2 for k in (1, 2, 3))) / np.where(
+                      columns[f"{p}_FN"] > 0, columns[f"{p}_FN"], np.nan), False),
+              ("mean slip [mm]", lambda p: columns[f"{p}_SLIP_MEAN"], False),
+              ("largest slip rate [mm/s]", lambda p: columns[f"{p}_RATE_MAX"], True),
+              ("share of nodes slipping", lambda p: columns[f"{p}_SLIP"] / np.maximum(
+                  columns[f"{p}_STICK"] + columns[f"{p}_SLIP"] + columns[f"{p}_OPEN"], 1),
+               False)]
+    fig, axes = plt.subplots(len(panels), 1, figsize=(7.5, 12), sharex=True,
+                             constrained_layout=True)
+    for ax, (label, value, log) in zip(axes, panels):
+        for pair in names:
+            colour = SEGMENT_COLOURS.get(pairs[pair][0] if len(pairs[pair]) == 1 else "", None)
+            try:
+                y = value(pair)
+            except KeyError:
+                continue
+            if len(y) != len(time):
+                continue
+            if log:
+                positive = y > 0
+                ax.semilogy(time[positive], y[positive], lw=0.9, color=colour, label=pair)
+            else:
+                ax.plot(time, y, lw=0.9, color=colour, label=pair)
+        ax.set_ylabel(label, fontsize=8)
+        ax.grid(True, lw=0.3)
+        ax.tick_params(labelsize=7)
+    if events is not None and len(events.get("onset", [])):
+        for onset in events["onset"]:
+            axes[-2].axvline(onset, color="0.5", lw=0.4, alpha=0.6)
+    axes[0].legend(fontsize=7, ncol=4)
+    has_events = events is not None and len(events.get("onset", [])) > 0
+    axes[-1].set_xlabel("time [s]" + ("  (grey lines: event onsets)" if has_events else ""),
+                        fontsize=8)
+    fig.suptitle(f"*HISTORY of the contact pairs ({len(time)} samples)", fontsize=10)
+    path = os.path.join(arguments.out, f"{arguments.prefix}_history.png")
+    stamp(fig, arguments)
+    fig.savefig(path, dpi=arguments.dpi)
+    plt.close(fig)
+    summary.append(f"history: {len(time)} samples of {', '.join(names)} "
+                   f"(tables {', '.join(sorted(tables))})")
+    return [path]
+
+
+def figure_events(events, trace, arguments, summary):
+    """The slip-event catalog: the hypocentre's distance along the trace against the onset
+    time, sized by the largest slip, coloured by the peak slip rate; and the stress drop
+    against the onset time."""
+    if events is None or not len(events.get("onset", [])):
+        message("event figure skipped: no events in <job>_events.csv (or no *EVENT CATALOG)")
+        if events is not None:
+            summary.append("events: none catalogued")
+        return []
+    onset, pair = events["onset"], events["pair"]
+    if all(k in events for k in ("x", "y")):
+        position = trace.along(np.column_stack([events["x"], events["y"]]))[0]
+        position_label = "hypocentre: distance along the trace from C [mm]"
+    else:
+        position, position_label = pair, "pair (number in the deck order)"
+    fig, axes = plt.subplots(2, 1, figsize=(8, 7), sharex=True, constrained_layout=True)
+    size = 10 + 200 * events["max_slip"] / max(np.nanmax(events["max_slip"]), 1e-30)
+    rate = events["peak_slip_rate"]
+    points = axes[0].scatter(onset, position, s=size, c=rate, cmap="viridis",
+                             norm=LogNorm(max(np.nanmin(rate[rate > 0]) if np.any(rate > 0)
+                                              else 1e-30, 1e-30),
+                                          max(np.nanmax(rate), 1e-30)))
+    fig.colorbar(points, ax=axes[0]).set_label("peak slip rate [mm/s]")
+    axes[0].set_ylabel(position_label, fontsize=8)
+    if position is not pair:
+        for name in "CDEFG":
+            axes[0].axhline(along_of(trace, name), color="black", lw=0.5)
+        axes[0].set_ylim(0.0, trace.total_length)
+        right = axes[0].secondary_yaxis("right")
+        right.set_yticks([along_of(trace, name) for name in "CDEFG"])
+        right.set_yticklabels(list("CDEFG"))
+    axes[1].plot(onset, events["stress_drop"], "o", ms=3)
+    axes[1].set_ylabel("mean shear stress drop [MPa]", fontsize=8)
+    axes[1].set_xlabel("onset time [s] (dotted: the paper's output times)", fontsize=8)
+    for ax in axes:
+        for time in PAPER_TIMES[1:]:
+            ax.axvline(time, color="0.6", lw=0.5, ls=":")
+        ax.grid(True, lw=0.3)
+        ax.tick_params(labelsize=7)
+    fig.suptitle(f"Slip-event catalog: {len(onset)} events (marker size: largest slip)",
+                 fontsize=10)
+    path = os.path.join(arguments.out, f"{arguments.prefix}_events.png")
+    stamp(fig, arguments)
+    fig.savefig(path, dpi=arguments.dpi)
+    plt.close(fig)
+    summary.append(f"events: {len(onset)} catalogued; first onsets: " + ", ".join(
+        f"{t:.6g} s (pair {int(p)}, {x:.1f} mm from C)"
+        for t, p, x in list(zip(onset, pair, position))[:10]))
+    return [path]
+
+
+def figure_loading(results, tables, arguments, summary):
     x = results.x_ref
     size = np.ptp(x, axis=0).max()
     on_b = np.nonzero(x[:, 0] >= x[:, 0].max() - 1e-6 * size)[0]
@@ -690,12 +846,18 @@ def figure_loading(results, arguments, summary):
     shortening = np.array(shortening)
     times = np.array(times)
     dat = dat_totals(os.path.splitext(results.path)[0] + ".dat", "B")
+    history = next((t for t in tables.values() if "B_RF1" in t and "B_U1" in t), None)
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.2), constrained_layout=True)
     axes[0].plot(shortening, force, color="C0", marker=".", ms=3, lw=1.0,
                  label="sum of nodal forces on B (frames)")
     axes[0].set_xlabel("displacement of B, -u_x [mm] (mean over its nodes)", fontsize=8)
     axes[0].set_ylabel("force on B, -F_x [kN]", fontsize=8)
     axes[1].plot(times, force, color="C0", marker=".", ms=3, lw=1.0, label="frames")
+    if history is not None:
+        axes[0].plot(-history["B_U1"], -history["B_RF1"] / 1000.0, color="C1", lw=0.7,
+                     label="*HISTORY (every sample)")
+        axes[1].plot(history["time"], -history["B_RF1"] / 1000.0, color="C1", lw=0.7,
+                     label="*HISTORY (every sample)")
     if dat:
         dat = np.array(dat)
         axes[1].plot(dat[:, 0], -dat[:, 1] / 1000.0, "x", color="C3", ms=4,
@@ -800,7 +962,11 @@ def main():
     written += figure_mises(results, trace, times, arguments, summary)
     written += figure_histories(results, views, arguments, summary)
     written += figure_stick_slip(results, views, trace, arguments, summary)
-    written += figure_loading(results, arguments, summary)
+    tables = history_tables(arguments.results)
+    written += figure_loading(results, tables, arguments, summary)
+    events = read_csv_table(os.path.splitext(arguments.results)[0] + "_events.csv")
+    written += figure_history_output(tables, events, pairs, arguments, summary)
+    written += figure_events(events, trace, arguments, summary)
     results.close()
     path = os.path.join(arguments.out, f"{arguments.prefix}_summary.txt")
     with open(path, "w", encoding="utf-8") as handle:

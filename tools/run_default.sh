@@ -9,6 +9,9 @@
 #                    -setnumber layers 5" (finer mesh) or "-setnumber bend_angle 0" (flat
 #                    fault); the parameters are listed at the head of fault_bend.geo
 #   FAULT_BEND_DIR   work directory (default run/fault_bend of this checkout)
+#   FAULT_BEND_DECK  the deck to run instead of input/fault_bend/fault_bend.inp (an edited copy,
+#                    e.g. with the Coulomb friction of the comparison run); copied to
+#                    fault_bend.inp in the work directory, next to the mesh
 #   FCS3D_OPTIONS    extra fcs3d options, e.g. "--solver MUMPS" or "-q"
 set -eu
 fcs3d=${1:?usage: sh tools/run_default.sh /path/to/bin/fcs3d}
@@ -25,10 +28,16 @@ fail() {
 [ -x "$fcs3d" ] || fail "$fcs3d is not an executable (build with make)"
 command -v gmsh >/dev/null 2>&1 || fail "gmsh is not installed (Debian package gmsh)"
 mkdir -p "$work"
-cp "$root/input/fault_bend/fault_bend.geo" "$root/input/fault_bend/fault_bend.inp" "$work/"
+work=$(cd "$work" && pwd)
+deck=${FAULT_BEND_DECK:-$root/input/fault_bend/fault_bend.inp}
+[ -f "$deck" ] || fail "$deck: no such deck"
+deck=$(cd "$(dirname "$deck")" && pwd)/$(basename "$deck")
+cp "$root/input/fault_bend/fault_bend.geo" "$work/"
+[ "$deck" = "$work/fault_bend.inp" ] || cp "$deck" "$work/fault_bend.inp"
 cd "$work"
 # Results of an earlier run would be mixed with the new ones by a viewer: remove them.
-rm -f fault_bend.h5 fault_bend.xdmf fault_bend.dat fault_bend.log fault_bend.echo fault_bend.rst.h5
+rm -f fault_bend.h5 fault_bend.xdmf fault_bend.dat fault_bend.log fault_bend.echo fault_bend.rst.h5 \
+  fault_bend_*.csv
 
 echo "meshing fault_bend.geo ${gmsh_options:+($gmsh_options) }in $work"
 # shellcheck disable=SC2086  # the options are words to split

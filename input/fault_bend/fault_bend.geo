@@ -327,9 +327,10 @@ Mesh.MeshSizeFromPoints = 0;
 Mesh.MeshSizeExtendFromBoundary = 0;
 Mesh.MeshSizeFromCurvature = 0;
 // Frontal-Delaunay triangles, recombined into quadrangles, full-quad (see the 1D mesh above).
-// Debian's gmsh 4.8.4 has no blossom matching, so plain recombination leaves triangles
-// (prisms after the extrusion, which fcs3d does not read); Mesh.Algorithm = 8
-// (Frontal-Delaunay for quads) crashes on this geometry.
+// With Debian's gmsh 4.8.4, plain recombination (Mesh.RecombinationAlgorithm = 1, blossom)
+// leaves a few triangles even with an even number of boundary segments (prisms after the
+// extrusion, which fcs3d does not read), and Mesh.Algorithm = 8 (Frontal-Delaunay for quads)
+// crashes (segmentation fault) on this geometry.
 Mesh.Algorithm = 6;
 Mesh.RecombinationAlgorithm = 3;
 Mesh.Smoothing = 5;
