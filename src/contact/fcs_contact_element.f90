@@ -55,6 +55,8 @@ module fcs_contact_element
     real(dp) :: trial_norm = 0.0_dp
     real(dp) :: friction_state = 0.0_dp
     real(dp) :: tied_gap = 0.0_dp
+    !> Slip rate of the previous increment (0 after stick): the rate of an explicit law.
+    real(dp) :: slip_rate = 0.0_dp
   end type contact_node_t
 
   !> Derivatives of the contact quantities with respect to the 15 nodal displacements.
@@ -223,6 +225,10 @@ contains
     end if
     out%normal_force = params%normal_stiffness * params%area * max(0.0_dp, -gap_new)
     pressure = out%normal_force / params%area
+    if (law%explicit_rate) then
+      call explicit_return(out, trial, pressure, k_t, law, node, dt)
+      return
+    end if
     state_static = law%evolve_state(node%friction_state, 0.0_dp, max(dt, 0.0_dp))
     mu_static = law%mu(pressure, 0.0_dp, state_static)
     if (out%trial_norm <= mu_static * out%normal_force) then
@@ -238,6 +244,33 @@ contains
     out%friction = out%mu * out%normal_force * trial / out%trial_norm
     if (dt > 0.0_dp) out%slip_rate = out%plastic_slip / dt
   end function contact_update
+
+  !> The return mapping of a law with an explicit rate: the cone is mu_e = mu(p, V_prev,
+  !> phi_old), V_prev the slip rate of the previous increment (0 after stick), so that the
+  !> plastic slip is (|f^tr| - mu_e f_n) / (E_t A) as for Coulomb friction. The state evolves
+  !> over the increment at the new rate. `mu` is mu_e for a slipping node (the force is
+  !> mu_e f_n) and the static mu(p, 0, phi) for a sticking one (the cone of its next increment).
+  pure subroutine explicit_return(out, trial, pressure, k_t, law, node, dt)
+    type(contact_update_t), intent(inout) :: out
+    real(dp), intent(in) :: trial(2), pressure, k_t, dt
+    class(friction_law_t), intent(in) :: law
+    type(contact_node_t), intent(in) :: node
+    real(dp) :: mu_e
+    mu_e = law%mu(pressure, node%slip_rate, node%friction_state)
+    if (out%trial_norm <= mu_e * out%normal_force) then
+      out%status = CONTACT_STICK
+      out%friction = trial
+      out%friction_state = law%evolve_state(node%friction_state, 0.0_dp, max(dt, 0.0_dp))
+      out%mu = law%mu(pressure, 0.0_dp, out%friction_state)
+      return
+    end if
+    out%status = CONTACT_SLIP
+    out%plastic_slip = (out%trial_norm - mu_e * out%normal_force) / k_t
+    out%mu = mu_e
+    out%friction = mu_e * out%normal_force * trial / out%trial_norm
+    if (dt > 0.0_dp) out%slip_rate = out%plastic_slip / dt
+    out%friction_state = law%evolve_state(node%friction_state, out%slip_rate, max(dt, 0.0_dp))
+  end subroutine explicit_return
 
   !> Plastic slip of a slipping node: the root in (0, |f^tr|/k_t] of
   !> g(l) = |f^tr| - k_t l - f_n mu(p, l/dt, phi(l)), by the Illinois variant of regula

@@ -308,7 +308,24 @@ contains
     node%trial_norm = max(cstate%trial_norm(s), norm2(cstate%friction(:, s)))
     node%friction_state = cstate%friction_state(s)
     node%tied_gap = cstate%tied_gap(s)
+    node%slip_rate = cstate%slip_rate(s)
   end function node_of
+
+  !> The friction coefficient of slave s's cone in the coming increment: the one in use, or
+  !> for a law with an explicit rate mu at the slip rate of the last increment.
+  real(dp) function cone_mu(this, s, cstate) result(mu)
+    type(contact_system_t), intent(in) :: this
+    integer, intent(in) :: s
+    type(contact_state_t), intent(in) :: cstate
+    associate (law => this%pairs(this%slave_pair(s))%law)
+      if (law%explicit_rate) then
+        mu = law%mu(cstate%normal_force(s) / this%area(s), cstate%slip_rate(s), &
+                    cstate%friction_state(s))
+      else
+        mu = cstate%mu(s)
+      end if
+    end associate
+  end function cone_mu
 
   !> Area and penalties of slave s.
   pure function params_of(this, s) result(params)
@@ -386,9 +403,10 @@ contains
       p = segment_point(x5(:, 2:5), cstate%xi(:, s))
       fr = pair%law%evaluate(cstate%normal_force(s) / this%area(s), cstate%slip_rate(s), &
                              cstate%friction_state(s))
-      fr%mu = cstate%mu(s)
+      fr%mu = cone_mu(this, s, cstate)
+      ! An explicit rate is known at the start of the increment: no rate term in the tangent.
       call contact_linearise(x5, p, cstate%gap(s), node_of(cstate, s, cstate%status(s)), &
-                             params_of(this, s), fr, dt, lin)
+                             params_of(this, s), fr, merge(0.0_dp, dt, pair%law%explicit_rate), lin)
     end associate
   end subroutine linearise
 
@@ -517,7 +535,7 @@ contains
       dfn = dot_product(lin%dfn, due)
       ft = cstate%friction(1, s) * p%e(:, 1) + cstate%friction(2, s) * p%e(:, 2)
       if (norm2(ft) <= 0.0_dp) cycle
-      mu = cstate%mu(s)
+      mu = cone_mu(this, s, cstate)
       dft = matmul(lin%dft_stick, due)
       qa = dot_product(dft, dft) - mu**2 * dfn**2
       qb = 2.0_dp * (dot_product(ft, dft) - mu**2 * fn * dfn)
@@ -559,7 +577,7 @@ contains
         call offer(this, collector, s, crossing(fn, fn + dfn), EVENT_CONTACT_OPEN)
       ft = cstate%friction(1, s) * p%e(:, 1) + cstate%friction(2, s) * p%e(:, 2) + &
            matmul(lin%dft_stick, due_fixed)
-      mu = cstate%mu(s)
+      mu = cone_mu(this, s, cstate)
       if (cstate%status(s) == CONTACT_STICK) then
         dft = matmul(lin%dft_stick, due_scaled)
         qa = dot_product(dft, dft) - mu**2 * dfn**2

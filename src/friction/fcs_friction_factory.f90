@@ -40,6 +40,7 @@ module fcs_friction_factory
   !> Valid values of the two choice parameters.
   character(len=*), parameter :: STATE_LAW_NAMES = 'AGEING, SLIP'
   character(len=*), parameter :: REGULARISATION_NAMES = 'FLOOR, LINEAR'
+  character(len=*), parameter :: RATE_UPDATE_NAMES = 'EXPLICIT, IMPLICIT'
 
   !> A friction law as the deck defines it: its name and parameters in deck units. A real
   !> parameter the deck did not give is FRICTION_UNSET, a text one is unallocated. Deck names:
@@ -69,6 +70,8 @@ module fcs_friction_factory
     character(len=:), allocatable :: state_law
     !> REGULARISATION: FLOOR or LINEAR (RATE DEPENDENT below VC).
     character(len=:), allocatable :: regularisation
+    !> RATE UPDATE: EXPLICIT or IMPLICIT (rate laws; default by law, explicit_rate_of).
+    character(len=:), allocatable :: rate_update
     !> VC [length/time]: cut-off slip rate of the regularisation (RATE DEPENDENT, RATE STATE).
     real(dp) :: cutoff_rate = FRICTION_UNSET
     !> VINIT [length/time]: initial slip rate; the initial state is steady state at it,
@@ -130,7 +133,20 @@ contains
           v0=def%v0, theta0=theta0, state_law=state_law_of(def)))
       end if
     end select
+    law%explicit_rate = explicit_rate_of(def)
   end subroutine create_friction_law
+
+  !> RATE UPDATE as given, else the law's default: EXPLICIT for RATE DEPENDENT (no state: mu
+  !> falls at once with the rate when a < b), IMPLICIT for the laws with a state (their direct
+  !> effect a > 0 makes the implicit update stable and exact); no rate, no matter.
+  pure logical function explicit_rate_of(def) result(explicit)
+    type(friction_def_t), intent(in) :: def
+    if (allocated(def%rate_update)) then
+      explicit = def%rate_update == 'EXPLICIT'
+    else
+      explicit = def%law == 'RATE DEPENDENT'
+    end if
+  end function explicit_rate_of
 
   !> Every problem of `def`: unknown law; a parameter the law does not take; a missing one;
   !> THETA0 and VINIT both or neither (Dieterich-Ruina laws); a value out of range or not
@@ -231,6 +247,11 @@ contains
         string_t('REGULARISATION = "' // def%regularisation // '" is not valid; ' // &
         'expected one of ' // REGULARISATION_NAMES)]
     end if
+    if (applies('RATE UPDATE')) then
+      if (.not. in_list(def%rate_update, RATE_UPDATE_NAMES)) problems = [problems, &
+        string_t('RATE UPDATE = "' // def%rate_update // '" is not valid; ' // &
+        'expected one of ' // RATE_UPDATE_NAMES)]
+    end if
   contains
     pure logical function applies(name)
       character(len=*), intent(in) :: name
@@ -292,7 +313,8 @@ contains
     end select
   end subroutine set_friction_real
 
-  !> Store the choice parameter `name` (STATE LAW or REGULARISATION) as `value`, upper-cased;
+  !> Store the choice parameter `name` (STATE LAW, REGULARISATION, RATE UPDATE) as `value`,
+  !> upper-cased;
   !> the value is checked against the choices later (friction_def_problems).
   subroutine set_friction_text(def, name, value, err)
     type(friction_def_t), intent(inout) :: def
@@ -313,6 +335,8 @@ contains
       def%state_law = to_upper(trim(value))
     case ('REGULARISATION')
       def%regularisation = to_upper(trim(value))
+    case ('RATE UPDATE')
+      def%rate_update = to_upper(trim(value))
     case default
       call input_error(err, 'parameter ' // key // ' expects a number, not "' // value // '"')
     end select
@@ -345,6 +369,10 @@ contains
         'LINEAR (linear tail, continuous slope)', REGULARISATION_NAMES), &
       parameter_entry('STATE LAW', '', 'state evolution: AGEING (Dieterich) or SLIP (Ruina)', &
         STATE_LAW_NAMES), &
+      parameter_entry('RATE UPDATE', '', 'slip rate of an increment''s friction: EXPLICIT ' // &
+        '(the previous increment''s, known at its start; default for RATE DEPENDENT) or ' // &
+        'IMPLICIT (its own, solved in the return mapping; default for the RATE STATE laws)', &
+        RATE_UPDATE_NAMES), &
       parameter_entry('THETA0', 'time', 'initial state theta, > 0'), &
       parameter_entry('VINIT', 'length/time', 'initial slip rate; the initial state is ' // &
         'steady state at it, theta0 = DC/VINIT; > 0') ]
@@ -380,13 +408,15 @@ contains
   end function friction_required_parameters
 
   !> The optional parameters of `law`: THETA0 and VINIT for the Dieterich-Ruina laws (exactly
-  !> one of them must be given), none for the others.
+  !> one of them must be given) and RATE UPDATE for every rate law; none for the others.
   pure function friction_optional_parameters(law) result(names)
     character(len=*), intent(in) :: law
     type(string_t), allocatable :: names(:)
     select case (law)
     case ('RATE STATE', 'RATE STATE ARCSINH')
-      names = list_of('THETA0, VINIT')
+      names = list_of('THETA0, VINIT, RATE UPDATE')
+    case ('RATE DEPENDENT')
+      names = list_of('RATE UPDATE')
     case default
       allocate (names(0))
     end select
@@ -499,6 +529,8 @@ contains
       is_given = allocated(def%state_law)
     case ('REGULARISATION')
       is_given = allocated(def%regularisation)
+    case ('RATE UPDATE')
+      is_given = allocated(def%rate_update)
     case default
       is_given = .false.
     end select

@@ -20,6 +20,15 @@ module fcs_friction_law
   end type friction_derivatives_t
 
   type, abstract :: friction_law_t
+    !> How the slip rate enters an increment (the deck's RATE UPDATE). Implicit (.false.): mu
+    !> at the end-of-increment rate, solved in the return mapping, with the rate term in the
+    !> tangent (eq. 6). Explicit (.true.): mu at the rate of the previous increment, known at
+    !> the start, so that each increment is a rate-independent cone (the static-explicit
+    !> treatment of Xing et al. 2003, sec. 2: states at the start of the increment, changes
+    !> limited by the R-minimum). The explicit form is the one that stays well posed when mu
+    !> falls with the rate at once (the state-less velocity-weakening law of the fault-bend
+    !> model: doc/theory.md, "Explicit slip rate").
+    logical :: explicit_rate = .false.
   contains
     procedure(evaluate_interface), deferred :: evaluate
     procedure(name_interface), deferred :: name

@@ -23,6 +23,7 @@ program test_fcs_friction_factory
   call check_setters(suite)
   call check_applicability(suite)
   call check_out_of_range(suite)
+  call check_rate_update(suite)
   call suite%report()
 
 contains
@@ -41,7 +42,7 @@ contains
     do i = 1, size(fields)
       eq = index(fields(i)%s, '=')
       associate (name => fields(i)%s(1:eq - 1), text => fields(i)%s(eq + 1:))
-        if (name == 'STATE LAW' .or. name == 'REGULARISATION') then
+        if (name == 'STATE LAW' .or. name == 'REGULARISATION' .or. name == 'RATE UPDATE') then
           call set_friction_parameter(def, name, text, err)
         else
           read (text, *) value
@@ -75,6 +76,34 @@ contains
     end select
   end function valid_parameters
 
+  !> RATE UPDATE: EXPLICIT by default for RATE DEPENDENT, IMPLICIT for the laws with state,
+  !> either when given; an invalid value and a law without a rate are refused.
+  subroutine check_rate_update(suite)
+    type(test_suite_t), intent(inout) :: suite
+    class(friction_law_t), allocatable :: law
+    type(error_t), allocatable :: err
+    type(friction_def_t) :: def
+    call create_friction_law(deck_def('RATE DEPENDENT', valid_parameters('RATE DEPENDENT')), law, err)
+    call suite%check(.not. allocated(err) .and. law%explicit_rate, 'RATE DEPENDENT: explicit by default')
+    call create_friction_law(deck_def('RATE STATE', valid_parameters('RATE STATE')), law, err)
+    call suite%check(.not. allocated(err) .and. .not. law%explicit_rate, &
+                     'RATE STATE: implicit by default')
+    call create_friction_law(deck_def('RATE DEPENDENT', valid_parameters('RATE DEPENDENT') // &
+                                      ', RATE UPDATE=implicit'), law, err)
+    call suite%check(.not. allocated(err) .and. .not. law%explicit_rate, 'RATE UPDATE=IMPLICIT given')
+    call create_friction_law(deck_def('RATE STATE ARCSINH', valid_parameters('RATE STATE ARCSINH') &
+                                      // ', RATE UPDATE=EXPLICIT'), law, err)
+    call suite%check(.not. allocated(err) .and. law%explicit_rate, 'RATE UPDATE=EXPLICIT given')
+    def = deck_def('RATE DEPENDENT', valid_parameters('RATE DEPENDENT') // ', RATE UPDATE=LATER')
+    call create_friction_law(def, law, err)
+    call suite%check(allocated(err), 'RATE UPDATE=LATER refused')
+    if (allocated(err)) call suite%check(contains_text(err%message, 'EXPLICIT, IMPLICIT'), &
+                                         'the message lists EXPLICIT, IMPLICIT')
+    def = deck_def('COULOMB', 'MU0=0.6, RATE UPDATE=EXPLICIT')
+    call create_friction_law(def, law, err)
+    call suite%check(allocated(err), 'RATE UPDATE refused for COULOMB')
+  end subroutine check_rate_update
+
   logical function contains_text(message, text)
     character(len=*), intent(in) :: message, text
     contains_text = index(message, text) > 0
@@ -87,15 +116,16 @@ contains
     catalogue = friction_parameters()
     laws = friction_laws()
     call suite%equal_int(size(laws), 6, 'six laws')
-    call suite%equal_int(size(catalogue), 12, 'twelve parameters')
+    call suite%equal_int(size(catalogue), 13, 'thirteen parameters')
     call suite%check(friction_parameter_names('RATE STATE') == &
-                     'MU0, A, B, DC, V0, VC, STATE LAW, THETA0, VINIT', 'RATE STATE parameter list')
+                     'MU0, A, B, DC, V0, VC, STATE LAW, THETA0, VINIT, RATE UPDATE', &
+                     'RATE STATE parameter list')
     call suite%check(friction_parameter_names('COULOMB') == 'MU0', 'COULOMB parameter list')
     call suite%check(friction_parameter_names('NONSENSE') == '', 'unknown law: no parameters')
     call suite%equal_int(size(friction_required_parameters('RATE DEPENDENT')), 6, &
                          'RATE DEPENDENT: six required parameters')
-    call suite%equal_int(size(friction_optional_parameters('RATE STATE ARCSINH')), 2, &
-                         'RATE STATE ARCSINH: THETA0, VINIT optional')
+    call suite%equal_int(size(friction_optional_parameters('RATE STATE ARCSINH')), 3, &
+                         'RATE STATE ARCSINH: THETA0, VINIT, RATE UPDATE optional')
     call suite%equal_int(size(catalogue(9)%choices), 2, 'REGULARISATION has two choices')
     call suite%check(catalogue(10)%name == 'STATE LAW' .and. catalogue(10)%choices(1)%s == &
                      'AGEING', 'STATE LAW choices')
