@@ -34,7 +34,7 @@ endif
 BUILD := build/$(VARIANT)
 comma := ,
 ifeq ($(DEBUG),1)
-FFLAGS_OPT := -O0 -g -fcheck=all -ffpe-trap=invalid,zero,overflow -fbacktrace -finit-real=snan
+FFLAGS_OPT := -O0 -g -fcheck=all,no-array-temps -ffpe-trap=invalid,zero,overflow -fbacktrace -finit-real=snan
 BUILD := build/debug-$(VARIANT)
 else
 FFLAGS_OPT := -O2 -g -funroll-loops

@@ -118,11 +118,15 @@ contains
     lin%dfn = -params%normal_stiffness * params%area * lin%dgap
     ft_vec = node%friction(1) * p%e(:, 1) + node%friction(2) * p%e(:, 2)
     lin%dft_stick = node%friction(1) * de(:, :, 1) + node%friction(2) * de(:, :, 2) - k_t * lin%dslip
-    select case (node%status)
+    ! A slipping node without a friction force (it slipped on first touch, f_n = 0) has no
+    ! slip direction: it gets the stick tangent until it carries a force.
+    select case (merge(node%status, CONTACT_STICK, norm2(node%friction) > 0.0_dp))
     case (CONTACT_SLIP)
-      eta = node%friction / max(norm2(node%friction), tiny(1.0_dp))
+      eta = node%friction / norm2(node%friction)
       eta_vec = eta(1) * p%e(:, 1) + eta(2) * p%e(:, 2)
-      factor = fr%mu * node%normal_force / max(node%trial_norm, tiny(1.0_dp))
+      ! mu f_n / |f^tr| <= 1 on the cone; held there when the cone has moved since (explicit
+      ! rates, a new normal force).
+      factor = min(1.0_dp, fr%mu * node%normal_force / max(node%trial_norm, norm2(node%friction)))
       k_v = 0.0_dp
       if (dt > 0.0_dp) k_v = max(node%normal_force * fr%dmu_drate / dt, -MAX_WEAKENING * k_t)
       series = k_t / (k_t + k_v)

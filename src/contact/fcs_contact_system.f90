@@ -289,13 +289,22 @@ contains
         else if (gap <= GAP_TOLERANCE * pair%face_size) then
           u = contact_update(p, gap, p, node_of(cstate, s, CONTACT_STICK), params_of(this, s), &
                              pair%law, 0.0_dp)
-          cstate%status(s) = CONTACT_STICK
+          cstate%status(s) = closing_status(u%mu)
           cstate%normal_force(s) = u%normal_force
           cstate%mu(s) = u%mu
         end if
       end associate
     end do
   end subroutine initial_state
+
+  !> The state a node closes in: stick, or slip on a frictionless interface (mu = 0), whose
+  !> cone has no interior (a stick node there would reach the cone at once, an R-minimum
+  !> event at r = 0 that costs one increment at the minimum size per closing node).
+  pure integer function closing_status(mu) result(status)
+    real(dp), intent(in) :: mu
+    status = CONTACT_STICK
+    if (mu <= 0.0_dp) status = CONTACT_SLIP
+  end function closing_status
 
   !> The kernel's view of slave s (status as given).
   pure function node_of(cstate, s, status) result(node)
@@ -533,6 +542,16 @@ contains
       p = segment_point(x(:, nodes(2:5)), cstate%xi(:, s))
       fn = cstate%normal_force(s)
       dfn = dot_product(lin%dfn, due)
+      ! A node closed at (numerically) zero normal force that the trial increment pulls into
+      ! tension separates now: closed_node_events offers no opening event below the force
+      ! floor, so its penalty spring would otherwise hold the bodies together in tension for
+      ! the whole increment.
+      if (fn <= normal_force_floor(this, s) .and. fn + dfn < 0.0_dp) then
+        call open_node(cstate, s, cstate%face(s), p, cstate%gap(s))
+        this%switches(s) = this%switches(s) + 1
+        n_switched = n_switched + 1
+        cycle
+      end if
       ft = cstate%friction(1, s) * p%e(:, 1) + cstate%friction(2, s) * p%e(:, 2)
       if (norm2(ft) <= 0.0_dp) cycle
       mu = cone_mu(this, s, cstate)
@@ -540,15 +559,16 @@ contains
       qa = dot_product(dft, dft) - mu**2 * dfn**2
       qb = 2.0_dp * (dot_product(ft, dft) - mu**2 * fn * dfn)
       qc = dot_product(ft, ft) - mu**2 * fn**2
-      tolerance = 1.0e-10_dp * (mu * fn)**2
+      tolerance = cone_tolerance(fn, ft, dfn, dft, mu)
       on_cone = abs(qc) <= tolerance .or. qc > 0.0_dp
       if (cstate%status(s) == CONTACT_SLIP) then
-        if (qc < -tolerance .or. (on_cone .and. (qb < 0.0_dp .or. (qb == 0.0_dp .and. qa < 0.0_dp)))) then
+        if (qc < -tolerance .or. (on_cone .and. (qb < -tolerance .or. &
+            (abs(qb) <= tolerance .and. qa < 0.0_dp)))) then
           cstate%status(s) = CONTACT_STICK
           this%switches(s) = this%switches(s) + 1
           n_switched = n_switched + 1
         end if
-      else if (on_cone .and. (qb > 0.0_dp .or. (qb == 0.0_dp .and. qa > 0.0_dp))) then
+      else if (on_cone .and. (qb > tolerance .or. (abs(qb) <= tolerance .and. qa > 0.0_dp))) then
         cstate%status(s) = CONTACT_SLIP
         cstate%trial_norm(s) = norm2(ft)
         this%switches(s) = this%switches(s) + 1
@@ -556,6 +576,16 @@ contains
       end if
     end do
   end subroutine system_switch_states
+
+  !> The normal force of slave s below which it counts as zero: the penalty force of a
+  !> penetration of GAP_TOLERANCE times the pair's mean master face size.
+  pure real(dp) function normal_force_floor(this, s) result(floor)
+    type(contact_system_t), intent(in) :: this
+    integer, intent(in) :: s
+    associate (pair => this%pairs(this%slave_pair(s)))
+      floor = GAP_TOLERANCE * pair%normal_stiffness * this%area(s) * pair%face_size
+    end associate
+  end function normal_force_floor
 
   !> Opening, stick-to-slip (the quadratic F(r) = 0 of eq. 3), segment exit, along the
   !> path du_fixed + r du_scaled.
@@ -572,7 +602,7 @@ contains
     associate (pair => this%pairs(this%slave_pair(s)))
       fn = cstate%normal_force(s) + dot_product(lin%dfn, due_fixed)
       dfn = dot_product(lin%dfn, due_scaled)
-      fn_floor = GAP_TOLERANCE * pair%normal_stiffness * this%area(s) * pair%face_size
+      fn_floor = normal_force_floor(this, s)
       if (cstate%normal_force(s) > fn_floor .and. fn + dfn < 0.0_dp) &
         call offer(this, collector, s, crossing(fn, fn + dfn), EVENT_CONTACT_OPEN)
       ft = cstate%friction(1, s) * p%e(:, 1) + cstate%friction(2, s) * p%e(:, 2) + &
@@ -583,7 +613,7 @@ contains
         qa = dot_product(dft, dft) - mu**2 * dfn**2
         qb = 2.0_dp * (dot_product(ft, dft) - mu**2 * fn * dfn)
         qc = dot_product(ft, ft) - mu**2 * fn**2
-        r = cone_crossing(qa, qb, qc, 1.0e-10_dp * (mu * max(fn, 0.0_dp))**2)
+        r = cone_crossing(qa, qb, qc, cone_tolerance(fn, ft, dfn, dft, mu))
         if (r <= 1.0_dp) call offer(this, collector, s, r, EVENT_STICK_TO_SLIP)
       end if
       xi_start = cstate%xi(:, s) + matmul(lin%dxi, due_fixed)
@@ -741,8 +771,9 @@ contains
       node%friction = friction
       u = contact_update(p, gap, p_old, node, params_of(this, s), pair%law, dt)
       ! A node whose stick-to-slip event was taken has reached the cone up to the
-      ! linearisation error: it slips from now on.
+      ! linearisation error: it slips from now on; so does any node without friction.
       if (kind == EVENT_STICK_TO_SLIP) u%status = CONTACT_SLIP
+      if (u%status == CONTACT_STICK) u%status = closing_status(u%mu)
       cstate%face(s) = face
       cstate%xi(:, s) = p%xi
       cstate%gap(s) = gap
@@ -810,7 +841,7 @@ contains
       if (gap < -GAP_TOLERANCE * pair%face_size .or. kind == EVENT_CONTACT_CLOSE) then
         u = contact_update(p, gap, p, node_of(cstate, s, CONTACT_STICK), params_of(this, s), &
                            pair%law, 0.0_dp)
-        cstate%status(s) = CONTACT_STICK
+        cstate%status(s) = closing_status(u%mu)
         cstate%normal_force(s) = u%normal_force
         cstate%mu(s) = u%mu
       end if
@@ -939,6 +970,16 @@ contains
     shear = (cstate%friction(1, s) * p%e(:, 1) + cstate%friction(2, s) * p%e(:, 2)) / this%area(s)
   end subroutine system_traction
 
+  !> Round-off level [force^2] of the cone function F(r) = |f_t + r df_t|^2 -
+  !> mu^2 (f_n + r df_n)^2 and of its coefficients: 1e-10 of the square of the largest force
+  !> involved, the increments included. A node closed at zero force (f_n and f_t zero up to
+  !> round-off) is then judged by how its forces grow (the sign of a), not by the signs of
+  !> round-off residues in b and c, which otherwise put a spurious root near r = 0.
+  pure real(dp) function cone_tolerance(fn, ft, dfn, dft, mu) result(tolerance)
+    real(dp), intent(in) :: fn, ft(3), dfn, dft(3), mu
+    tolerance = 1.0e-10_dp * max(mu * abs(fn), norm2(ft), mu * abs(dfn), norm2(dft))**2
+  end function cone_tolerance
+
   !> First r in [0, 1] where the friction force reaches the Coulomb cone,
   !> F(r) = |f_t + r df_t|^2 - mu^2 (f_n + r df_n)^2 = a r^2 + b r + c = 0 (eq. 3), for a
   !> stick node (c <= 0 inside the cone). A node on the cone (|c| <= tolerance) slips now if
@@ -948,7 +989,7 @@ contains
     real(dp) :: disc, r1, r2, q
     r = 2.0_dp
     if (abs(c) <= tolerance .or. c > 0.0_dp) then
-      if (b > 0.0_dp .or. (b == 0.0_dp .and. a > 0.0_dp)) then
+      if (b > tolerance .or. (abs(b) <= tolerance .and. a > 0.0_dp)) then
         r = 0.0_dp
       else if (a > 0.0_dp) then
         r = -b / a

@@ -17,17 +17,22 @@ TOP nodes (at these nodes RF is the reaction in x and the applied pressure load 
   shear first slips at the block edges (partial slip) and the curve bends over gradually into
   gross sliding. Checks: in the slip phase (u >= U/2, many times the stick displacement
   mu p / E_t = 1e-4 plus the elastic shear of the blocks) |T/N - mu| <= tolerance mu at every
-  output; nowhere T/N > (1 + tolerance) mu; T(u) non-decreasing (to 1e-6 N) while T < 0.99 mu N.
---variant soft ("block on a plane", method notes section 4): p = 0.1, E_t = 1 (3e4 times
-  softer than E_n), U = 0.06, and the lower block 100 times stiffer (E = 1e5), so that the
-  slider's pressure is uniform (no punch-edge concentration) and every node reaches the cone
-  at the same push. The contact's stick spring dominates the compliance: the independent
-  estimate of the stick slope is k = 1 / (1 / (E_t A) + c_blocks), A = 1 the slave area,
-  c_blocks the shear compliance of the blocks, estimated as h / (kappa G A) for the slider
-  (kappa = 5/6: 1.6e-3) plus the same for a 1 x 1 column of the lower block (3e-5; an upper
-  bound, the block is wider): 0.16 % of 1 / (E_t A). Checks: the slope of T(u) for T < 0.5 mu N is E_t A within 1 % (the
-  tolerance covers the block compliance); gross slip starts at u = mu N / k within 2 %
-  (one output spacing); afterwards T/N = mu within tolerance, T non-decreasing before.
+  output; nowhere T/N > (1 + tolerance) mu; T(u) non-decreasing while T/N < 0.99 mu, to
+  1e-3 mu N (the equilibrium error the static-explicit scheme carries between increments);
+  the slip-phase spread of T within 2 tolerance mu N. N equals p A to 1e-3.
+--variant soft ("block on a plane", method notes section 4): p = 0.1 applied as a
+  prescribed displacement of TOP (5.43e-5 down, so that the slider cannot rock; N is
+  measured), E_t = 1 (3e4 times softer than E_n), U = 0.08, matching interface meshes and the
+  lower block 100 times stiffer (E = 1e5). The contact's stick spring dominates the
+  compliance: the independent estimate of the stick slope is k = 1 / (1 / (E_t A) +
+  c_blocks), A = 1 the slave area, c_blocks the shear compliance of the blocks, estimated as
+  h / (kappa G A) for the slider (kappa = 5/6: 1.6e-3) plus the same for a 1 x 1 column of
+  the lower block (3e-5; an upper bound, the block is wider): 0.16 % of 1 / (E_t A).
+  Checks: the slope of T(u) while T < mu N / 4 (before any node slips) is E_t A within 1 %
+  (the tolerance covers the block compliance); gross slip (T/N >= 0.999 mu) is reached where
+  the most loaded node's stick spring reaches its cone, u = mu max(p_s) / E_t (p_s from the
+  *CONTACT PRINT at the end; the push at the top tilts the pressure distribution) within
+  3 %; afterwards T/N = mu within tolerance.
 
 Increments: the default R-minimum limits let an increment of gross sliding be as long as the
 strain limit allows (the slider barely strains): 0.2 of the step, 0.02 of slide; the friction
@@ -52,7 +57,7 @@ NORMAL_STIFFNESS = 3.0e4
 VARIANTS = {
     'partial': dict(pressure=10.0, stick=NORMAL_STIFFNESS, push=0.1, lower_young=YOUNG,
                     lower_x=np.linspace(-0.5, 1.5, 7)),
-    'soft': dict(pressure=0.1, stick=1.0, push=0.06, lower_young=100.0 * YOUNG,
+    'soft': dict(pressure=0.1, stick=1.0, push=0.08, lower_young=100.0 * YOUNG,
                  lower_x=np.linspace(-0.6, 1.6, 12), press=5.43e-5),
 }
 SLAVE_AREA = 1.0
@@ -61,7 +66,7 @@ SHEAR_MODULUS = YOUNG / (2.0 * (1.0 + POISSON))
 BLOCK_COMPLIANCE = 0.5 / (5.0 / 6.0 * SHEAR_MODULUS) + 1.0 / (5.0 / 6.0 * 100.0 * SHEAR_MODULUS)
 
 
-def make_deck(path, variant, max_increment, push):
+def make_deck(path, variant, max_increment, push, small_strain=False):
     v = VARIANTS[variant]
     push = v['push'] if push is None else push
     lower = cc.Box(v['lower_x'], v['lower_x'], np.linspace(0.0, 1.0, 4),
@@ -80,15 +85,16 @@ def make_deck(path, variant, max_increment, push):
     lines += cc.material_cards('UPPER_MAT', 'UPPER', YOUNG, POISSON)
     lines += cc.interaction_cards('ROUGH', NORMAL_STIFFNESS, MU, v['stick'])
     lines += ['*CONTACT PAIR, INTERACTION=ROUGH, TYPE=NODE TO SURFACE', 'SLAVE, MASTER']
-    lines += ['*STEP, NLGEOM', '*STATIC', '0.25, 1.', '*BOUNDARY', 'BASE, 1, 3', 'TOP, 1, 2']
+    step = '*STEP' if small_strain else '*STEP, NLGEOM'
+    lines += [step, '*STATIC', '0.25, 1.', '*BOUNDARY', 'BASE, 1, 3', 'TOP, 1, 2']
     if 'press' in v:
-        lines += ['TOP, 3, 3, %.17g' % -v['press']]
+        lines += ['TOP, 3, 3, %.12g' % -v['press']]
     else:
-        lines += ['*DSLOAD', 'LOADED, P, %.17g' % v['pressure']]
+        lines += ['*DSLOAD', 'LOADED, P, %.12g' % v['pressure']]
     lines += ['*NODE PRINT, NSET=TOP, TOTALS=ONLY', 'RF', '*END STEP']
     static = '0.01, 1.' if max_increment is None else \
-        '%.17g, 1., 1e-6, %.17g' % (min(0.01, max_increment), max_increment)
-    lines += ['*STEP, NLGEOM', '*STATIC', static, '*BOUNDARY', 'TOP, 1, 1, %.17g' % push,
+        '%.12g, 1., 1e-6, %.12g' % (min(0.01, max_increment), max_increment)
+    lines += [step, '*STATIC', static, '*BOUNDARY', 'TOP, 1, 1, %.12g' % push,
               '*NODE PRINT, NSET=TOP, TOTALS=ONLY, FREQUENCY=1', 'RF',
               '*CONTACT PRINT', 'CSTR', '*END STEP']
     cc.write_deck(path, lines)
@@ -147,7 +153,11 @@ def check(job, variant, tolerance, push, csv, png):
         stress = cc.contact_tables(cc.read_dat(job + '.dat'))[-1][1]
         p_max = max(values[0] for values in stress.values())
         u_gross = MU * p_max / v['stick'] + (normal * MU) * BLOCK_COMPLIANCE
-        first = np.nonzero(ratio >= MU * (1 - 1e-3))[0][0]
+        gross = np.nonzero(ratio >= MU * (1 - 1e-3))[0]
+        if len(gross) == 0:
+            checker.check(False, 'T/N never reaches 0.999 mu (max %.6f)' % ratio.max())
+            checker.finish()
+        first = gross[0]
         checker.relative('gross slip (T/N >= 0.999 mu) at u = %.5g vs mu max(p_s) / E_t'
                          % u[first], u[first], u_gross, 0.03)
         slip = u >= u[first]
@@ -194,6 +204,7 @@ def main():
     d.add_argument('--variant', choices=sorted(VARIANTS), required=True)
     d.add_argument('--max-increment', type=float)
     d.add_argument('--push', type=float)
+    d.add_argument('--small-strain', action='store_true', help='steps without NLGEOM')
     c = sub.add_parser('check')
     c.add_argument('job')
     c.add_argument('--variant', choices=sorted(VARIANTS), required=True)
@@ -203,7 +214,7 @@ def main():
     c.add_argument('--png')
     args = parser.parse_args()
     if args.command == 'deck':
-        make_deck(args.path, args.variant, args.max_increment, args.push)
+        make_deck(args.path, args.variant, args.max_increment, args.push, args.small_strain)
     else:
         check(args.job, args.variant, args.tolerance, args.push, args.csv, args.png)
 

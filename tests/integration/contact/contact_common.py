@@ -1,4 +1,5 @@
-"""Shared helpers of the contact tests (tests/integration/contact_*.sh, tests/validate/contact_*.sh).
+"""Shared helpers of the contact tests (tests/integration/contact_*.sh and
+tests/validate/contact_*.sh, calculix_contact.sh).
 
 Structured hexahedral boxes with named node and element sets, the contact cards of a deck,
 running fcs3d, and reading what it writes: the CalculiX-layout tables of <job>.dat (node
@@ -8,7 +9,6 @@ for the results file) only.
 """
 import os
 import re
-import subprocess
 import sys
 
 import numpy as np
@@ -54,7 +54,9 @@ class Box:
                 for i, x in enumerate(self.xs):
                     self.ids[(i, j, k)] = first_node + len(coords)
                     coords.append(warp(x, y, z) if warp else (x, y, z))
-        self.x = np.array(coords, dtype=float)
+        # Rounded so that the deck's numbers stay short (CalculiX reads at most 20 characters
+        # per field) and exact: 1e-12 of the model size is far below any tolerance here.
+        self.x = np.round(np.array(coords, dtype=float), 12) + 0.0
         self.elements = []   # (id, connectivity, (i, j, k))
         nx, ny, nz = self.n
         for k in range(nz):
@@ -91,7 +93,7 @@ class Box:
     def mesh_cards(self, elset):
         """*NODE and *ELEMENT cards; the elements also go to element set `elset`."""
         lines = ['*NODE, NSET=ALL_NODES']
-        lines += ['%d, %.17g, %.17g, %.17g' % (self.first_node + n, *p)
+        lines += ['%d, %.12g, %.12g, %.12g' % (self.first_node + n, *p)
                   for n, p in enumerate(self.x)]
         lines.append('*ELEMENT, TYPE=C3D8, ELSET=%s' % elset)
         lines += ['%d, %s' % (eid, ', '.join(str(n) for n in conn))
@@ -120,7 +122,7 @@ def face_surface_cards(name, box, axis, side):
 
 
 def material_cards(name, elset, young, poisson):
-    return ['*MATERIAL, NAME=%s' % name, '*ELASTIC', '%.17g, %.17g' % (young, poisson),
+    return ['*MATERIAL, NAME=%s' % name, '*ELASTIC', '%.12g, %.12g' % (young, poisson),
             '*SOLID SECTION, ELSET=%s, MATERIAL=%s' % (elset, name)]
 
 
@@ -128,10 +130,10 @@ def interaction_cards(name, normal_stiffness, mu=None, stick_stiffness=None):
     """*SURFACE INTERACTION with a linear pressure-overclosure slope E_n [stress/length] and,
     if mu is given, Coulomb friction with stick slope E_t (default E_n)."""
     lines = ['*SURFACE INTERACTION, NAME=%s' % name,
-             '*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR', '%.17g' % normal_stiffness]
+             '*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR', '%.12g' % normal_stiffness]
     if mu is not None:
-        lines += ['*FRICTION', '%.17g' % mu if stick_stiffness is None
-                  else '%.17g, %.17g' % (mu, stick_stiffness)]
+        lines += ['*FRICTION', '%.12g' % mu if stick_stiffness is None
+                  else '%.12g, %.12g' % (mu, stick_stiffness)]
     return lines
 
 

@@ -4,16 +4,17 @@ strain (tests/data/contact/hertz_cylinder.geo, meshed by gmsh).
     hertz.py mesh JOB.msh --hc H            (runs gmsh on the .geo)
     hertz.py deck JOB.inp --mesh JOB.msh --hc H [--cattaneo]
     hertz.py check JOB --hc H [--cattaneo] [--tolerance T] [--stick-tolerance T]
-                       [--table-row FILE]
+                       [--stick-resolution] [--table-row FILE]
 
 Model (plane strain: a slab one element thick, every node held in z): the lower part of a
 cylinder, R = 20, on a block 30 x 15, both E = 1000, nu = 0.3 (identical materials: no
 normal-tangential coupling, Dundurs beta = 0, as both closed forms assume). The contact zone
 |x| <= 1.6 has uniform elements of size hc on both surfaces; elsewhere the mesh grows to 2.
-Slave: the cylinder's arc (CAP_BOTTOM); master: the block's top (BLOCK_TOP). E_n = 10 E / hc
-(the fcs3d default for elements of size hc). The block's base is fixed; the cylinder's top
-(CAP_TOP) is moved rigidly: u_y = -0.08 (step 1), which gives a contact half-width a of about
-1 = 10 hc at hc = 0.1; held in x.
+Slave: the cylinder's arc (CAP_BOTTOM); master: the block's top (BLOCK_TOP). E_n = 10 E / hc:
+the formula of the fcs3d default with the contact-zone element size (the default itself
+averages h over the whole master surface, whose elements grow to 2 away from the contact).
+The block's base is fixed; the cylinder's top (CAP_TOP) is moved rigidly: u_y = -0.08
+(step 1), which gives a contact half-width a of about 1 = 10 hc at hc = 0.1; held in x.
 
 Hertz (Johnson, Contact Mechanics, 1985, section 4.3): load per unit length P' = F / t (F the
 y reaction of CAP_TOP, t the slab thickness), 1/E* = 2 (1 - nu^2) / E,
@@ -25,12 +26,15 @@ closed node; the outer nodes carry part of an element beyond the edge of the zon
 bracket [x_last, x_first_open] which must contain the theoretical a.
 
 --cattaneo (Cattaneo 1938, Mindlin 1949; Johnson section 7.1): mu = 0.3, stick slope
-E_t = E_n. Step 2 moves CAP_TOP by u_x (ramped to 0.02, below gross sliding), output at
-five points. Closed form for the cylinder: the stick zone |x| <= c with
-c / a = sqrt(1 - Q / (mu P)), Q, P the tangential and normal loads (from the CAP_TOP
-reactions). Measured: c from the 'status' field (stick = 1, slip = 2) of the closed nodes:
-halfway between the outermost stick node and the innermost slip node on each side (the
-error bound is half an element, reported), compared with a_Hertz(P) sqrt(1 - Q / (mu P)).
+E_t = E_n. Step 2 moves CAP_TOP by u_x (ramped to 0.035: Q/(mu P) up to 0.88, below gross
+sliding; still held in y, so that the cylinder cannot rock), output at five points. Closed
+form for the cylinder: the stick zone |x| <= c with c / a = sqrt(1 - Q / (mu P)), Q, P the
+tangential and normal loads (from the CAP_TOP reactions). Measured: c from the 'status'
+field (stick = 1, slip = 2) of the closed nodes, halfway between the outermost stick node
+and the innermost slip node on each side (the resolution is half an element, reported),
+compared with a_Hertz(P) sqrt(1 - Q / (mu P)): within --stick-tolerance (10 %), plus the
+resolution with --stick-resolution (coarse meshes, where half an element is 10 % of a or
+more). The slip nodes must lie on the cone (|q| = mu p to 1e-6).
 """
 import argparse
 import os
@@ -68,20 +72,21 @@ def make_mesh(path, hc):
 
 
 def make_deck(path, mesh, hc, cattaneo):
+    kind = ', Cattaneo-Mindlin' if cattaneo else ''
     lines = ['*HEADING', 'Cylinder on a block, plane strain, hc = %g%s '
-             '(tests/integration/contact/hertz.py)' % (hc, ', Cattaneo-Mindlin' if cattaneo else ''),
+             '(tests/integration/contact/hertz.py)' % (hc, kind),
              '*MESH, FILE=%s' % os.path.basename(mesh),
              '*ELSET, ELSET=BODIES', 'CAP, BLOCK']
     lines += cc.material_cards('MAT', 'BODIES', YOUNG, POISSON)
     lines += cc.interaction_cards('INTERFACE', 10.0 * YOUNG / hc, MU if cattaneo else None)
     lines += ['*CONTACT PAIR, INTERACTION=INTERFACE, TYPE=NODE TO SURFACE', 'CAP_BOTTOM, BLOCK_TOP']
-    lines += ['*TIME POINTS, NAME=PUSH'] + [', '.join('%.17g' % f for f in PUSH_FRACTIONS)]
+    lines += ['*TIME POINTS, NAME=PUSH'] + [', '.join('%.12g' % f for f in PUSH_FRACTIONS)]
     lines += ['*STEP', '*STATIC', '1., 1.', '*BOUNDARY', 'CAP, 3, 3', 'BLOCK, 3, 3',
-              'BLOCK_BOTTOM, 1, 2', 'CAP_TOP, 1, 1', 'CAP_TOP, 2, 2, %.17g' % -APPROACH,
+              'BLOCK_BOTTOM, 1, 2', 'CAP_TOP, 1, 1', 'CAP_TOP, 2, 2, %.12g' % -APPROACH,
               '*NODE PRINT, NSET=CAP_TOP, TOTALS=ONLY', 'RF', '*CONTACT PRINT', 'CSTR',
               '*CONTACT FILE', 'CSTR', '*END STEP']
     if cattaneo:
-        lines += ['*STEP', '*STATIC', '0.05, 1.', '*BOUNDARY', 'CAP_TOP, 1, 1, %.17g' % PUSH,
+        lines += ['*STEP', '*STATIC', '0.05, 1.', '*BOUNDARY', 'CAP_TOP, 1, 1, %.12g' % PUSH,
                   '*NODE PRINT, NSET=CAP_TOP, TOTALS=ONLY, TIME POINTS=PUSH', 'RF',
                   '*CONTACT PRINT, TIME POINTS=PUSH', 'CSTR',
                   '*CONTACT FILE, TIME POINTS=PUSH', 'CSTR', '*END STEP']
@@ -144,7 +149,7 @@ def stick_zone(nodes):
     return 0.5 * (left + right), right - left, spacing, outside
 
 
-def check(job, hc, cattaneo, tolerance, stick_tolerance, table_row):
+def check(job, hc, cattaneo, tolerance, stick_tolerance, stick_resolution, table_row):
     checker = cc.Checker()
     blocks = cc.read_dat(job + '.dat')
     times, forces = cc.totals(blocks, 'CAP_TOP')
@@ -186,11 +191,12 @@ def check(job, hc, cattaneo, tolerance, stick_tolerance, table_row):
             error = c / c_theory - 1.0
             bound = half_spacing / c_theory
             rows.append((fraction, ratio, hm['a'], c, c_theory, error, bound, asymmetry, outside))
-            checker.check(abs(error) <= stick_tolerance, 'Q/(mu P) = %.4f: stick zone c = %.4f '
+            allowed = stick_tolerance + (bound if stick_resolution else 0.0)
+            checker.check(abs(error) <= allowed, 'Q/(mu P) = %.4f: stick zone c = %.4f '
                           '(right - left %+.3f; %d stick nodes in the slip zone), closed form a '
                           'sqrt(1 - Q/(mu P)) = %.4f, error %+.2f %% (resolution +-%.1f %%, '
-                          'tolerance %g %%)' % (ratio, c, asymmetry, outside, c_theory,
-                                                100 * error, 100 * bound, 100 * stick_tolerance))
+                          'tolerance %.1f %%)' % (ratio, c, asymmetry, outside, c_theory,
+                                                  100 * error, 100 * bound, 100 * allowed))
             slipping = layer(frame)
             slip = slipping['status'] == cc.SLIP
             if slip.any():
@@ -226,6 +232,8 @@ def main():
     c.add_argument('--cattaneo', action='store_true')
     c.add_argument('--tolerance', type=float, default=0.05)
     c.add_argument('--stick-tolerance', type=float, default=0.10)
+    c.add_argument('--stick-resolution', action='store_true',
+                   help='add the half node spacing to the stick-zone tolerance (coarse meshes)')
     c.add_argument('--table-row')
     args = parser.parse_args()
     if args.command == 'mesh':
@@ -234,7 +242,7 @@ def main():
         make_deck(args.path, args.mesh, args.hc, args.cattaneo)
     else:
         check(args.job, args.hc, args.cattaneo, args.tolerance, args.stick_tolerance,
-              args.table_row)
+              args.stick_resolution, args.table_row)
 
 
 if __name__ == '__main__':
