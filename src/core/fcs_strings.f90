@@ -165,10 +165,48 @@ contains
     t = trim(adjustl(text))
     ok = is_number_text(t)
     if (.not. ok) return
+    ! Refused before the conversion, which would overflow (and trap in DEBUG builds).
+    ok = decimal_exponent(t) <= range(value)
+    if (.not. ok) return
     read (t, *, iostat=stat) value
     ok = (stat == 0)
     if (ok) ok = (abs(value) <= huge(value))
   end subroutine parse_real
+
+  !> The decimal exponent of a number text that passed is_number_text: floor(log10|x|) up to
+  !> one, from its digits and exponent field (-huge for zero). "12.5e3" gives 4.
+  pure integer function decimal_exponent(t) result(e)
+    character(len=*), intent(in) :: t
+    integer :: i, point, first, mark, stat
+    integer(i8) :: exponent
+    point = 0
+    first = 0
+    mark = scan(t, 'eEdD')
+    if (mark == 0) mark = len(t) + 1
+    do i = 1, mark - 1
+      if (t(i:i) == '.') point = i
+      if (first == 0 .and. is_digit(t(i:i)) .and. t(i:i) /= '0') first = i
+    end do
+    if (first == 0) then
+      e = -huge(e)
+      return
+    end if
+    if (point == 0) point = mark
+    if (first < point) then
+      e = point - first - 1
+    else
+      e = point - first
+    end if
+    if (mark <= len(t)) then
+      if (len(t) - mark > 12) then
+        exponent = merge(-huge(1_i8), huge(1_i8), t(mark + 1:mark + 1) == '-')
+      else
+        read (t(mark + 1:), *, iostat=stat) exponent
+        if (stat /= 0) exponent = 0
+      end if
+      e = int(max(-1000000_i8, min(1000000_i8, int(e, i8) + exponent)))
+    end if
+  end function decimal_exponent
 
   !> Parse an integer strictly ([sign] digits, within the default integer range).
   subroutine parse_int(text, value, ok)
