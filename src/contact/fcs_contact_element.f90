@@ -37,6 +37,9 @@ module fcs_contact_element
   real(dp), parameter :: MAX_WEAKENING = 0.5_dp
   !> Iterations allowed for the implicit rate-dependent return mapping.
   integer, parameter :: RETURN_MAX_ITERATIONS = 200
+  !> Smallest plastic slip, as a fraction of |f^tr|/E_t A, from which the return mapping
+  !> searches the first root of its equation (2^-50: below the round-off of the slip).
+  real(dp), parameter :: SCAN_START = 2.0_dp**(-50)
 
   !> The penalties and the tributary area of one slave node.
   type :: contact_params_t
@@ -102,7 +105,10 @@ contains
   !> with dlambda the plastic slip, so with k_v = f_n dmu/dV / dt the consistent response is
   !> d(f_n mu) = E_t A / (E_t A + k_v) [ (mu + f_n dmu/dp / A) df_n - k_v eta.ds ]
   !> (a spring E_t A in series with the rate term; k_v = 0 gives the rate-independent cone);
-  !> across eta the stiffness is mu f_n E_t A / |f^tr| (I - eta eta).
+  !> across eta the stiffness is mu f_n E_t A / |f^tr| (I - eta eta). The rate term is
+  !> linearised about the node's last slip rate V_old (node%slip_rate): a slip V_old dt keeps
+  !> mu, so the force of a slipping node is the predictor f_n mu - E_t A k_v/(E_t A + k_v)
+  !> V_old dt along eta.
   pure subroutine contact_linearise(x5, p, gap, node, params, fr, dt, lin)
     real(dp), intent(in) :: x5(3, 5), gap, dt
     type(segment_point_t), intent(in) :: p
@@ -135,6 +141,11 @@ contains
                - factor * k_t * matmul(identity3() - outer3(p%normal, p%normal) &
                                        - outer3(eta_vec, eta_vec), lin%dslip) &
                + fr%mu * node%normal_force * (eta(1) * de(:, :, 1) + eta(2) * de(:, :, 2))
+      ! Linearised about V_old, not V = 0: the friction predicted for a slip s of the
+      ! increment is f_n mu(V_old) + k_v (s - V_old dt) (in series with E_t A). Without the
+      ! V_old dt term, steady sliding keeps an out-of-balance force f_n V dmu/dV (in series)
+      ! between the body and the contact, which the next increment applies in full.
+      ft_vec = ft_vec - series * k_v * node%slip_rate * dt * eta_vec
     case default
       lin%df = lin%dft_stick
     end select
@@ -276,10 +287,13 @@ contains
     out%friction_state = law%evolve_state(node%friction_state, out%slip_rate, max(dt, 0.0_dp))
   end subroutine explicit_return
 
-  !> Plastic slip of a slipping node: the root in (0, |f^tr|/k_t] of
+  !> Plastic slip of a slipping node: the smallest root in (0, |f^tr|/k_t] of
   !> g(l) = |f^tr| - k_t l - f_n mu(p, l/dt, phi(l)), by the Illinois variant of regula
   !> falsi (g(0) > 0 > g(|f^tr|/k_t) bracket a root; no derivatives of the state update are
-  !> needed). With dt = 0 the rate is taken as zero.
+  !> needed). With dt = 0 the rate is taken as zero. g may have three roots (rate-and-state:
+  !> the direct effect raises mu with l, the state evolution then lowers it); the smallest is
+  !> the one the slip reaches continuously as the trial force grows from the cone, so it is
+  !> bracketed first by marching up from a negligible slip in factors of 2.
   pure subroutine return_to_cone(trial_norm, fn, pressure, k_t, law, state_old, dt, slip, mu, state)
     real(dp), intent(in) :: trial_norm, fn, pressure, k_t, state_old, dt
     class(friction_law_t), intent(in) :: law
@@ -290,6 +304,20 @@ contains
     hi = trial_norm / k_t
     g_lo = residual(lo)
     g_hi = residual(hi)
+    if (dt > 0.0_dp .and. g_lo > 0.0_dp .and. g_hi < 0.0_dp) then
+      x = hi * SCAN_START
+      do while (x < hi)
+        g = residual(x)
+        if (g <= 0.0_dp) then
+          hi = x
+          g_hi = g
+          exit
+        end if
+        lo = x
+        g_lo = g
+        x = 2.0_dp * x
+      end do
+    end if
     side = 0
     x = hi
     do iteration = 1, RETURN_MAX_ITERATIONS

@@ -331,7 +331,9 @@ contains
     end associate
   end subroutine define_contact_grids
 
-  !> Contact fields of every pair for the current frame.
+  !> Contact fields of every pair for the current frame. friction_state is the friction law's
+  !> state variable: theta [time] of the rate-and-state laws, the accumulated slip [length] of
+  !> SLIP WEAKENING, 0 for laws without state.
   subroutine write_contact_fields(run, err)
     type(run_t), intent(inout) :: run
     type(error_t), allocatable, intent(out) :: err
@@ -348,12 +350,13 @@ contains
         grid = 'contact_' // contact%pairs(k)%name
         call run%results%write_surface_coordinates(grid, x(:, contact%slave_node(first:last)), err)
         if (allocated(err)) return
-        allocate (values(7, last - first + 1), shear(3, last - first + 1))
+        allocate (values(8, last - first + 1), shear(3, last - first + 1))
         do s = first, last
           j = s - first + 1
           call contact%traction(s, x, cstate, normal, pressure, traction)
           values(:, j) = [real(cstate%status(s), dp), cstate%gap(s), pressure, norm2(traction), &
-                          cstate%slip(s), cstate%slip_rate(s), cstate%mu(s)]
+                          cstate%slip(s), cstate%slip_rate(s), cstate%mu(s), &
+                          cstate%friction_state(s)]
           if (cstate%face(s) == 0) values(2, j) = 0.0_dp
           shear(:, j) = traction
         end do
@@ -364,6 +367,7 @@ contains
         call write_field('slip', 5)
         call write_field('slip_rate', 6)
         call write_field('mu', 7)
+        call write_field('friction_state', 8)
         if (.not. allocated(err)) call run%results%write_surface_field(grid, 'shear', shear, err)
         if (allocated(err)) return
         deallocate (values, shear)

@@ -3,9 +3,12 @@ tests/validate/friction_*.sh, tests/pending/friction_*.sh).
 
 The model of all of them is a block-slider (units mm, s, MPa, N):
 
-  * a base, one stiff hexahedron (E = 1e6) [-1, 2] x [-1, 2] x [0, 0.5] (wider than the slider,
-    so that the slider's nodes stay on its one top face however far they slide), fixed at
-    z = 0;
+  * a base, one hexahedron [-1, 2] x [-1, 2] x [0, 0.5] (wider than the slider, so that the
+    slider's nodes stay on its one top face however far they slide) whose eight nodes are all
+    fixed: a rigid base, so that the four slave nodes see the same master geometry (a
+    deformable base, even with E = 1e6, tilts its face under the friction load and makes the
+    slave nodes' pressures differ by parts per million, enough to desynchronise their
+    stick-slip cycles);
   * on it the slider, one hexahedron [0, 1]^2 x [0.5, 0.5 + H] (H = 0.01, E = 5e4, nu = 0.25,
     so its shear stiffness per unit area G / H = 2e6 MPa/mm). Thin, because the push at the
     top and the friction at the bottom make a couple T H that the contact pressure balances:
@@ -15,21 +18,25 @@ The model of all of them is a block-slider (units mm, s, MPa, N):
   * node-to-point contact SLIDE: the slider's bottom (slave, 4 nodes of tributary area 0.25)
     on the base's top (master, one face), normal penalty E_n = 1e6 MPa/mm, *FRICTION with the
     law under test and an explicit STICK SLOPE E_t;
-  * step 1 (1e-3 s): pressure sigma_n = 10 MPa on the slider's top, top nodes (set TOP) held
-    in x and y; later steps: TOP moved in x by *BOUNDARY, TYPE=VELOCITY (y still held, z
-    free under the pressure).
+  * step 1 (1e-3 s): pressure sigma_n = 10 MPa on the slider's top, the driven nodes (set
+    DRIVEN) held in x and y; later steps: DRIVEN moved in x by *BOUNDARY, TYPE=VELOCITY (y
+    still held, z free under the pressure). DRIVEN is either the slider's top nodes (drive
+    TOP, the block pushed at its top) or its bottom nodes, the slave nodes themselves (drive
+    SLAVE): then the contact's stick spring E_t is the whole loading spring, the push acts in
+    the contact plane (no couple, uniform pressure) and the four slave nodes are four identical
+    spring-sliders (each node has its own stick spring and state), i.e. one.
 
-The loading system of the frictional interface is then a spring of stiffness per unit area
-k = 1 / (1/E_t + H/G) (the contact's stick spring in series with the slider's shear) driven
-at the load-point velocity: the spring-slider of Ruina (1983) with the block's own
+Pushed at the top, the loading system of the frictional interface is a spring of stiffness per
+unit area k = 1 / (1/E_t + H/G) (the contact's stick spring in series with the slider's shear)
+driven at the load-point velocity: the spring-slider of Ruina (1983) with the block's own
 stiffness. With E_t = 1e5 it is k = 9.52e4 MPa/mm, stiff (k / k_c > 1000 for the rate-and-state
 parameters used), so that the slip rate follows the load rate; a small E_t gives a soft
 spring whose stiffness is set by E_t (the slider's compliance H/G = 5e-7 mm/MPa is then a
 correction of order E_t H/G, taken into account in k).
 
-Outputs read: the history <job>_slider.csv (*HISTORY, FREQUENCY=1: CONTACT, SLIDE; NSET, TOP,
-RF; NSET, TOP, U), the event catalog <job>_events.csv, the contact grid of <job>.h5 and the
-increment lines of <job>.log. Also: a quasi-static spring-slider integrator (classical RK4 of
+Outputs read: the history <job>_slider.csv (*HISTORY, FREQUENCY=1: CONTACT, SLIDE; NSET,
+DRIVEN, RF; NSET, DRIVEN, U), the event catalog <job>_events.csv and the contact grid of
+<job>.h5. Also: a quasi-static spring-slider integrator (classical RK4 of
 the rate-and-state ODE), the oracle of the transient checks. numpy (h5py for the results).
 """
 import math
@@ -62,14 +69,18 @@ STEP1_PERIOD = 1.0e-3      # s
 RS = dict(MU0=0.6, A=0.010, B=0.015, DC=1.0e-3, V0=1.0e-3, VC=1.0e-9)
 
 
-def spring_stiffness(stick_slope):
+def spring_stiffness(stick_slope, drive='TOP'):
     """Loading stiffness per unit area [MPa/mm] of the interface: E_t in series with the
-    slider's shear stiffness G / H."""
+    slider's shear stiffness G / H (drive TOP), or E_t alone (drive SLAVE)."""
+    if drive == 'SLAVE':
+        return stick_slope
     return 1.0 / (1.0 / stick_slope + HEIGHT / SLIDER_SHEAR)
 
 
-def stick_slope_for(k):
+def stick_slope_for(k, drive='TOP'):
     """The E_t that gives the loading stiffness k per unit area (inverse of spring_stiffness)."""
+    if drive == 'SLAVE':
+        return k
     return 1.0 / (1.0 / k - HEIGHT / SLIDER_SHEAR)
 
 
@@ -86,14 +97,16 @@ def _text(value):
 
 
 def slider_deck(path, friction, steps, title='block-slider', restart=None, catalog=None,
-                contact_file=0, rmin=None):
+                contact_file=0, rmin=None, drive='TOP', node_histories=False):
     """Write the block-slider deck. friction: the *FRICTION card (friction_card). steps: list
-    of dicts for steps 2, 3, ...: velocity [mm/s] of TOP in x, period [s], and optionally
-    initial, min, max (the *STATIC increments) and amplitude (name of an *AMPLITUDE given in
-    `amplitudes` of that dict as (times, values), TIME=STEP TIME). restart: *RESTART, WRITE
+    of dicts for steps 2, 3, ...: velocity [mm/s] of the driven nodes in x, period [s], and
+    optionally initial, min, max (the *STATIC increments). restart: *RESTART, WRITE
     parameters (text) or None. catalog: *EVENT CATALOG parameters (text) or None.
     contact_file: *CONTACT FILE frequency in the sliding steps (0: step ends only). rmin: text
-    of an *RMIN card's parameters for every sliding step, or None."""
+    of an *RMIN card's parameters for every sliding step, or None. drive: TOP or SLAVE (the
+    nodes moved, module doc string). node_histories: also the history of RF of each driven
+    node (node sets N<id>, columns N<id>_RF1..3): with drive SLAVE, -RF_x of a slave node is
+    its friction force."""
     lines = ['*HEADING', '%s (tests/integration/friction/friction_common.py)' % title,
              '*NODE, NSET=ALL_NODES']
     base = [(-1, -1, 0), (2, -1, 0), (2, 2, 0), (-1, 2, 0),
@@ -105,41 +118,43 @@ def slider_deck(path, friction, steps, title='block-slider', restart=None, catal
     lines += ['%d, %.17g, %.17g, %.17g' % (i + 11, *p) for i, p in enumerate(slider)]
     lines += ['*ELEMENT, TYPE=C3D8, ELSET=BASE', '1, 1, 2, 3, 4, 5, 6, 7, 8',
               '*ELEMENT, TYPE=C3D8, ELSET=SLIDER', '2, 11, 12, 13, 14, 15, 16, 17, 18',
-              '*NSET, NSET=BOTTOM', '1, 2, 3, 4', '*NSET, NSET=TOP', '15, 16, 17, 18',
+              '*NSET, NSET=BASE_NODES', '1, 2, 3, 4, 5, 6, 7, 8', '*NSET, NSET=TOP',
+              '15, 16, 17, 18',
+              '*NSET, NSET=DRIVEN', '15, 16, 17, 18' if drive == 'TOP' else '11, 12, 13, 14',
               '*SURFACE, NAME=MASTER', 'BASE, S2', '*SURFACE, NAME=SLAVE', 'SLIDER, S1',
               '*SURFACE, NAME=LOADED', 'SLIDER, S2',
               '*MATERIAL, NAME=BASE_MAT', '*ELASTIC', '%.17g, 0.3' % BASE_YOUNG,
-              '*MATERIAL, NAME=SLIDER_MAT', '*ELASTIC', '%.17g, %.17g' % (SLIDER_YOUNG, SLIDER_POISSON),
+              '*MATERIAL, NAME=SLIDER_MAT', '*ELASTIC',
+              '%.17g, %.17g' % (SLIDER_YOUNG, SLIDER_POISSON),
               '*SOLID SECTION, ELSET=BASE, MATERIAL=BASE_MAT',
               '*SOLID SECTION, ELSET=SLIDER, MATERIAL=SLIDER_MAT',
               '*SURFACE INTERACTION, NAME=FRICTION_UNDER_TEST',
               '*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR', '%.17g' % NORMAL_STIFFNESS,
               friction,
               '*CONTACT PAIR, INTERACTION=FRICTION_UNDER_TEST, NAME=%s' % PAIR, 'SLAVE, MASTER',
-              '*HISTORY, NAME=%s, FREQUENCY=1' % HISTORY, 'CONTACT, %s' % PAIR, 'NSET, TOP, RF',
-              'NSET, TOP, U']
+              '*HISTORY, NAME=%s, FREQUENCY=1' % HISTORY, 'CONTACT, %s' % PAIR,
+              'NSET, DRIVEN, RF', 'NSET, DRIVEN, U']
+    if node_histories:
+        driven = [15, 16, 17, 18] if drive == 'TOP' else [11, 12, 13, 14]
+        at = lines.index('*HISTORY, NAME=%s, FREQUENCY=1' % HISTORY)
+        lines[at:at] = [card for n in driven for card in ('*NSET, NSET=N%d' % n, '%d' % n)]
+        lines += ['NSET, N%d, RF' % n for n in driven]
     if catalog:
         lines.append('*EVENT CATALOG, %s' % catalog)
     if restart:
         lines.append('*RESTART, WRITE, %s' % restart)
-    for number, step in enumerate(steps, start=2):
-        for name, (times, values) in step.get('amplitudes', {}).items():
-            lines += fcs_check.amplitude_card(name, times, values)
-    lines += ['*BOUNDARY', 'BOTTOM, 1, 3',
+    lines += ['*BOUNDARY', 'BASE_NODES, 1, 3',
               '*STEP, NAME=PRESS', '*STATIC', '%.17g, %.17g' % (STEP1_PERIOD / 10, STEP1_PERIOD),
-              '*BOUNDARY', 'TOP, 1, 2', '*DSLOAD', 'LOADED, P, %.17g' % SIGMA_N, '*END STEP']
+              '*BOUNDARY', 'DRIVEN, 1, 2', '*DSLOAD', 'LOADED, P, %.17g' % SIGMA_N, '*END STEP']
     for number, step in enumerate(steps, start=2):
         period = step['period']
         static = '%.17g, %.17g, %.17g, %.17g' % (step.get('initial', period / 1000.0), period,
                                                   step.get('min', 1.0e-9),
                                                   step.get('max', period / 100.0))
-        boundary = '*BOUNDARY, TYPE=VELOCITY'
-        if 'amplitude' in step:
-            boundary += ', AMPLITUDE=%s' % step['amplitude']
         lines += ['*STEP, NAME=SLIDE %d' % number, '*STATIC', static]
         if rmin:
             lines.append('*RMIN, %s' % rmin)
-        lines += [boundary, 'TOP, 1, 1, %.17g' % step['velocity']]
+        lines += ['*BOUNDARY, TYPE=VELOCITY', 'DRIVEN, 1, 1, %.17g' % step['velocity']]
         if contact_file:
             lines += ['*CONTACT FILE, FREQUENCY=%d' % contact_file, 'CDIS, CSTR']
         lines.append('*END STEP')
@@ -175,8 +190,8 @@ def read_csv(path):
 class History:
     """The slider history of a job: time t, friction from the contact (mu = mean shear /
     mean pressure of the closed slave nodes), the apparent friction the loading system feels
-    (mu_rf = RF_x / -RF_z of TOP), slip rate (largest), mean slip, counts, load-point
-    displacement u."""
+    (mu_rf = |RF_x| / (sigma_n A), RF of the driven nodes), slip rate (largest), mean slip,
+    counts, load-point displacement u."""
 
     def __init__(self, job):
         h = read_csv(job + '_' + HISTORY + '.csv')
@@ -188,11 +203,11 @@ class History:
         with np.errstate(invalid='ignore', divide='ignore'):
             self.mu = np.where(self.pressure > 0, self.shear / np.where(self.pressure > 0,
                                                                           self.pressure, 1), 0)
-            self.mu_rf = np.abs(h['TOP_RF1']) / np.where(h['TOP_RF3'] != 0, np.abs(h['TOP_RF3']), 1)
+            self.mu_rf = np.abs(h['DRIVEN_RF1']) / (SIGMA_N * AREA)
         self.rate = h[p + '_RATE_MAX']
         self.slip = h[p + '_SLIP_MEAN']
         self.n_slip = h[p + '_SLIP']
-        self.u = h['TOP_U1']
+        self.u = h['DRIVEN_U1']
         self.normal_force = h[p + '_FN']
 
 
@@ -245,7 +260,7 @@ def theta_rate(v, theta, state_law, p=RS):
 
 
 def spring_slider(k, load_rate, v_start, theta_start, duration, state_law, p=RS, sigma=SIGMA_N,
-                  steps=200000, record_every=10):
+                  steps=200000, record_every=10, v_stop=None):
     """Quasi-static spring-slider with rate-and-state friction, integrated independently of
     fcs3d by classical RK4 with a fixed step: the spring k [MPa/mm] (per unit area) between the
     load point (velocity load_rate(t) [mm/s], t from the start) and the slider, whose shear
@@ -253,7 +268,8 @@ def spring_slider(k, load_rate, v_start, theta_start, duration, state_law, p=RS,
         d ln V / dt = [k (V_lp - V) / sigma - B dtheta/dt / theta] / A,
         d theta / dt = 1 - V theta / DC  (AGEING)  or  -(V theta/DC) ln(V theta/DC)  (SLIP),
     integrated in y = (ln V, ln theta) for accuracy over decades. Returns arrays t, V, theta,
-    mu, slip (every record_every steps)."""
+    mu, slip (every record_every steps). v_stop: stop (after recording) once V exceeds it
+    (below k_c the quasi-static V grows without bound in finite time)."""
     h = duration / steps
 
     def rhs(t, y):
@@ -278,9 +294,12 @@ def spring_slider(k, load_rate, v_start, theta_start, duration, state_law, p=RS,
         y = [y[j] + h / 6.0 * (k1[j] + 2 * k2[j] + 2 * k3[j] + k4[j]) for j in range(2)]
         t += h
         slip += 0.5 * h * (v_before + math.exp(y[0]))
-        if (i + 1) % record_every == 0:
+        stop = v_stop is not None and math.exp(y[0]) > v_stop
+        if (i + 1) % record_every == 0 or stop:
             v, theta = math.exp(y[0]), math.exp(y[1])
             out.append((t, v, theta, mu_rate_state(v, theta, p), slip))
+        if stop:
+            break
     a = np.array(out)
     return a[:, 0], a[:, 1], a[:, 2], a[:, 3], a[:, 4]
 

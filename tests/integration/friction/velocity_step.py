@@ -9,18 +9,18 @@ Model: friction_common.py, *FRICTION, LAW=RATE STATE, MU0=0.6, A=0.010, B=0.015,
 V0=1e-3 mm/s, VC=1e-9 mm/s, VINIT=1e-3 mm/s. Step 2: the top is driven at V1 = 1e-3 mm/s
 for 20 DC (the block reaches steady state at V1, mu_ss(V1) = 0.6); step 3: at 10 V1 for
 3 DC (0.3 s), increments of at most 0.01 DC/(10 V1) = 1e-3 s (*STATIC maximum), so that the
-direct effect (a slip of about 5e-6 mm = 0.005 DC at the default stiffness) spans a few
+direct effect (a slip of about 2.4e-6 mm = 0.0024 DC at the default stiffness) spans a few
 increments; step 4: on at 10 V1 for 12 DC more with increments up to 0.1 DC, to the new
 steady state (exp(-15) = 3e-7 of the way left).
 
 Oracle (friction_common.spring_slider): the quasi-static spring-slider k (V_lp t - delta) =
 sigma_n mu(V, theta) integrated by RK4 with 150000 fixed steps over the 1.5 s (h = 1e-5 s,
-a fifteenth of the fastest time scale A sigma_n/(k V) = 1.5e-4 s; halving h changes mu by
-< 1e-9),
+a tenth of the fastest time scale A sigma_n/(k V) = 1.05e-4 s; halving h changes mu by
+8.4e-10),
 from V = V1, theta = DC/V1, with k the slider's loading stiffness per unit area
-1/(1/E_t + H/G) (6.67e4 MPa/mm for E_t = 1e5). This is the standard rigid-loading response
+1/(1/E_t + H/G) (9.52e4 MPa/mm for E_t = 1e5). This is the standard rigid-loading response
 up to the elastic slip (direct effect A ln 10 = 0.0230 reached after a slip
-sigma A ln 10 / k = 3.5e-6 mm = 0.0035 DC, then the evolution over a slip of order DC to
+sigma A ln 10 / k = 2.4e-6 mm = 0.0024 DC, then the evolution over a slip of order DC to
 mu_ss(10 V1) = mu_ss(V1) + (A - B) ln 10 = 0.588487), so the check also tests the
 closed-form limits (method notes 3.1).
 
@@ -29,10 +29,14 @@ Checks:
     same times over the whole record of steps 3 and 4: max |mu_FE - mu_ODE| <= tolerance * mu
     (the issue's 1 %); the error is also reported relative to the transient's amplitude
     A ln 10;
-  * the peak (direct effect): peak mu - mu_ss(V1) vs the ODE's, and vs A ln 10;
+  * the peak (direct effect): peak mu - mu_ss(V1) vs the ODE's within 2 % (the rise of
+    0.023 in mu over 0.003 DC is resolved by about 7 increments, set by *RMIN MAX FRICTION
+    CHANGE = 5e-3, and the explicit scheme lags by about one: measured 0.5 % (ageing) and 1.1 %
+    (slip) below the ODE's peak, which is itself 0.38 % and 0.78 % below A ln 10 because the
+    state evolves during the elastic slip);
   * the end: mu - mu_ss(V1) vs (A - B) ln 10 within 1e-4 relative (the ODE is there to 3e-7).
 The steady state at V1 is checked on the last-but-one increment of step 2: the step's last
-increment is cut short to land on the step end, which at commit 8ac6ae4 disturbs its slip rate
+increment is cut short to land on the step end, which at commit 1a72340 disturbs its slip rate
 (tests/pending/friction_steady_state_body.sh).
 """
 import argparse
@@ -131,7 +135,7 @@ def plot(png, curves, mu1):
         line, = ax.plot(t_ode, mu_ode - mu1, '-', linewidth=1, label='%s: ODE (RK4)' % label)
         ax.plot(t, mu_fe - mu1, '.', markersize=3, color=line.get_color(),
                 label='%s: fcs3d' % label)
-    ax.set_xlabel('time after the step [s] (slip ~ 10 V1 t = t / 0.1 s DC)')
+    ax.set_xlabel('time after the step [s] (0.1 s = 1 DC of slip at 10 V1)')
     ax.set_ylabel('mu - mu_ss(V1)')
     ax.set_title('Velocity step 1e-3 -> 1e-2 mm/s, RATE STATE', fontsize=10)
     ax.legend(fontsize=8)

@@ -1,5 +1,5 @@
 #!/bin/sh
-# PENDING (fails at fa02511): the return mapping of a rate-and-state node can jump to the
+# Regression (failed at 1a72340, fixed since): the return mapping of a rate-and-state node can jump to the
 # wrong root of its equation, which starts slip events too early and moves the stability
 # boundary of the spring-slider: k = 1.05 k_c shows stick-slip for ever.
 #
@@ -10,10 +10,10 @@
 #      the end, decaying oscillation);
 #   3. k = 0.8 k_c, 200 s: the first event starts when the quasi-static ODE started from the FE
 #      state says (slip rate 1e-2 mm/s within 0.5 s of the ODE's time).
-# Measured at fa02511: 1 passes (28 events); 2 fails: 47 events to 590 s, mu still 1.5e-2
+# Measured at 1a72340: 1 passes (28 events); 2 fails: 47 events to 590 s, mu still 1.5e-2
 # from mu_ss at the end; 3 fails: 156.08 s against the ODE's 166.58 s (10.5 s early: from
-# V = 5.6e-6 to 0.11 mm/s in one increment of 0.1 s). With the patch: 1 passes (34
-# events), 2 passes (last event 253.6 s, |mu - mu_ss| = 4.5e-7), 3 passes (166.44 s).
+# V = 5.6e-6 to 0.11 mm/s in one increment of 0.1 s). With the patch: 1 passes (33
+# events), 2 passes (last event 252.8 s, |mu - mu_ss| = 7.4e-7), 3 passes (166.44 s).
 #
 # Diagnosis (src/contact/fcs_contact_element.f90, return_to_cone): the plastic slip l of a
 # slipping node solves g(l) = |f^tr| - k_t l - f_n mu(l/dt, theta(l)) = 0 on (0, |f^tr|/k_t].
@@ -31,7 +31,7 @@
 # Patch: friction_stability_boundary.patch (bracket the first sign change of g by marching up
 # from 2^-50 |f^tr|/k_t in factors of 2, at most 50 evaluations, then the same Illinois
 # iteration). Unit tests, make test and every friction test pass with it.
-# Run: FCS3D=$PWD/bin/fcs3d sh -c 'cd $(mktemp -d) && sh '$PWD'/tests/pending/friction_stability_boundary.sh'
+# Run: FCS3D=$PWD/bin/fcs3d sh -c 'cd $(mktemp -d) && sh '$PWD'/tests/integration/friction_stability_boundary.sh'
 set -u
 tests=$(cd "$(dirname "$0")/.." && pwd)
 py=${PYTHON:-/usr/bin/python3}

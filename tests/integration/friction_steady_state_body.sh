@@ -1,5 +1,5 @@
 #!/bin/sh
-# PENDING (fails at fa02511): at steady sliding with a rate-dependent friction law the body
+# Regression (failed at 1a72340, fixed since): at steady sliding with a rate-dependent friction law the body
 # is not in equilibrium with the contact: the force the loading system feels is f_n (mu_ss +
 # A k_t/(k_t + k_v)) instead of f_n mu_ss, and an increment shorter than its predecessor
 # (the last one of a step) slips too fast.
@@ -9,9 +9,9 @@
 # ageing and slip laws): after 20 DC of slip in each step, besides the contact's mu =
 # mu_ss(V) within 1e-6 (which passes), (a) RF_x / (sigma_n A) of the pushed nodes = mu_ss(V)
 # within 1e-6, and (b) mu of the step's last increment = mu_ss(V) within 1e-6.
-# Measured at fa02511: (a) RF_x / (sigma_n A) - mu_ss = +9.960e-3 at every rate and both
+# Measured at 1a72340: (a) RF_x / (sigma_n A) - mu_ss = +9.960e-3 at every rate and both
 # laws (1.7 % of mu); (b) slip law at 1e-2 mm/s, a last increment of 1.1e-4 s after ones of
-# 0.025 s: mu off by 1.07e-4, slip rate by 1.4 %. With the patch: (a) 3e-10, (b) 2e-12.
+# 0.025 s: mu off by 1.07e-4, slip rate by 1.4 %. With the patch: (a) 3.3e-10, (b) 2e-12.
 #
 # Diagnosis (src/contact/fcs_contact_element.f90, contact_linearise, CONTACT_SLIP): the
 # tangent of a slipping node has the rate term k_v = f_n (dmu/dV)/dt (in series with the
@@ -23,17 +23,18 @@
 # series f_n V dmu/dV; the return mapping (exact) gives mu(V) instead, and the difference
 # stays in the body as out-of-balance force, renewed every increment: for RATE STATE
 # (V dmu/dV = A) it is series f_n A = 0.996 x 10 N x 0.010 here; for the paper's RATE
-# DEPENDENT law (A - B = -0.015) the body carries 1.5 % of f_n less than the contact. The
-# residual of one increment is applied in full in the next (du_residual); when that next
-# increment is shorter, series (hence the residual the slip must absorb) changes, and the slip
-# rate of that increment is off (b). The contact's own mu is right, so
-# friction_steady_state.sh (contact level) passes.
+# DEPENDENT law with RATE UPDATE=IMPLICIT (A - B = -0.015) the body carries 1.5 % of f_n
+# less than the contact. The residual of one increment is applied in full in the next
+# (du_residual); when that next increment is shorter, series (hence the residual the slip must
+# absorb) changes, and the slip rate of that increment is off (b). The contact's own mu is
+# right, so friction_steady_state.sh (contact level) passes.
 #
-# Patch: friction_steady_state_body.patch (contact_node_t gets the last slip rate; the
-# slipping node's force carries the predictor term). Unit tests, make test and every friction
-# test pass with it; the velocity-step transient after 0.6 DC then matches the ODE to 2e-7
-# instead of 5e-6.
-# Run: FCS3D=$PWD/bin/fcs3d sh -c 'cd $(mktemp -d) && sh '$PWD'/tests/pending/friction_steady_state_body.sh'
+# Patch: friction_steady_state_body.patch (the slipping node's force carries the predictor
+# term, with the last slip rate contact_node_t%slip_rate). Only RATE UPDATE=IMPLICIT (the
+# default of the RATE STATE laws) is concerned: the explicit rate has no rate term. Unit
+# tests, make test and every friction test pass with it; the velocity-step transient after
+# 0.6 DC then matches the ODE to 2e-7 (ageing) and 1.5e-6 (slip) instead of 5e-6.
+# Run: FCS3D=$PWD/bin/fcs3d sh -c 'cd $(mktemp -d) && sh '$PWD'/tests/integration/friction_steady_state_body.sh'
 set -u
 tests=$(cd "$(dirname "$0")/.." && pwd)
 py=${PYTHON:-/usr/bin/python3}
