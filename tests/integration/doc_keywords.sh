@@ -35,7 +35,7 @@ if table != sections:
                     % (sorted(table - sections), sorted(sections - table)))
 # CalculiX keywords the documentation names as not accepted, and words that only look like
 # keywords (e.g. "*2" in formulas is not matched: keywords start with a letter).
-ALLOWED = {'DYNAMIC', 'FRICTION', 'PLASTIC', 'EQUATION', 'COUPLING', 'KINEMATIC', 'USER MATERIAL',
+ALLOWED = {'KEYWORD', 'DYNAMIC', 'FRICTION', 'PLASTIC', 'EQUATION', 'COUPLING', 'KINEMATIC', 'USER MATERIAL',
            'CONTACT OUTPUT', 'NODE OUTPUT', 'ELEMENT OUTPUT', 'OUTPUT', 'CONTROLS', 'VISCO',
            'BUCKLE', 'FREQUENCY', 'HEAT TRANSFER', 'COUPLED TEMPERATURE-DISPLACEMENT',
            'DLOAD', 'GAP', 'SPRING', 'MPC', 'ORIENTATION', 'SHELL SECTION', 'BEAM SECTION',
