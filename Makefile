@@ -5,7 +5,7 @@
 #   make bench     benchmarks that print figures (not part of make test)
 #   make figures   figures of the default run into doc/figures/
 #   make DEBUG=1 ... bounds checks and floating-point traps
-#   make MPI=1 ...   also build the Open MPI variant bin/fcs3d-mpi (MUMPS distributed)
+#   make MPI=1 ...   the Open MPI variant bin/fcs3d-mpi instead (MUMPS distributed)
 
 VERSION := 0.1.0
 

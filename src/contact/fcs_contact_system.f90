@@ -4,8 +4,10 @@
 !>     its neighbours, so that sliding rarely changes the pattern);
 !>   - `assemble`: contact forces R f and tangents K_f (eqs. 8-10) of every closed node;
 !>   - `events`: the R-minimum fractions of the trial increment at which a node closes
-!>     (gap reaches 0), opens (normal force reaches 0), starts to slip (F = 0, eq. 3), returns
-!>     to stick (slip reverses), or leaves its master segment;
+!>     (gap reaches 0), opens (normal force reaches 0), starts to slip (F = 0, eq. 3) or
+!>     leaves its master segment (a return to stick, when slip reverses or unloads, is
+!>     handled at the start of the increment by `switch_states` and a re-solve, as elastic
+!>     unloading in plasticity);
 !>   - `update`: the return mapping of every closed node (eq. 5) on the new configuration,
 !>     segment hand-over while sliding, search for the open nodes, state changes.
 module fcs_contact_system
@@ -518,7 +520,7 @@ contains
   !> elastic-plastic unloading (Yamada et al. 1968): a slipping node whose elastic (stick)
   !> predictor stays inside the Coulomb cone unloads, and a sticking node on the cone whose
   !> predictor leaves it at once slips; their tangents are switched and the caller solves the
-  !> increment again. Each node switches at most twice per increment (no endless flip-flop).
+  !> increment again. Each node switches at most 10 times per increment (no endless flip-flop).
   !> `n_switched` counts the switches made.
   subroutine system_switch_states(this, x, cstate, du, n_switched)
     class(contact_system_t), intent(inout) :: this

@@ -365,8 +365,8 @@ contains
       reason = 'materials are isotropic hypoelastic (*ELASTIC) only'
     case ('INITIAL CONDITIONS', 'TEMPERATURE', 'DLOAD', 'CFLUX', 'DFLUX', 'FILM', 'RADIATE')
       reason = 'this load or initial condition is not available yet'
-    case ('NODE OUTPUT', 'ELEMENT OUTPUT', 'OUTPUT', 'CONTACT OUTPUT', 'CONTACT FILE', &
-          'SECTION PRINT', 'FACE PRINT')
+    case ('NODE OUTPUT', 'ELEMENT OUTPUT', 'OUTPUT', 'CONTACT OUTPUT', 'SECTION PRINT', &
+          'FACE PRINT')
       reason = 'use *NODE PRINT / *EL PRINT (text) or *NODE FILE / *EL FILE (results file)'
     case default
       reason = ''

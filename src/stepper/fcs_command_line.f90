@@ -6,6 +6,7 @@ module fcs_command_line
   use fcs_solver_factory, only: LINEAR_SOLVER_NAMES
   use fcs_strings, only: to_upper, basename, path_stem, join_path
   use fcs_version, only: FCS3D_IDENTITY
+  use fcs_files, only: directory_exists
   implicit none
   private
   public :: parse_command_line, ACTION_RUN, ACTION_DONE
@@ -94,6 +95,10 @@ contains
     end if
     if (len(output_dir) == 0) then
       options%job = path_stem(options%deck_path)
+    else if (.not. directory_exists(output_dir)) then
+      call input_error(err, 'output directory "' // output_dir // '" does not exist (-o needs ' // &
+                       'an existing directory)')
+      return
     else
       options%job = join_path(output_dir, path_stem(basename(options%deck_path)))
     end if

@@ -6,7 +6,7 @@
 !> every load is linear in time and the R-minimum scaling of the increment is exact.
 module fcs_loading
   use fcs_kinds, only: dp
-  use fcs_model, only: model_t, step_t, amplitude_t, BC_DISPLACEMENT, BC_VELOCITY, &
+  use fcs_model, only: model_t, step_t, amplitude_t, time_points_t, BC_DISPLACEMENT, BC_VELOCITY, &
                        OUTPUT_NODE_FILE, OUTPUT_EL_FILE
   use fcs_sort, only: argsort_reals
   implicit none
@@ -151,16 +151,28 @@ contains
       end if
     end do
     do i = 1, size(step%outputs)
-      a = step%outputs(i)%time_points
-      if (a == 0) cycle
-      if (model%time_points(a)%total_time) then
-        times = [times, model%time_points(a)%times - start_time]
-      else
-        times = [times, model%time_points(a)%times]
-      end if
+      if (step%outputs(i)%time_points > 0) &
+        call add_time_points(model%time_points(step%outputs(i)%time_points), start_time, times)
+    end do
+    ! History samples at time points hold through every step.
+    do i = 1, size(model%histories)
+      if (model%histories(i)%time_points > 0) &
+        call add_time_points(model%time_points(model%histories(i)%time_points), start_time, times)
     end do
     loading%breakpoints = sorted_inside(times, step%period)
   end subroutine collect_breakpoints
+
+  !> Append the times of a *TIME POINTS list, as step times of a step starting at start_time.
+  subroutine add_time_points(points, start_time, times)
+    type(time_points_t), intent(in) :: points
+    real(dp), intent(in) :: start_time
+    real(dp), allocatable, intent(inout) :: times(:)
+    if (points%total_time) then
+      times = [times, points%times - start_time]
+    else
+      times = [times, points%times]
+    end if
+  end subroutine add_time_points
 
   !> Sorted values strictly inside (0, period), duplicates (within 1e-12 period) removed.
   function sorted_inside(times, period) result(out)
