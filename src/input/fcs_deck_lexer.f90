@@ -87,7 +87,7 @@ contains
     character(len=256) :: msg
     character(len=:), allocatable :: line, pending
     type(source_loc_t) :: pending_loc
-    logical :: eof
+    logical :: eof, already_open
     do i = 1, size(reader%stack)
       if (reader%stack(i)%s == path) then
         call diag%report(included_from, '*INCLUDE: "' // path // '" includes itself ' // &
@@ -95,6 +95,13 @@ contains
         return
       end if
     end do
+    ! The same file under another spelling ("dir/../deck.inp"): it is still open for reading.
+    inquire (file=path, opened=already_open)
+    if (already_open) then
+      call diag%report(included_from, '*INCLUDE: "' // path // '" includes itself ' // &
+                       '(include cycle: ' // stack_text(reader) // ' -> ' // path // ')')
+      return
+    end if
     if (size(reader%stack) >= MAX_INCLUDE_DEPTH) then
       call diag%report(included_from, '*INCLUDE: nested more than ' // str(MAX_INCLUDE_DEPTH) // &
                        ' levels deep')
