@@ -28,6 +28,10 @@ module fcs_linear_solver
     real(dp) :: factor_seconds = 0.0_dp
     real(dp) :: solve_seconds = 0.0_dp
     real(dp) :: factor_entries = 0.0_dp
+    !> Floating-point operations of the last factorisation (0: not reported by the solver).
+    real(dp) :: factor_flops = 0.0_dp
+    !> The fill-reducing ordering used by the last analysis, as the solver names it.
+    character(len=16) :: ordering = ''
     integer :: n_analyses = 0
     integer :: n_factorisations = 0
   end type solver_stats_t

@@ -125,6 +125,7 @@ contains
       if (allocated(err)) return
       this%stats%analyse_seconds = wall_time() - started
       this%stats%n_analyses = this%stats%n_analyses + 1
+      this%stats%ordering = ordering_name(this%id%INFOG(7))
     end if
     started = wall_time()
     if (this%distributed) then
@@ -145,6 +146,7 @@ contains
     this%stats%factor_seconds = wall_time() - started
     this%stats%n_factorisations = this%stats%n_factorisations + 1
     this%stats%factor_entries = factor_entries(this%id%INFOG(29))
+    this%stats%factor_flops = real(this%id%RINFOG(3), dp)
   end subroutine mumps_factor
 
   !> Run on the processes of `comm`; with more than one, in distributed mode.
@@ -364,6 +366,28 @@ contains
         infog_text(this%id%INFOG(1), this%id%INFOG(2)))
     end if
   end subroutine run_job
+
+  !> The ordering MUMPS used, from INFOG(7) (MUMPS 5.5 User's Guide, ICNTL(7)).
+  pure function ordering_name(code) result(name)
+    integer, intent(in) :: code
+    character(len=:), allocatable :: name
+    select case (code)
+    case (0)
+      name = 'AMD'
+    case (2)
+      name = 'AMF'
+    case (3)
+      name = 'SCOTCH'
+    case (4)
+      name = 'PORD'
+    case (5)
+      name = 'METIS'
+    case (6)
+      name = 'QAMD'
+    case default
+      name = 'code ' // str(code)
+    end select
+  end function ordering_name
 
   !> Number of entries in the factors from INFOG(29) (negative: millions of entries).
   pure real(dp) function factor_entries(infog29)

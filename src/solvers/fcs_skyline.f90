@@ -81,6 +81,7 @@ contains
       if (allocated(err)) return
       this%stats%analyse_seconds = wall_time() - started
       this%stats%n_analyses = this%stats%n_analyses + 1
+      this%stats%ordering = 'RCM'
     end if
     started = wall_time()
     call scatter_values(this, matrix)

@@ -8,7 +8,10 @@
 !> with sys = UMFPACK_At, (A^T)^T x = A x = b, without converting the matrix. The wrapper keeps
 !> 0-based 64-bit copies of the pattern (made when `pattern_version` changes) and the Symbolic
 !> object while the pattern is unchanged; the Numeric object is rebuilt at every `factor`.
-!> Default control parameters (umfpack_dl_defaults) are used.
+!> Control parameters: umfpack_dl_defaults, except the fill-reducing ordering, METIS
+!> (UMFPACK_ORDERING_METIS; G. Karypis and V. Kumar, SIAM J. Sci. Comput. 20(1), 359-392,
+!> 1998): on 3-D hexahedral meshes it gives about 3x fewer flops and half the memory of
+!> the default AMD (doc/performance.md). Should METIS fail, the analysis is redone with AMD.
 module fcs_umfpack
   use, intrinsic :: iso_c_binding, only: c_long, c_double, c_ptr, c_null_ptr, c_associated
   use fcs_kinds, only: dp, i8
@@ -20,7 +23,8 @@ module fcs_umfpack
   use fcs_umfpack_c, only: umfpack_dl_defaults, umfpack_dl_symbolic, umfpack_dl_numeric, &
     umfpack_dl_solve, umfpack_dl_free_symbolic, umfpack_dl_free_numeric, UMFPACK_INFO, &
     UMFPACK_CONTROL, UMFPACK_At, UMFPACK_LNZ, UMFPACK_UNZ, UMFPACK_UDIAG_NZ, UMFPACK_RCOND, &
-    UMFPACK_SIZE_OF_UNIT, UMFPACK_PEAK_MEMORY_ESTIMATE, UMFPACK_OK, &
+    UMFPACK_SIZE_OF_UNIT, UMFPACK_PEAK_MEMORY_ESTIMATE, UMFPACK_OK, UMFPACK_ORDERING, &
+    UMFPACK_ORDERING_AMD, UMFPACK_ORDERING_METIS, UMFPACK_ORDERING_USED, UMFPACK_FLOPS, &
     UMFPACK_WARNING_singular_matrix, &
     UMFPACK_WARNING_determinant_underflow, UMFPACK_WARNING_determinant_overflow, &
     UMFPACK_ERROR_out_of_memory, UMFPACK_ERROR_invalid_Numeric_object, &
@@ -84,6 +88,7 @@ contains
     this%stats%factor_seconds = wall_time() - started
     this%stats%n_factorisations = this%stats%n_factorisations + 1
     this%stats%factor_entries = real(this%info(UMFPACK_LNZ + 1) + this%info(UMFPACK_UNZ + 1), dp)
+    this%stats%factor_flops = real(this%info(UMFPACK_FLOPS + 1), dp)
     if (this%info(UMFPACK_RCOND + 1) < NEAR_SINGULAR_PIVOT_RATIO) then
       call fatal_error(err, 'UMFPACK numeric factorisation: the matrix is singular or nearly ' // &
         'so (reciprocal condition estimate ' // str(real(this%info(UMFPACK_RCOND + 1), dp), 3) // &
@@ -116,15 +121,22 @@ contains
     this%column_ptr = int(matrix%row_ptr - 1, c_long)
     this%row_index = int(matrix%col - 1, c_long)
     call umfpack_dl_defaults(this%control)
+    this%control(UMFPACK_ORDERING + 1) = UMFPACK_ORDERING_METIS
     n = int(matrix%n, c_long)
     status = umfpack_dl_symbolic(n, n, this%column_ptr, this%row_index, matrix%val, &
                                  this%symbolic, this%control, this%info)
+    if (status == UMFPACK_ERROR_ordering_failed) then
+      this%control(UMFPACK_ORDERING + 1) = UMFPACK_ORDERING_AMD
+      status = umfpack_dl_symbolic(n, n, this%column_ptr, this%row_index, matrix%val, &
+                                   this%symbolic, this%control, this%info)
+    end if
     if (status /= UMFPACK_OK) then
       call fatal_error(err, 'UMFPACK symbolic analysis (umfpack_dl_symbolic) of ' // &
         str(matrix%n) // ' equations: ' // status_text(status))
       call release_symbolic(this)
       return
     end if
+    this%stats%ordering = ordering_name(nint(this%info(UMFPACK_ORDERING_USED + 1)))
     this%peak_memory_estimate = real(this%info(UMFPACK_PEAK_MEMORY_ESTIMATE + 1), dp) * &
                                 real(this%info(UMFPACK_SIZE_OF_UNIT + 1), dp)
     this%n = matrix%n
@@ -175,6 +187,26 @@ contains
     this%nnz = -1
     this%analysed_version = -1
   end subroutine umfpack_free
+
+  !> The ordering UMFPACK reports in Info(UMFPACK_ORDERING_USED) (umfpack.h).
+  pure function ordering_name(code) result(name)
+    integer, intent(in) :: code
+    character(len=:), allocatable :: name
+    select case (code)
+    case (0)
+      name = 'CHOLMOD'
+    case (1)
+      name = 'AMD/COLAMD'
+    case (2)
+      name = 'given'
+    case (3)
+      name = 'METIS'
+    case (5)
+      name = 'none'
+    case default
+      name = 'code ' // str(code)
+    end select
+  end function ordering_name
 
   !> Free the Numeric object, if any (umfpack_dl_free_numeric nulls the handle).
   subroutine release_numeric(this)

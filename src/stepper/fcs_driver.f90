@@ -18,6 +18,7 @@ module fcs_driver
   use fcs_partition, only: partition_elements
   use fcs_mumps, only: mumps_solver_t
   use fcs_solver_factory, only: create_linear_solver
+  use fcs_linear_solver, only: solver_stats_t
   use fcs_results, only: results_file_t, GRID_POINTS
   use fcs_contact_system, only: pair_totals_t
   use fcs_dat_output, only: dat_file_t
@@ -783,8 +784,23 @@ contains
       do i = 1, size(phases)
         call run%log%info('  ' // phases(i) // ': ' // format_duration(a%timers%total(trim(phases(i)))))
       end do
+      call log_solver_stats(run, a%solver%stats)
+      call run%monitors%report_open_events(a, run%log)
     end associate
   end subroutine summary
+
+  !> The linear solver's counts and the size of its last factorisation.
+  subroutine log_solver_stats(run, stats)
+    type(run_t), intent(inout) :: run
+    type(solver_stats_t), intent(in) :: stats
+    character(len=:), allocatable :: line
+    line = '  linear solver: ' // str(stats%n_analyses) // ' analysis(es), ' // &
+      str(stats%n_factorisations) // ' factorisation(s)'
+    if (len_trim(stats%ordering) > 0) line = line // ', ordering ' // trim(stats%ordering)
+    line = line // '; last factor ' // str(stats%factor_entries, 3) // ' entries'
+    if (stats%factor_flops > 0.0_dp) line = line // ', ' // str(stats%factor_flops, 3) // ' flops'
+    call run%log%info(line)
+  end subroutine log_solver_stats
 
   subroutine close_outputs(run)
     type(run_t), intent(inout) :: run

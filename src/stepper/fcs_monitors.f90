@@ -31,6 +31,7 @@ module fcs_monitors
     procedure :: write_files => monitors_write_files
     procedure :: sample => monitors_sample
     procedure :: watch_events => monitors_watch_events
+    procedure :: report_open_events => monitors_report_open_events
   end type monitors_t
 
 contains
@@ -270,5 +271,25 @@ contains
       end if
     end do
   end subroutine monitors_watch_events
+
+  !> At the end of a run: say in the log which pairs have a slip event under way. Such an
+  !> event is not catalogued (its end is unknown); the checkpoint holds it, so a restart with
+  !> added steps completes it (doc/restart.md, "Event catalog").
+  subroutine monitors_report_open_events(this, a, log)
+    class(monitors_t), intent(in) :: this
+    type(analysis_t), intent(in) :: a
+    type(logger_t), intent(inout) :: log
+    integer :: k
+    if (.not. this%catalog_on) return
+    do k = 1, size(this%catalog%watch)
+      associate (w => this%catalog%watch(k))
+        if (.not. w%active) cycle
+        call log%info('slip event under way on ' // a%contact%pairs(k)%name // ' at the end ' // &
+          'of the run (onset ' // str(w%event%onset) // ', ' // str(count(w%involved)) // &
+          ' nodes so far, hypocentre node ' // str(w%event%hypocentre) // '): not in the ' // &
+          'catalog; a restart with added steps completes it')
+      end associate
+    end do
+  end subroutine monitors_report_open_events
 
 end module fcs_monitors
