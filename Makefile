@@ -29,7 +29,7 @@ else
 VARIANT := serial
 BIN_NAME := fcs3d
 MUMPS_INC := -I /usr/include/mumps_seq
-MUMPS_LIBS := -ldmumps_seq -lmumps_common_seq -lmpiseq_seq -lpord_seq
+MUMPS_LIBS := -ldmumps_seq -lmumps_common_seq -lmpiseq_seq -lpord_seq -lmetis
 endif
 BUILD := build/$(VARIANT)
 comma := ,

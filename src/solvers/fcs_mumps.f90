@@ -20,6 +20,7 @@ module fcs_mumps
   use fcs_strings, only: str
   use fcs_timer, only: wall_time
   use fcs_sparse, only: sparse_matrix_t
+  use fcs_metis_order, only: metis_equation_order
   use fcs_linear_solver, only: linear_solver_t, NEAR_SINGULAR_PIVOT_RATIO
   use fcs_comm, only: comm_t, COMM_VARIANT
   implicit none
@@ -46,6 +47,13 @@ module fcs_mumps
   !> ICNTL(24) = 1: null-pivot detection; with CNTL(3) > 0 a pivot is null when its row is
   !> below CNTL(3) times the norm of the scaled matrix, and INFOG(28) counts them.
   integer, parameter :: MUMPS_DETECT_NULL_PIVOTS = 1
+  !> ICNTL(28) = 1: sequential analysis; ICNTL(7) = 1: the ordering given in PERM_IN, ours
+  !> by METIS (fcs_metis_order). MUMPS's automatic choice took SCOTCH (Debian's MUMPS is built
+  !> without METIS), whose ordering changes from run to run: the factors, hence the
+  !> round-off, differed between two runs of the same deck, and the fault-bend model's slip
+  !> events (a bifurcating sequence) with them. METIS is deterministic, and gives the same
+  !> ordering on any number of processes.
+  integer, parameter :: MUMPS_SEQUENTIAL_ANALYSIS = 1, MUMPS_ORDERING_GIVEN = 1
   !> Automatic retries of a factorisation that ran out of workspace, each doubling the
   !> relaxation ICNTL(14) (percent of extra workspace over the analysis estimate).
   integer, parameter :: MAX_WORKSPACE_RETRIES = 2
@@ -174,7 +182,7 @@ contains
     type(error_t), allocatable, intent(out) :: err
     allocate (this%id)
     nullify (this%id%IRN, this%id%JCN, this%id%A, this%id%RHS, this%id%IRN_loc, this%id%JCN_loc, &
-             this%id%A_loc)
+             this%id%A_loc, this%id%PERM_IN)
     ! JOB = -1 reads KEEP (to tell a fresh instance from a live one) before setting it.
     this%id%KEEP = 0
     this%id%COMM = this%communicator
@@ -191,6 +199,8 @@ contains
     this%id%ICNTL(18) = MUMPS_CENTRALISED
     if (this%distributed) this%id%ICNTL(18) = MUMPS_DISTRIBUTED
     this%id%ICNTL(24) = MUMPS_DETECT_NULL_PIVOTS
+    this%id%ICNTL(28) = MUMPS_SEQUENTIAL_ANALYSIS
+    this%id%ICNTL(7) = MUMPS_ORDERING_GIVEN
     this%id%CNTL(3) = NEAR_SINGULAR_PIVOT_RATIO
   end subroutine mumps_initialise
 
@@ -202,6 +212,7 @@ contains
     type(error_t), allocatable, intent(out) :: err
     integer :: row
     integer(i8) :: p
+    integer, allocatable :: position(:)
     this%analysed_version = -1
     call release_matrix_arrays(this)
     if (this%distributed) then
@@ -220,6 +231,10 @@ contains
       if (matrix%nnz <= huge(this%id%NZ)) this%id%NZ = int(matrix%nnz)
     end if
     this%id%N = matrix%n
+    call metis_equation_order(matrix, position, err)
+    if (allocated(err)) return
+    allocate (this%id%PERM_IN(matrix%n))
+    this%id%PERM_IN(:) = position
     call run_job(this, JOB_ANALYSE, 'analysis of ' // str(matrix%n) // ' equations', err)
     if (allocated(err)) return
     this%n = matrix%n
@@ -344,6 +359,7 @@ contains
     if (associated(this%id%IRN_loc)) deallocate (this%id%IRN_loc)
     if (associated(this%id%JCN_loc)) deallocate (this%id%JCN_loc)
     if (associated(this%id%A_loc)) deallocate (this%id%A_loc)
+    if (associated(this%id%PERM_IN)) deallocate (this%id%PERM_IN)
   end subroutine release_matrix_arrays
 
   !> The solver's name as the deck spells it.
@@ -382,6 +398,8 @@ contains
       name = 'PORD'
     case (5)
       name = 'METIS'
+    case (1)
+      name = 'METIS (fcs3d)'
     case (6)
       name = 'QAMD'
     case default

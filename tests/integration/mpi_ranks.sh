@@ -5,10 +5,12 @@
 # to its largest value: the processes sum forces and matrix entries in different orders, so
 # round-off differs, ~1e-11 here), the serial build with MUMPS gives them too, and two runs
 # on 2 ranks agree within the same 1e-9 with the same frames and datasets. Parallel runs are
-# NOT bit-identical run to run: measured 4e-13 to 2e-11 between repeated 2-rank runs even
-# with OMP_NUM_THREADS=OPENBLAS_NUM_THREADS=1 (our own reductions are MPI_Allreduce on a fixed
-# partition; the parallel MUMPS factorisation receives contribution blocks in arrival order).
-# doc/performance.md states this; serial runs are bit-identical (restart tests check it).
+# NOT bit-identical run to run: measured 7e-16 to 1.8e-13 between repeated 2-rank runs (our
+# own reductions are MPI_Allreduce on a fixed partition, and the ordering is our METIS one,
+# the same in every run; the parallel MUMPS factorisation receives contribution blocks in
+# arrival order). Before fcs3d gave MUMPS its ordering, MUMPS chose SCOTCH, whose ordering
+# changed from run to run: 4e-13 to 2e-11 then, and serial MUMPS runs differed too.
+# Serial runs are bit-identical (restart tests check it).
 # Needs bin/fcs3d-mpi (make MPI=1; make test builds it) and mpirun.
 set -u
 here=$(cd "$(dirname "$0")/../.." && pwd)
