@@ -15,10 +15,14 @@ Figures written to --out (PNG), each skipped with a message when the data it nee
                                 thick); also one PNG per time (<prefix>_mises_t<time>.png) on
                                 its figure's scale.
   <prefix>_fault_histories.png  per fault segment (mean over its slave nodes): contact pressure,
-                                shear traction, their ratio and mu, slip, slip rate, fraction
-                                of nodes slipping, against time.
-  <prefix>_stick_slip.png       space-time diagrams along the trace: contact status and slip
-                                rate against distance from C and time.
+                                shear traction, their ratio and mu, slip, and, between
+                                consecutive frames, the mean slip increment and the share of
+                                nodes that slipped (increment > SLIP_STEP mm), against time
+                                (slip events last less than the spacing of the frames, so the
+                                status and slip rate *at* a frame miss them).
+  <prefix>_stick_slip.png       space-time diagrams along the trace: contact status at the
+                                frames and the slip increment between consecutive frames
+                                against distance from C and time.
   <prefix>_loading.png          the force on face B (sum of the x nodal forces of the nodes on
                                 x = max x) against B's displacement and against time.
   <prefix>_history.png          from the *HISTORY tables (<job>_<name>.csv, every increment):
@@ -66,6 +70,8 @@ STATUS_NAMES = {0: "open", 1: "stick", 2: "slip", 3: "tied"}
 STATUS_COLOURS = ("#ffffff", "#4c72b0", "#dd3c2c", "#9a9a9a")
 SEGMENT_COLOURS = {"CD": "#7f7f7f", "DE": "#1f77b4", "EF": "#d62728", "FG": "#2ca02c"}
 TIME_TOLERANCE = 1e-6
+#: Slip increment [mm] between two frames above which a node counts as having slipped.
+SLIP_STEP = 1e-4
 #: Faces of a C3D8 hexahedron (0-based local nodes), as in fcs3d and gmsh.
 HEX_FACES = ((0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7))
 
@@ -437,8 +443,8 @@ def mises_figure(results, maps, trace, times, name, arguments, summary):
     n = len(panels)
     columns = min(4, n)
     rows = (n + columns - 1) // columns
-    fig, axes = plt.subplots(rows, columns, figsize=(max(3.3 * columns + 1.2, 6.5),
-                                                     3.3 * rows + 0.8),
+    fig, axes = plt.subplots(rows, columns, figsize=(3.3 * columns + 1.2 if columns > 1 else 5.0,
+                                                     3.3 * rows + 0.8 if columns > 1 else 4.6),
                              squeeze=False, constrained_layout=True)
     mappable = None
     for ax, (time, values) in zip(axes.flat, panels):
@@ -496,6 +502,9 @@ def segment_histories(results, views):
         data = {name: [] for name in fields}
         data["slipping"] = []
         data["ratio"] = []
+        data["slip_step"] = []
+        data["slipped"] = []
+        previous = None
         ok = True
         for index in range(len(results.frames)):
             values = {name: results.grid_field(index, grid, name) for name in fields}
@@ -508,6 +517,15 @@ def segment_histories(results, views):
                 data[name].append(np.nan if v is None else float(np.mean(v)))
             status = np.rint(values["status"]).astype(int)
             data["slipping"].append(float(np.mean(status == 2)))
+            slip = values["slip"]
+            if slip is not None and previous is not None:
+                step = slip - previous
+                data["slip_step"].append(float(np.mean(step)))
+                data["slipped"].append(float(np.mean(step > SLIP_STEP)))
+            else:
+                data["slip_step"].append(np.nan)
+                data["slipped"].append(np.nan)
+            previous = slip
             pressure, shear = values["pressure"], values["shear_magnitude"]
             if pressure is not None and shear is not None:
                 closed = pressure > 0
@@ -533,8 +551,9 @@ def figure_histories(results, views, arguments, summary):
               ("shear_magnitude", "mean shear traction [MPa]", False),
               ("ratio", "shear / pressure (lines), mu (dashed)", False),
               ("slip", "mean accumulated slip [mm]", False),
-              ("slip_rate", "mean slip rate [mm/s]", True),
-              ("slipping", "fraction of nodes slipping", False))
+              ("slip_step", "mean slip increment since\nthe previous frame [mm]", True),
+              ("slipped", f"share of nodes that slipped\n> {SLIP_STEP:g} mm since the "
+                          "previous frame", False))
     fig, axes = plt.subplots(len(panels), 1, figsize=(7.5, 12), sharex=True,
                              constrained_layout=True)
     for ax, (field, label, log) in zip(axes, panels):
@@ -549,7 +568,12 @@ def figure_histories(results, views, arguments, summary):
             if log:
                 positive = values > 0
                 if positive.any():
+                    style.update(ls="none", ms=5)
                     ax.semilogy(times[positive], values[positive], **style)
+            elif field == "slipped":
+                style.update(ls="none", ms=5)
+                shown = values > 0
+                ax.plot(times[shown], values[shown], **style)
             else:
                 ax.plot(times, values, **style)
             if field == "ratio":
@@ -576,14 +600,20 @@ def figure_histories(results, views, arguments, summary):
         after = slipping[times[slipping] > stage_1_end + TIME_TOLERANCE] if len(slipping) \
             else slipping
         first = f"{times[after[0]]:g} s" if len(after) else "never in stage 2"
-        summary.append(f"segment {segment}: first frame of stage 2 with slipping nodes: {first}")
+        moved = np.nonzero(np.nan_to_num(h["slipped"]) > 0)[0]
+        moved = f"{times[moved[0]]:g} s" if len(moved) else "never"
+        summary.append(f"segment {segment}: first frame with slip > {SLIP_STEP:g} mm since the "
+                       f"previous frame: {moved}; first frame of stage 2 with nodes in the "
+                       f"slip state at the frame: {first}")
     return [path]
 
 
 def figure_stick_slip(results, views, trace, arguments, summary):
-    """Status and slip rate of the slave nodes of one row (the node level nearest to
-    mid-thickness) against the distance along the trace and time; each segment is drawn in
-    its own range, so nodes shared by two pairs (at D, E, F) appear in both."""
+    """Status at the frames, and slip increment between consecutive frames, of the slave nodes
+    of one row (the node level nearest to mid-thickness) against the distance along the trace
+    and time; each segment is drawn in its own range, so nodes shared by two pairs (at D, E, F)
+    appear in both. The status is a snapshot: an event shorter than the spacing of the frames
+    shows only in the slip increments."""
     rows = []
     for segment, grid, picked in views:
         coordinates = results.grid_coordinates(0, grid)
@@ -600,7 +630,7 @@ def figure_stick_slip(results, views, trace, arguments, summary):
     fig, axes = plt.subplots(1, 2, figsize=(11, 6), sharey=True, constrained_layout=True)
     cmap = ListedColormap(STATUS_COLOURS)
     norm = BoundaryNorm([-0.5, 0.5, 1.5, 2.5, 3.5], cmap.N)
-    rates = []
+    increments = []
     per_segment = []
     n_nodes = 0
     for segment, grid, picked, coordinates in rows:
@@ -611,33 +641,36 @@ def figure_stick_slip(results, views, trace, arguments, summary):
         order = np.argsort(along)
         pick, along = picked[row[order]], along[order]
         status = np.full((len(times), len(pick)), np.nan)
-        rate = np.full((len(times), len(pick)), np.nan)
+        slip = np.full((len(times), len(pick)), np.nan)
         for index in range(len(times)):
             s = results.grid_field(index, grid, "status")
-            r = results.grid_field(index, grid, "slip_rate")
+            r = results.grid_field(index, grid, "slip")
             if s is not None:
                 status[index] = s[pick]
             if r is not None:
-                rate[index] = r[pick]
+                slip[index] = r[pick]
+        increment = np.diff(slip, axis=0)      # slip over (t[k], t[k+1]]
         start = trace.start[segment]
         x_edges = np.clip(cell_edges(along), start, start + trace.lengths[segment])
-        per_segment.append((x_edges, status, rate))
-        rates.append(rate[np.isfinite(rate) & (rate > 0)])
+        per_segment.append((x_edges, status, increment))
+        increments.append(increment[np.isfinite(increment) & (increment > 0)])
         n_nodes += len(pick)
     for x_edges, status, _ in per_segment:
         mesh = axes[0].pcolormesh(x_edges, t_edges, np.ma.masked_invalid(status), cmap=cmap,
                                   norm=norm, shading="flat")
     bar = fig.colorbar(mesh, ax=axes[0], ticks=[0, 1, 2, 3])
     bar.ax.set_yticklabels([STATUS_NAMES[k] for k in range(4)])
-    positive = np.concatenate(rates) if rates else np.zeros(0)
-    if positive.size:
-        norm_rate = LogNorm(max(positive.min(), positive.max() * 1e-8), positive.max())
-        for x_edges, _, rate in per_segment:
-            mesh = axes[1].pcolormesh(x_edges, t_edges, np.ma.masked_less_equal(rate, 0.0),
-                                      cmap="viridis", norm=norm_rate, shading="flat")
-        fig.colorbar(mesh, ax=axes[1]).set_label("slip rate [mm/s]")
+    positive = np.concatenate(increments) if increments else np.zeros(0)
+    if positive.size and positive.max() > SLIP_STEP:
+        norm_slip = LogNorm(SLIP_STEP, positive.max())
+        for x_edges, _, increment in per_segment:
+            mesh = axes[1].pcolormesh(x_edges, times,
+                                      np.ma.masked_less_equal(increment, SLIP_STEP),
+                                      cmap="viridis", norm=norm_slip, shading="flat")
+        fig.colorbar(mesh, ax=axes[1]).set_label("slip increment since the previous frame [mm]")
     else:
-        axes[1].text(0.5, 0.5, "no slip rate > 0", transform=axes[1].transAxes, ha="center")
+        axes[1].text(0.5, 0.5, f"no slip increment > {SLIP_STEP:g} mm",
+                     transform=axes[1].transAxes, ha="center")
     for ax in axes:
         for name in "DEF":
             ax.axvline(along_of(trace, name), color="black", lw=0.6)
@@ -649,8 +682,10 @@ def figure_stick_slip(results, views, trace, arguments, summary):
         top.set_xticklabels(list("CDEFG"))
     axes[0].set_ylim(t_edges[0], t_edges[-1])
     axes[0].set_ylabel("time [s]", fontsize=8)
-    axes[0].set_title(f"contact status (slave nodes at z = {z_row:g} mm)", fontsize=9)
-    axes[1].set_title("slip rate (same nodes; blank: zero)", fontsize=9)
+    axes[0].set_title(f"contact status at the frames (slave nodes at z = {z_row:g} mm)",
+                      fontsize=9)
+    axes[1].set_title(f"slip between consecutive frames (same nodes; blank: < {SLIP_STEP:g} mm)",
+                      fontsize=9)
     path = os.path.join(arguments.out, f"{arguments.prefix}_stick_slip.png")
     stamp(fig, arguments)
     fig.savefig(path, dpi=arguments.dpi)
@@ -797,7 +832,11 @@ def figure_events(events, trace, arguments, summary):
                              norm=LogNorm(max(np.nanmin(rate[rate > 0]) if np.any(rate > 0)
                                               else 1e-30, 1e-30),
                                           max(np.nanmax(rate), 1e-30)))
-    fig.colorbar(points, ax=axes[0]).set_label("peak slip rate [mm/s]")
+    bar = fig.colorbar(points, ax=axes[0])
+    bar.set_label("peak slip rate [mm/s]")
+    bar.ax.yaxis.set_minor_formatter(matplotlib.ticker.LogFormatter(labelOnlyBase=False,
+                                                                    minor_thresholds=(2, 0.5)))
+    bar.ax.tick_params(labelsize=7, which="both")
     axes[0].set_ylabel(position_label, fontsize=8)
     if position is not pair:
         for name in "CDEFG":
@@ -806,8 +845,14 @@ def figure_events(events, trace, arguments, summary):
         right = axes[0].secondary_yaxis("right")
         right.set_yticks([along_of(trace, name) for name in "CDEFG"])
         right.set_yticklabels(list("CDEFG"))
-    axes[1].plot(onset, events["stress_drop"], "o", ms=3)
-    axes[1].set_ylabel("mean shear stress drop [MPa]", fontsize=8)
+    nodes = events.get("nodes", np.ones_like(onset))
+    axes[1].scatter(onset, events["stress_drop"], s=10 + 200 * nodes / max(np.nanmax(nodes), 1),
+                    color="C0", alpha=0.7)
+    for t, drop, n in zip(onset, events["stress_drop"], nodes):
+        axes[1].annotate(f"{int(n)}", (t, drop), textcoords="offset points", xytext=(4, 4),
+                         fontsize=6)
+    axes[1].set_ylabel("mean shear stress drop [MPa]\n(marker size and label: nodes)",
+                       fontsize=8)
     axes[1].set_xlabel("onset time [s] (dotted: the paper's output times)", fontsize=8)
     for ax in axes:
         for time in PAPER_TIMES[1:]:
