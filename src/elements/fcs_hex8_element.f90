@@ -17,6 +17,15 @@ module fcs_hex8_element
   public :: hex8_strain_increments, hex8_rotate_stress, voigt_to_tensor, tensor_to_voigt
   public :: mises_stress, hex8_extrapolate
 
+  !> Nonzeros of the strain-displacement matrix B (Voigt order 11,22,33,12,13,23, engineering
+  !> shear): column (a, i) has dN_a/dx_B_GRADIENT(n,i) in row B_ROW(n,i), n = 1..3.
+  integer, parameter :: B_ROW(3, 3) = reshape([1, 4, 5, 2, 4, 6, 3, 5, 6], [3, 3])
+  integer, parameter :: B_GRADIENT(3, 3) = reshape([1, 2, 3, 2, 1, 3, 3, 1, 2], [3, 3])
+  !> Index a + 8 (i - 1) (direction-major) of node a, direction i, in node-major order
+  !> 3 (a - 1) + i.
+  integer, parameter :: DIRECTION_MAJOR(24) = [1, 9, 17, 2, 10, 18, 3, 11, 19, 4, 12, 20, &
+                                               5, 13, 21, 6, 14, 22, 7, 15, 23, 8, 16, 24]
+
   !> Gradients of the shape functions and volume weights at the 8 Gauss points.
   type :: hex8_geometry_t
     !> grad(j, a, q) = dN_a/dx_j at Gauss point q.
@@ -66,56 +75,78 @@ contains
     geo%mean_grad = geo%mean_grad / geo%volume
   end subroutine hex8_geometry
 
-  !> Strain-displacement matrix B (6x24) at Gauss point q; with `bbar` the volumetric part is
-  !> replaced by its element mean (Hughes 1980, "Generalization of selective integration
-  !> procedures to anisotropic and nonlinear media", IJNME 15, 1413-1418).
-  pure function b_matrix(geo, q, bbar) result(b)
-    type(hex8_geometry_t), intent(in) :: geo
-    integer, intent(in) :: q
-    logical, intent(in) :: bbar
-    real(dp) :: b(6, 24)
-    real(dp) :: g(3), correction(3)
-    integer :: a, c, i
-    b = 0.0_dp
-    do a = 1, 8
-      c = 3 * (a - 1)
-      g = geo%grad(:, a, q)
-      b(1, c + 1) = g(1)
-      b(2, c + 2) = g(2)
-      b(3, c + 3) = g(3)
-      b(4, c + 1) = g(2)
-      b(4, c + 2) = g(1)
-      b(5, c + 1) = g(3)
-      b(5, c + 3) = g(1)
-      b(6, c + 2) = g(3)
-      b(6, c + 3) = g(2)
-      if (bbar) then
-        correction = (geo%mean_grad(:, a) - g) / 3.0_dp
-        do i = 1, 3
-          b(i, c + 1:c + 3) = b(i, c + 1:c + 3) + correction
+  !> Material part of the tangent at one Gauss point, B^T C B dv, added to k_dir in
+  !> direction-major order: k_dir(a, i, b, m), entry (a + 8 (i - 1), b + 8 (m - 1)) of the
+  !> 24x24 matrix, couples direction i of node a with direction m of node b. g(a, j) =
+  !> dN_a/dx_j. Column (a, i) of the strain-displacement matrix B has g(a, B_GRADIENT(n, i))
+  !> in row B_ROW(n, i), n = 1..3 (Voigt order, engineering shear);
+  !> with `bbar` the volumetric part is replaced by its element mean (Hughes 1980,
+  !> "Generalization of selective integration procedures to anisotropic and nonlinear media",
+  !> IJNME 15, 1413-1418): rows 1-3 of column (a, i) gain correction(a, i) =
+  !> (gbar_ai - g_ai) / 3. Only these nonzeros are visited; with `symmetric` (C = C^T, so
+  !> B^T C B is symmetric) only the direction blocks i <= m are formed.
+  pure subroutine add_material_stiffness(g, correction, bbar, c_dv, symmetric, k_dir)
+    real(dp), intent(in) :: g(8, 3), correction(8, 3), c_dv(6, 6)
+    logical, intent(in) :: bbar, symmetric
+    real(dp), intent(inout) :: k_dir(8, 3, 8, 3)
+    real(dp) :: cb(8, 6, 3), volumetric
+    integer :: r, b, i, m, n
+    ! cb(b, r, m) = (C B dv)(r, column (b, m)).
+    cb = 0.0_dp
+    do m = 1, 3
+      do r = 1, 6
+        do n = 1, 3
+          cb(:, r, m) = cb(:, r, m) + c_dv(r, B_ROW(n, m)) * g(:, B_GRADIENT(n, m))
         end do
-      end if
+        if (bbar) cb(:, r, m) = cb(:, r, m) + (c_dv(r, 1) + c_dv(r, 2) + c_dv(r, 3)) * &
+                                correction(:, m)
+      end do
     end do
-  end function b_matrix
+    do m = 1, 3
+      do b = 1, 8
+        volumetric = cb(b, 1, m) + cb(b, 2, m) + cb(b, 3, m)
+        do i = 1, merge(m, 3, symmetric)
+          do n = 1, 3
+            k_dir(:, i, b, m) = k_dir(:, i, b, m) + g(:, B_GRADIENT(n, i)) * cb(b, B_ROW(n, i), m)
+          end do
+          if (bbar) k_dir(:, i, b, m) = k_dir(:, i, b, m) + correction(:, i) * volumetric
+        end do
+      end do
+    end do
+  end subroutine add_material_stiffness
 
   !> Tangent stiffness (24x24) on the current configuration: material part B^T C B and, with
   !> NLGEOM, the initial-stress part of eq. (1) plus the volume-change term sigma tr(D).
   !> `c(:,:,q)` is the material tangent at Gauss point q, `stress(:,q)` the Cauchy stress.
+  !> The material part is summed in direction-major order (add_material_stiffness); when
+  !> every c(:,:,q) is symmetric, so is B^T C B, and only its upper direction blocks are
+  !> formed, their upper triangle then mirrored; otherwise (unsymmetric, e.g. non-associated
+  !> plastic tangents) all of it.
   pure subroutine hex8_tangent(geo, stress, c, bbar, nlgeom, k)
     type(hex8_geometry_t), intent(in) :: geo
     real(dp), intent(in) :: stress(6, N_GAUSS_HEX8), c(6, 6, N_GAUSS_HEX8)
     logical, intent(in) :: bbar, nlgeom
     real(dp), intent(out) :: k(24, 24)
-    real(dp) :: b(6, 24), cb(6, 24)
-    integer :: q
-    k = 0.0_dp
+    real(dp) :: k_dir(24, 24)
+    logical :: symmetric
+    integer :: q, j
+    symmetric = .true.
     do q = 1, N_GAUSS_HEX8
-      b = b_matrix(geo, q, bbar)
-      cb = matmul(c(:, :, q), b)
-      k = k + matmul(transpose(b), cb) * geo%dv(q)
-      if (nlgeom) call add_initial_stress(geo%grad(:, :, q), voigt_to_tensor(stress(:, q)), &
-                                          geo%dv(q), k)
+      symmetric = symmetric .and. all(c(:, :, q) == transpose(c(:, :, q)))
     end do
+    k_dir = 0.0_dp
+    do q = 1, N_GAUSS_HEX8
+      call add_material_stiffness(transpose(geo%grad(:, :, q)), &
+                                  transpose(geo%mean_grad - geo%grad(:, :, q)) / 3.0_dp, bbar, &
+                                  c(:, :, q) * geo%dv(q), symmetric, k_dir)
+    end do
+    if (symmetric) then
+      do j = 1, 23
+        k_dir(j + 1:24, j) = k_dir(j, j + 1:24)
+      end do
+    end if
+    k = k_dir(DIRECTION_MAJOR, DIRECTION_MAJOR)
+    if (nlgeom) call add_initial_stress(geo, stress, k)
     if (nlgeom .and. bbar) call add_bbar_geometric(geo, stress, k)
   end subroutine hex8_tangent
 
@@ -123,35 +154,30 @@ contains
   !> f_a += 1/3 sum_q tr(sigma_q) (gbar_a - g_aq) dv_q, at fixed stress (its dependence on
   !> the stress is in Bbar^T C Bbar). With d(g_aj dv) = (g_aj g_bm - g_am g_bj) dv dx_bm and
   !> d gbar_aj = [(1/V) sum_r (g_aj g_bm - g_am g_bj) dv_r - gbar_aj gbar_bm] dx_bm.
+  !> Summed over the points, with w_q = tr(sigma_q) dv_q - (sum_r tr(sigma_r) dv_r) dv_q / V,
+  !> u_b = sum_q w_q g_bq and Z_ab(j,m) = sum_q w_q g_aj g_bm (one 24x8 by 8x24 product):
+  !>   K_ab(j,m) += 1/3 [gbar_aj u_bm + Z_ab(m,j) - Z_ab(j,m)].
   pure subroutine add_bbar_geometric(geo, stress, k)
     type(hex8_geometry_t), intent(in) :: geo
     real(dp), intent(in) :: stress(6, N_GAUSS_HEX8)
     real(dp), intent(inout) :: k(24, 24)
-    real(dp) :: tr(N_GAUSS_HEX8), total, mean_pair(3, 3), block(3, 3)
-    integer :: a, b, q, j, m
-    tr = (stress(1, :) + stress(2, :) + stress(3, :)) * geo%dv
-    total = sum(tr)
+    real(dp) :: w(N_GAUSS_HEX8), g(24, N_GAUSS_HEX8), z(24, 24), u(24), mean(24), block(3, 3)
+    integer :: a, b, m, ra, rb
+    w = (stress(1, :) + stress(2, :) + stress(3, :)) * geo%dv
+    w = w - sum(w) * geo%dv / geo%volume
+    g = reshape(geo%grad, [24, N_GAUSS_HEX8])
+    u = matmul(g, w)
+    z = matmul(g * spread(w, 1, 24), transpose(g))
+    mean = reshape(geo%mean_grad, [24])
     do b = 1, 8
+      rb = 3 * b - 2
       do a = 1, 8
-        mean_pair = 0.0_dp
-        block = 0.0_dp
-        do q = 1, N_GAUSS_HEX8
-          do m = 1, 3
-            do j = 1, 3
-              mean_pair(j, m) = mean_pair(j, m) + (geo%grad(j, a, q) * geo%grad(m, b, q) - &
-                                geo%grad(m, a, q) * geo%grad(j, b, q)) * geo%dv(q)
-              block(j, m) = block(j, m) + tr(q) * (geo%mean_grad(j, a) * geo%grad(m, b, q) + &
-                            geo%grad(m, a, q) * geo%grad(j, b, q) - geo%grad(j, a, q) * geo%grad(m, b, q))
-            end do
-          end do
-        end do
+        ra = 3 * a - 2
         do m = 1, 3
-          do j = 1, 3
-            block(j, m) = block(j, m) + total * (mean_pair(j, m) / geo%volume - &
-                          geo%mean_grad(j, a) * geo%mean_grad(m, b))
-          end do
+          block(:, m) = mean(ra:ra + 2) * u(rb + m - 1)
         end do
-        k(3 * a - 2:3 * a, 3 * b - 2:3 * b) = k(3 * a - 2:3 * a, 3 * b - 2:3 * b) + block / 3.0_dp
+        block = block + transpose(z(ra:ra + 2, rb:rb + 2)) - z(ra:ra + 2, rb:rb + 2)
+        k(ra:ra + 2, rb:rb + 2) = k(ra:ra + 2, rb:rb + 2) + block / 3.0_dp
       end do
     end do
   end subroutine add_bbar_geometric
@@ -164,39 +190,59 @@ contains
   !> equilibrium for a Cauchy-stress Jaumann law). For nodes a (test) and b (trial):
   !>   K_ab(i,m) = 1/2 delta_im (g_a.s.g_b) - 1/2 g_b,i (s g_a)_m - 1/2 s_im (g_a.g_b)
   !>             - 1/2 (s g_b)_i g_a,m + (s g_a)_i g_b,m
-  pure subroutine add_initial_stress(grad, s, dv, k)
-    real(dp), intent(in) :: grad(3, 8), s(3, 3), dv
+  !> Summed over the Gauss points (stresses s_q, volumes dv_q) with
+  !> M_ab(i,m) = sum_q (s_q g_a)_i g_b,m dv_q (one 24x8 by 8x24 product) and
+  !> R_ab = sum_q s_q (g_a.g_b) dv_q (one 64x8 by 8x6 product, in Voigt order):
+  !>   K_ab = 1/2 tr(M_ba) I - 1/2 M_ab^T - 1/2 R_ab - 1/2 M_ba + M_ab  (term by term).
+  pure subroutine add_initial_stress(geo, stress, k)
+    type(hex8_geometry_t), intent(in) :: geo
+    real(dp), intent(in) :: stress(6, N_GAUSS_HEX8)
     real(dp), intent(inout) :: k(24, 24)
-    real(dp) :: sg(3, 8), gsg, gg, block(3, 3)
-    integer :: a, b, i, m
-    sg = matmul(s, grad)
+    real(dp) :: sg(24, N_GAUSS_HEX8), gg(64, N_GAUSS_HEX8), weights(N_GAUSS_HEX8, 6)
+    real(dp) :: m(24, 24), r(64, 6), block(3, 3), trace
+    integer :: q, a, b, i, ra, rb
+    do q = 1, N_GAUSS_HEX8
+      sg(:, q) = reshape(matmul(voigt_to_tensor(stress(:, q)), geo%grad(:, :, q)), [24]) * geo%dv(q)
+      gg(:, q) = reshape(matmul(transpose(geo%grad(:, :, q)), geo%grad(:, :, q)), [64])
+      weights(q, :) = stress(:, q) * geo%dv(q)
+    end do
+    m = matmul(sg, transpose(reshape(geo%grad, [24, N_GAUSS_HEX8])))
+    r = matmul(gg, weights)
     do b = 1, 8
+      rb = 3 * b - 2
       do a = 1, 8
-        gsg = dot_product(grad(:, a), sg(:, b))
-        gg = dot_product(grad(:, a), grad(:, b))
-        do m = 1, 3
-          do i = 1, 3
-            block(i, m) = -0.5_dp * grad(i, b) * sg(m, a) - 0.5_dp * s(i, m) * gg &
-                          - 0.5_dp * sg(i, b) * grad(m, a) + sg(i, a) * grad(m, b)
-          end do
-          block(m, m) = block(m, m) + 0.5_dp * gsg
+        ra = 3 * a - 2
+        trace = m(rb, ra) + m(rb + 1, ra + 1) + m(rb + 2, ra + 2)
+        block = m(ra:ra + 2, rb:rb + 2) - 0.5_dp * (transpose(m(ra:ra + 2, rb:rb + 2)) + &
+                m(rb:rb + 2, ra:ra + 2) + voigt_to_tensor(r(a + 8 * (b - 1), :)))
+        do i = 1, 3
+          block(i, i) = block(i, i) + 0.5_dp * trace
         end do
-        k(3 * a - 2:3 * a, 3 * b - 2:3 * b) = k(3 * a - 2:3 * a, 3 * b - 2:3 * b) + block * dv
+        k(ra:ra + 2, rb:rb + 2) = k(ra:ra + 2, rb:rb + 2) + block
       end do
     end do
   end subroutine add_initial_stress
 
-  !> Internal force f_a = sum_q Bbar^T sigma dv (24 values, node-major).
+  !> Internal force f_a = sum_q Bbar^T sigma dv (24 values, node-major), with the nonzeros of
+  !> B as in add_material_stiffness.
   pure subroutine hex8_internal_force(geo, stress, bbar, f)
     type(hex8_geometry_t), intent(in) :: geo
     real(dp), intent(in) :: stress(6, N_GAUSS_HEX8)
     logical, intent(in) :: bbar
     real(dp), intent(out) :: f(24)
-    integer :: q
-    f = 0.0_dp
+    real(dp) :: force(3, 8), s(6)
+    integer :: q, i, n
+    force = 0.0_dp
     do q = 1, N_GAUSS_HEX8
-      f = f + matmul(stress(:, q), b_matrix(geo, q, bbar)) * geo%dv(q)
+      s = stress(:, q) * geo%dv(q)
+      do i = 1, 3
+        do n = 1, 3
+          force(i, :) = force(i, :) + s(B_ROW(n, i)) * geo%grad(B_GRADIENT(n, i), :, q)
+        end do
+      end do
+      if (bbar) force = force + (s(1) + s(2) + s(3)) * (geo%mean_grad - geo%grad(:, :, q)) / 3.0_dp
     end do
+    f = reshape(force, [24])
   end subroutine hex8_internal_force
 
   !> Strain increment (Voigt, engineering shear), rotation increment (skew tensor) and the

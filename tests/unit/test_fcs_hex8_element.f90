@@ -1,6 +1,8 @@
 !> Unit tests of the hexahedron kernel: patch-type checks of B, the tangent against finite
 !> differences of the internal force with the objective stress update (the consistency of
-!> eq. 1's initial-stress terms), Hughes-Winget rotation, extrapolation, pressure loads.
+!> eq. 1's initial-stress terms), the tangent and internal force against a direct evaluation
+!> (dense B, the node-pair loops of the geometric terms), Hughes-Winget rotation,
+!> extrapolation, pressure loads.
 program test_fcs_hex8_element
   use fcs_kinds, only: dp
   use fcs_test_assertions, only: test_suite_t
@@ -16,6 +18,7 @@ program test_fcs_hex8_element
   call test_volume_and_gradients(suite)
   call test_tangent_finite_difference(suite, .false.)
   call test_tangent_finite_difference(suite, .true.)
+  call test_tangent_reference(suite)
   call test_rigid_rotation(suite)
   call test_extrapolation(suite)
   call test_pressure(suite)
@@ -117,6 +120,178 @@ contains
     call suite%check(maxval(abs(kv - fd)) / maxval(abs(fd)) > 1.0e-4_dp, &
                      'material-only tangent differs from the finite differences')
   end subroutine test_tangent_finite_difference
+
+  !> The tangent and internal force against a direct evaluation of the same equations
+  !> (reference_tangent, reference_b_matrix): both sum the same products, in another order
+  !> and grouping, so they agree to round-off (a few 1e-16 relative to the largest entry);
+  !> 1e-12 leaves a wide margin and still catches any missing or misplaced term. Material
+  !> tangents: symmetric (the half product), unsymmetric (the general product) and zero (the
+  !> geometric terms alone); B-bar and NLGEOM on and off.
+  subroutine test_tangent_reference(suite)
+    type(test_suite_t), intent(inout) :: suite
+    integer, parameter :: SYMMETRIC_C = 1, UNSYMMETRIC_C = 2, ZERO_C = 3
+    character(len=*), parameter :: material(3) = [character(len=11) :: 'symmetric', &
+                                                  'unsymmetric', 'zero']
+    type(hex8_geometry_t) :: geo
+    real(dp) :: x(3, 8), stress(6, 8), cq(6, 6, 8), k(24, 24), k_ref(24, 24), f(24), f_ref(24)
+    real(dp) :: perturbation(6, 6)
+    logical :: ok, bbar, nlgeom
+    integer :: q, material_case, i
+    character(len=40) :: label
+    x = distorted_element()
+    call hex8_geometry(x, geo, ok)
+    do q = 1, 8
+      stress(:, q) = [3.0_dp, -1.0_dp, 2.0_dp, 0.7_dp, -0.4_dp, 1.1_dp] * (1.0_dp + 0.1_dp * q)
+      stress(mod(q, 3) + 1, q) = stress(mod(q, 3) + 1, q) - 0.3_dp * q
+    end do
+    do material_case = SYMMETRIC_C, ZERO_C
+      do q = 1, 8
+        cq(:, :, q) = isotropic_elastic_matrix(100.0_dp * (1.0_dp + 0.05_dp * q), 0.3_dp)
+        if (material_case == UNSYMMETRIC_C) then
+          call random_number(perturbation)
+          cq(:, :, q) = cq(:, :, q) + 20.0_dp * (perturbation - 0.5_dp)
+        else if (material_case == ZERO_C) then
+          cq(:, :, q) = 0.0_dp
+        end if
+      end do
+      do i = 0, 3
+        bbar = i >= 2
+        nlgeom = mod(i, 2) == 1
+        if (material_case == ZERO_C .and. .not. nlgeom) cycle
+        write (label, '(a,", bbar=",l1,", nlgeom=",l1)') trim(material(material_case)), bbar, nlgeom
+        call hex8_tangent(geo, stress, cq, bbar, nlgeom, k)
+        k_ref = reference_tangent(geo, stress, cq, bbar, nlgeom)
+        call suite%close_array(reshape(k, [576]), reshape(k_ref, [576]), 1.0e-12_dp, &
+                               'tangent = direct evaluation, C ' // trim(label))
+        if (nlgeom) cycle
+        if (material_case == SYMMETRIC_C) then
+          call suite%check(all(k == transpose(k)), 'B^T C B exactly symmetric, C ' // trim(label))
+        else if (material_case == UNSYMMETRIC_C) then
+          call suite%check(maxval(abs(k - transpose(k))) > 1.0e-3_dp * maxval(abs(k)), &
+                           'B^T C B unsymmetric, C ' // trim(label))
+        end if
+      end do
+    end do
+    do i = 0, 1
+      bbar = i == 1
+      call hex8_internal_force(geo, stress, bbar, f)
+      f_ref = 0.0_dp
+      do q = 1, 8
+        f_ref = f_ref + matmul(stress(:, q), reference_b_matrix(geo, q, bbar)) * geo%dv(q)
+      end do
+      call suite%close_array(f, f_ref, 1.0e-12_dp, 'internal force = sum B^T sigma dv, bbar=' // &
+                             merge('T', 'F', bbar))
+    end do
+  end subroutine test_tangent_reference
+
+  !> Dense strain-displacement matrix B (6x24), B-bar (Hughes 1980) with `bbar`.
+  function reference_b_matrix(geo, q, bbar) result(b)
+    type(hex8_geometry_t), intent(in) :: geo
+    integer, intent(in) :: q
+    logical, intent(in) :: bbar
+    real(dp) :: b(6, 24)
+    real(dp) :: g(3), correction(3)
+    integer :: a, c, i
+    b = 0.0_dp
+    do a = 1, 8
+      c = 3 * (a - 1)
+      g = geo%grad(:, a, q)
+      b(1, c + 1) = g(1)
+      b(2, c + 2) = g(2)
+      b(3, c + 3) = g(3)
+      b(4, c + 1) = g(2)
+      b(4, c + 2) = g(1)
+      b(5, c + 1) = g(3)
+      b(5, c + 3) = g(1)
+      b(6, c + 2) = g(3)
+      b(6, c + 3) = g(2)
+      if (bbar) then
+        correction = (geo%mean_grad(:, a) - g) / 3.0_dp
+        do i = 1, 3
+          b(i, c + 1:c + 3) = b(i, c + 1:c + 3) + correction
+        end do
+      end if
+    end do
+  end function reference_b_matrix
+
+  !> Tangent by direct evaluation: dense B^T C B dv, and with NLGEOM the initial-stress terms
+  !> of eq. (1) (Xing, Mora & Makinouchi 2003) for each node pair and point,
+  !>   K_ab(i,m) = 1/2 delta_im (g_a.s.g_b) - 1/2 g_b,i (s g_a)_m - 1/2 s_im (g_a.g_b)
+  !>             - 1/2 (s g_b)_i g_a,m + (s g_a)_i g_b,m,
+  !> plus, with B-bar, the geometric derivative of the B-bar correction (reference_bbar_block).
+  function reference_tangent(geo, stress, c, bbar, nlgeom) result(k)
+    type(hex8_geometry_t), intent(in) :: geo
+    real(dp), intent(in) :: stress(6, 8), c(6, 6, 8)
+    logical, intent(in) :: bbar, nlgeom
+    real(dp) :: k(24, 24)
+    real(dp) :: b(6, 24), s(3, 3), sg(3, 8), block(3, 3), gsg, gg
+    integer :: q, a, bn, i, m
+    k = 0.0_dp
+    do q = 1, 8
+      b = reference_b_matrix(geo, q, bbar)
+      k = k + matmul(transpose(b), matmul(c(:, :, q), b)) * geo%dv(q)
+      if (.not. nlgeom) cycle
+      s = reshape([stress(1, q), stress(4, q), stress(5, q), stress(4, q), stress(2, q), &
+                   stress(6, q), stress(5, q), stress(6, q), stress(3, q)], [3, 3])
+      sg = matmul(s, geo%grad(:, :, q))
+      do bn = 1, 8
+        do a = 1, 8
+          gsg = dot_product(geo%grad(:, a, q), sg(:, bn))
+          gg = dot_product(geo%grad(:, a, q), geo%grad(:, bn, q))
+          do m = 1, 3
+            do i = 1, 3
+              block(i, m) = 0.5_dp * merge(gsg, 0.0_dp, i == m) &
+                            - 0.5_dp * geo%grad(i, bn, q) * sg(m, a) - 0.5_dp * s(i, m) * gg &
+                            - 0.5_dp * sg(i, bn) * geo%grad(m, a, q) + sg(i, a) * geo%grad(m, bn, q)
+            end do
+          end do
+          k(3 * a - 2:3 * a, 3 * bn - 2:3 * bn) = k(3 * a - 2:3 * a, 3 * bn - 2:3 * bn) + &
+                                                  block * geo%dv(q)
+        end do
+      end do
+    end do
+    if (.not. (nlgeom .and. bbar)) return
+    do bn = 1, 8
+      do a = 1, 8
+        k(3 * a - 2:3 * a, 3 * bn - 2:3 * bn) = k(3 * a - 2:3 * a, 3 * bn - 2:3 * bn) + &
+                                                reference_bbar_block(geo, stress, a, bn)
+      end do
+    end do
+  end function reference_tangent
+
+  !> Geometric derivative of the B-bar correction f_a += 1/3 sum_q tr(sigma_q) (gbar_a - g_aq)
+  !> dv_q for nodes a, b: d(g_aj dv) = (g_aj g_bm - g_am g_bj) dv dx_bm and
+  !> d gbar_aj = [(1/V) sum_r (g_aj g_bm - g_am g_bj) dv_r - gbar_aj gbar_bm] dx_bm.
+  function reference_bbar_block(geo, stress, a, b) result(block)
+    type(hex8_geometry_t), intent(in) :: geo
+    real(dp), intent(in) :: stress(6, 8)
+    integer, intent(in) :: a, b
+    real(dp) :: block(3, 3)
+    real(dp) :: tr(8), total, mean_pair(3, 3)
+    integer :: q, j, m
+    tr = (stress(1, :) + stress(2, :) + stress(3, :)) * geo%dv
+    total = sum(tr)
+    mean_pair = 0.0_dp
+    block = 0.0_dp
+    do q = 1, 8
+      do m = 1, 3
+        do j = 1, 3
+          mean_pair(j, m) = mean_pair(j, m) + (geo%grad(j, a, q) * geo%grad(m, b, q) - &
+                            geo%grad(m, a, q) * geo%grad(j, b, q)) * geo%dv(q)
+          block(j, m) = block(j, m) + tr(q) * (geo%mean_grad(j, a) * geo%grad(m, b, q) + &
+                        geo%grad(m, a, q) * geo%grad(j, b, q) - &
+                        geo%grad(j, a, q) * geo%grad(m, b, q))
+        end do
+      end do
+    end do
+    do m = 1, 3
+      do j = 1, 3
+        block(j, m) = block(j, m) + total * (mean_pair(j, m) / geo%volume - &
+                      geo%mean_grad(j, a) * geo%mean_grad(m, b))
+      end do
+    end do
+    block = block / 3.0_dp
+  end function reference_bbar_block
 
   !> Hughes-Winget: rotating by 90 degrees in many steps swaps sxx and syy exactly (up to
   !> round-off), Mises unchanged.
