@@ -59,6 +59,8 @@ module fcs_contact_system
     !> Slave entries of this pair in the contact state: first..last.
     integer :: first = 1
     integer :: last = 0
+    !> Slave nodes of the surface left out of this (untied) pair because a tie holds them.
+    integer :: n_held_by_tie = 0
   end type contact_pair_t
 
   !> Sums over a pair, for the log and histories.
@@ -122,13 +124,21 @@ contains
     integer :: k, n_total
     integer, allocatable :: slaves(:)
     real(dp), allocatable :: areas(:)
+    logical, allocatable :: tied(:)
     allocate (this%pairs(size(model%contact_pairs)), this%slave_node(0), this%slave_pair(0), &
               this%area(0))
-    n_total = 0
     do k = 1, size(model%contact_pairs)
       call setup_pair(this%pairs(k), model, model%contact_pairs(k), x, err)
       if (allocated(err)) return
+    end do
+    call tied_nodes(this, model, x, tied)
+    n_total = 0
+    do k = 1, size(model%contact_pairs)
       call slave_nodes_of(model, model%contact_pairs(k), this%pairs(k), slaves)
+      if (.not. this%pairs(k)%tied) then
+        this%pairs(k)%n_held_by_tie = count(tied(slaves))
+        slaves = pack(slaves, .not. tied(slaves))
+      end if
       call slave_node_areas(model%mesh, model%contact_pairs(k)%slave_surface, slaves, areas, err)
       if (allocated(err)) then
         err%message = 'contact pair ' // model%contact_pairs(k)%name // ': ' // err%message
@@ -243,6 +253,34 @@ contains
       deallocate (found)
     end do
   end subroutine face_neighbours
+
+  !> The nodes a tie holds: slave nodes of a tied pair within its position tolerance of its
+  !> master surface (those `initial_state` ties). A node both tied and a slave of a contact
+  !> pair (the end of a fault segment next to a tied segment) is left to the tie and taken
+  !> out of the contact pair, as Abaqus does with such overconstraints: two penalty elements
+  !> on one node, the tie's and a frictional one, would otherwise both act on it and the
+  !> frictional one would record a slip the tie does not allow.
+  subroutine tied_nodes(this, model, x, tied)
+    type(contact_system_t), intent(in) :: this
+    type(model_t), intent(in) :: model
+    real(dp), intent(in) :: x(:, :)
+    logical, allocatable, intent(out) :: tied(:)
+    type(segment_point_t) :: p
+    integer, allocatable :: slaves(:)
+    integer :: k, i, face
+    real(dp) :: gap
+    allocate (tied(model%mesh%n_nodes))
+    tied = .false.
+    do k = 1, size(this%pairs)
+      if (.not. this%pairs(k)%tied) cycle
+      call slave_nodes_of(model, model%contact_pairs(k), this%pairs(k), slaves)
+      do i = 1, size(slaves)
+        call search(this%pairs(k), x, x(:, slaves(i)), face, p, gap)
+        if (face /= 0) tied(slaves(i)) = tied(slaves(i)) .or. &
+                                         abs(gap) <= this%pairs(k)%position_tolerance
+      end do
+    end do
+  end subroutine tied_nodes
 
   !> Slave nodes of a pair: the slave surface's nodes, less those on the master surface.
   subroutine slave_nodes_of(model, def, pair, slaves)

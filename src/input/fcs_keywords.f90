@@ -170,7 +170,8 @@ contains
           p('NAME', PARAM_NAME, description='Name of the pair in the log and results ' // &
             '(default: slave-master) (fcs3d extension).')], data_required=.true.), &
       kw('TIE', CONTEXT_MODEL, 'CalculiX', 'Tie a slave surface to a master surface: no ' // &
-         'relative motion ever (penalty tie with E_n = E_t = 10 E / h).', &
+         'relative motion ever (penalty tie with E_n = E_t = 10 E / h). Slave nodes of a ' // &
+         'contact pair that a tie holds are left to the tie (a note in the log).', &
          'slave surface, master surface.', &
          [p('NAME', PARAM_NAME, required=.true., description='Name of the tie.'), &
           p('POSITION TOLERANCE', PARAM_REAL, unit='length', description='Slave nodes ' // &

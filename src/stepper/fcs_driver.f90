@@ -157,6 +157,7 @@ contains
       if (size(model%contact_pairs) > 0) then
         call a%contact%init(model, a%x_contact, a%state%contact, err)
         if (allocated(err)) return
+        call note_tied_slaves(run)
       end if
       call distribute_work(run, model, err)
       if (allocated(err)) return
@@ -382,6 +383,20 @@ contains
       call run%results%write_surface_field(grid, name, values(row:row, :), err)
     end subroutine write_field
   end subroutine write_contact_fields
+
+  !> A note for each contact pair whose slave surface shares nodes with a tie: the tie holds
+  !> them, and they are not checked for contact (fcs_contact_system, tied_nodes).
+  subroutine note_tied_slaves(run)
+    type(run_t), intent(inout) :: run
+    integer :: k
+    associate (pairs => run%analysis%contact%pairs)
+      do k = 1, size(pairs)
+        if (pairs(k)%n_held_by_tie > 0) call run%log%info('note: contact pair ' // pairs(k)%name // &
+          ': ' // str(pairs(k)%n_held_by_tie) // ' slave node(s) also tied by a *TIE are left ' // &
+          'to the tie (not checked for contact)')
+      end do
+    end associate
+  end subroutine note_tied_slaves
 
   !> One log line per contact pair: states and total forces.
   subroutine log_contact_totals(run, detail_only)
