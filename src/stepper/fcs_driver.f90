@@ -1,7 +1,7 @@
 !> The analysis driver: builds the model from the deck, sets up the state, the solver and the
 !> outputs, runs every step increment by increment, and writes results at the output times.
 module fcs_driver
-  use fcs_kinds, only: dp
+  use fcs_kinds, only: dp, i8
   use fcs_error, only: error_t, fatal_error, input_error, add_context, EXIT_INTERRUPTED
   use fcs_mesh, only: hex8_face_nodes
   use fcs_deck_lexer, only: deck_t
@@ -599,6 +599,7 @@ contains
         end select
       end do
       if (.not. (need_frame .or. need_print)) return
+      call run%analysis%timers%start('output')
       call internal_forces(run%analysis, model, step%nlgeom, run%analysis%f_int, err)
       if (allocated(err)) return
       call gather_element_fields(run%analysis)
@@ -620,6 +621,7 @@ contains
         end select
       end do
       if (need_frame) call write_frame(run, model, err)
+      call run%analysis%timers%stop('output')
     end associate
   end subroutine increment_outputs
 
@@ -785,6 +787,17 @@ contains
     end do
   end function nodal_average
 
+  !> A memory figure in MiB: 4 significant digits below 1000, whole MiB above (no exponent).
+  function memory_text(mib) result(text)
+    real(dp), intent(in) :: mib
+    character(len=:), allocatable :: text
+    if (mib < 1000.0_dp) then
+      text = str(mib, 4)
+    else
+      text = str(nint(mib, i8))
+    end if
+  end function memory_text
+
   !> Run summary: size, solver, increments, time per phase, memory.
   subroutine summary(run, model)
     type(run_t), intent(inout) :: run
@@ -795,7 +808,7 @@ contains
     associate (a => run%analysis)
       call run%log%info('done: ' // str(a%state%increment) // ' increment(s), time ' // &
         str(a%state%time) // ', wall ' // format_duration(wall_time() - run%started) // &
-        ', peak memory ' // str(peak_memory_mib(), 4) // ' MiB; solver ' // a%solver%name())
+        ', peak memory ' // memory_text(peak_memory_mib()) // ' MiB; solver ' // a%solver%name())
       do i = 1, size(phases)
         call run%log%info('  ' // phases(i) // ': ' // format_duration(a%timers%total(trim(phases(i)))))
       end do
