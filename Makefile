@@ -132,7 +132,9 @@ validate: packages
 
 bench: packages
 	@$(MAKE) --no-print-directory build
-	@FCS3D=$(abspath $(BIN)) PYTHON=$(PYTHON) sh tests/bench/run_bench.sh
+	@$(MAKE) --no-print-directory MPI=1 BUILD=$(MPI_BUILD) build
+	@FCS3D=$(abspath $(BIN)) FCS3D_MPI=$(abspath $(MPI_BIN)) PYTHON=$(PYTHON) \
+	  OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 sh tests/bench/run_bench.sh
 
 figures:
 	@$(PYTHON) post/make_figures.py --results run/fault_bend/fault_bend.h5 --out doc/figures
