@@ -30,6 +30,10 @@ module fcs_linear_solver
     real(dp) :: factor_entries = 0.0_dp
     !> Floating-point operations of the last factorisation (0: not reported by the solver).
     real(dp) :: factor_flops = 0.0_dp
+    !> Working memory of the last factorisation as the solver reports it [MiB] (MUMPS:
+    !> INFOG(22), the total over the processes; UMFPACK: Info[UMFPACK_PEAK_MEMORY]; 0: not
+    !> reported).
+    real(dp) :: factor_memory_mib = 0.0_dp
     !> The fill-reducing ordering used by the last analysis, as the solver names it.
     character(len=16) :: ordering = ''
     integer :: n_analyses = 0

@@ -155,6 +155,8 @@ contains
     this%stats%n_factorisations = this%stats%n_factorisations + 1
     this%stats%factor_entries = factor_entries(this%id%INFOG(29))
     this%stats%factor_flops = real(this%id%RINFOG(3), dp)
+    ! INFOG(22): millions of bytes effectively used by the factorisation, all processes.
+    this%stats%factor_memory_mib = real(this%id%INFOG(22), dp) * 1.0e6_dp / 2.0_dp**20
   end subroutine mumps_factor
 
   !> Run on the processes of `comm`; with more than one, in distributed mode.

@@ -23,7 +23,7 @@ module fcs_umfpack
   use fcs_umfpack_c, only: umfpack_dl_defaults, umfpack_dl_symbolic, umfpack_dl_numeric, &
     umfpack_dl_solve, umfpack_dl_free_symbolic, umfpack_dl_free_numeric, UMFPACK_INFO, &
     UMFPACK_CONTROL, UMFPACK_At, UMFPACK_LNZ, UMFPACK_UNZ, UMFPACK_UDIAG_NZ, UMFPACK_RCOND, &
-    UMFPACK_SIZE_OF_UNIT, UMFPACK_PEAK_MEMORY_ESTIMATE, UMFPACK_OK, UMFPACK_ORDERING, &
+    UMFPACK_SIZE_OF_UNIT, UMFPACK_PEAK_MEMORY_ESTIMATE, UMFPACK_PEAK_MEMORY, UMFPACK_OK, UMFPACK_ORDERING, &
     UMFPACK_ORDERING_AMD, UMFPACK_ORDERING_METIS, UMFPACK_ORDERING_USED, UMFPACK_FLOPS, &
     UMFPACK_WARNING_singular_matrix, &
     UMFPACK_WARNING_determinant_underflow, UMFPACK_WARNING_determinant_overflow, &
@@ -89,6 +89,8 @@ contains
     this%stats%n_factorisations = this%stats%n_factorisations + 1
     this%stats%factor_entries = real(this%info(UMFPACK_LNZ + 1) + this%info(UMFPACK_UNZ + 1), dp)
     this%stats%factor_flops = real(this%info(UMFPACK_FLOPS + 1), dp)
+    this%stats%factor_memory_mib = real(this%info(UMFPACK_PEAK_MEMORY + 1) * &
+                                        this%info(UMFPACK_SIZE_OF_UNIT + 1), dp) / 2.0_dp**20
     if (this%info(UMFPACK_RCOND + 1) < NEAR_SINGULAR_PIVOT_RATIO) then
       call fatal_error(err, 'UMFPACK numeric factorisation: the matrix is singular or nearly ' // &
         'so (reciprocal condition estimate ' // str(real(this%info(UMFPACK_RCOND + 1), dp), 3) // &

@@ -827,6 +827,8 @@ contains
     if (len_trim(stats%ordering) > 0) line = line // ', ordering ' // trim(stats%ordering)
     line = line // '; last factor ' // str(stats%factor_entries, 3) // ' entries'
     if (stats%factor_flops > 0.0_dp) line = line // ', ' // str(stats%factor_flops, 3) // ' flops'
+    if (stats%factor_memory_mib > 0.0_dp) line = line // ', ' // &
+      memory_text(stats%factor_memory_mib) // ' MiB working memory'
     call run%log%info(line)
   end subroutine log_solver_stats
 
