@@ -17,7 +17,7 @@ MULTIARCH := $(shell gcc -print-multiarch 2>/dev/null || echo x86_64-linux-gnu)
 
 PACKAGES := gfortran liblapack-dev libopenblas-dev libsuitesparse-dev libhdf5-dev hdf5-tools \
             gmsh python3-numpy python3-matplotlib python3-h5py calculix-ccx libmumps-seq-dev \
-            openmpi-bin libopenmpi-dev libmumps-dev libmetis-dev
+            openmpi-bin libopenmpi-dev libmumps-dev libmetis-dev python3-paraview
 
 ifeq ($(MPI),1)
 VARIANT := mpi
