@@ -20,7 +20,7 @@ module fcs_umfpack_c
   public :: UMFPACK_PEAK_MEMORY, UMFPACK_LNZ, UMFPACK_UNZ
   public :: UMFPACK_UDIAG_NZ, UMFPACK_RCOND
   public :: UMFPACK_SYMBOLIC_WALLTIME, UMFPACK_NUMERIC_WALLTIME, UMFPACK_SOLVE_WALLTIME
-  public :: UMFPACK_ORDERING_USED, UMFPACK_FLOPS
+  public :: UMFPACK_ORDERING_USED, UMFPACK_FLOPS, UMFPACK_IRSTEP
   public :: UMFPACK_ORDERING, UMFPACK_ORDERING_AMD, UMFPACK_ORDERING_METIS
   public :: UMFPACK_OK, UMFPACK_WARNING_singular_matrix, UMFPACK_WARNING_determinant_underflow
   public :: UMFPACK_WARNING_determinant_overflow, UMFPACK_ERROR_out_of_memory
@@ -44,7 +44,7 @@ module fcs_umfpack_c
   integer, parameter :: UMFPACK_NUMERIC_WALLTIME = 75, UMFPACK_SOLVE_WALLTIME = 86
   integer, parameter :: UMFPACK_ORDERING_USED = 19, UMFPACK_FLOPS = 42
   !> Control entries (0-based) and their values.
-  integer, parameter :: UMFPACK_ORDERING = 10
+  integer, parameter :: UMFPACK_ORDERING = 10, UMFPACK_IRSTEP = 7
   real(c_double), parameter :: UMFPACK_ORDERING_AMD = 1.0_c_double
   real(c_double), parameter :: UMFPACK_ORDERING_METIS = 3.0_c_double
 
