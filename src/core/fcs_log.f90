@@ -69,11 +69,15 @@ contains
     call this%detail(message)
   end subroutine logger_info
 
-  !> A message for the log file only (per-increment records).
+  !> A message for the log file only (per-increment records), flushed at once so that
+  !> `tail -f job.log` follows a long run line by line.
   subroutine logger_detail(this, message)
     class(logger_t), intent(inout) :: this
     character(len=*), intent(in) :: message
-    if (this%file_unit /= -1) write (this%file_unit, '(a)') message
+    if (this%file_unit /= -1) then
+      write (this%file_unit, '(a)') message
+      flush (this%file_unit)
+    end if
   end subroutine logger_detail
 
   !> A warning: always on standard error, and in the log file.
