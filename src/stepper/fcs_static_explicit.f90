@@ -16,6 +16,8 @@ module fcs_static_explicit
   use fcs_state, only: state_t
   use fcs_sparse, only: sparse_matrix_t
   use fcs_linear_solver, only: linear_solver_t
+  use fcs_mumps, only: mumps_solver_t
+  use fcs_metis_order, only: metis_clique_order
   use fcs_loading, only: step_loading_t
   use fcs_assembly, only: material_slot_t, assemble_elements, assemble_pressures, &
                           element_configuration, inverted_element_error
@@ -83,6 +85,8 @@ module fcs_static_explicit
     logical, allocatable :: owns_slave(:)
     !> Nodes loaded by face pressures in any step (their load stiffness goes to rank 0).
     integer, allocatable :: pressure_cliques(:, :)
+    !> A distributed run's pattern changed: the solver needs the whole model's ordering.
+    logical :: ordering_due = .false.
   end type analysis_t
 
 contains
@@ -112,6 +116,11 @@ contains
       call external_forces(a, model, step%nlgeom, t0, t1)
       call prescribed_increments(a, model, t0, t1)
       if (a%contact%pattern_dirty) call build_pattern(a, model)
+      if (a%ordering_due) then
+        call give_global_ordering(a, model, err)
+        call a%comm%agree_error(err)
+        if (allocated(err)) return
+      end if
       do pass = 1, MAX_STATE_PASSES
         call a%timers%start('assembly')
         call assemble_system(a, model, step, t0, dt, err)
@@ -348,7 +357,36 @@ contains
       end do
     end if
     call a%matrix%build(model%mesh%n_nodes, clique_ptr, clique_nodes)
+    a%ordering_due = a%comm%size > 1
   end subroutine build_pattern
+
+  !> Distributed runs: the fill-reducing ordering of the whole model's graph (every element,
+  !> contact and pressure clique, not only this process's share), computed on rank 0 and
+  !> given to MUMPS for its next analysis. The host's own matrix holds only its share of the
+  !> couplings: ordered alone, it gave 5 times the factor entries and 30 times the flops of
+  !> the serial run on the contact benchmark. The graph is the serial run's, so is the order.
+  subroutine give_global_ordering(a, model, err)
+    type(analysis_t), intent(inout) :: a
+    type(model_t), intent(in) :: model
+    type(error_t), allocatable, intent(out) :: err
+    integer, allocatable :: clique_ptr(:), clique_nodes(:), position(:)
+    integer :: e, k
+    a%ordering_due = .false.
+    if (.not. a%comm%is_root()) return
+    select type (solver => a%solver)
+    type is (mumps_solver_t)
+      call element_cliques(model, [(e, e = 1, model%mesh%n_elements)], clique_ptr, clique_nodes)
+      if (a%contact%n_slaves() > 0) call a%contact%cliques(a%state%contact, clique_ptr, &
+                                                           clique_nodes, keep_centres=.true.)
+      do k = 1, size(a%pressure_cliques, 2)
+        clique_nodes = [clique_nodes, a%pressure_cliques(:, k)]
+        clique_ptr = [clique_ptr, clique_ptr(size(clique_ptr)) + 4]
+      end do
+      call metis_clique_order(model%mesh%n_nodes, clique_ptr, clique_nodes, position, err)
+      if (allocated(err)) return
+      call solver%set_ordering(position)
+    end select
+  end subroutine give_global_ordering
 
   !> Current positions X + u for the contact search and elements (also without NLGEOM:
   !> contact is geometrically nonlinear in any case).

@@ -67,5 +67,18 @@ for other, tolerance in (('np2', 1e-9), ('np4', 1e-9), ('serial', 1e-9), ('np2_a
     failures += not ok
     print('%s %s: largest relative difference %.2e (%s), tolerance %.0e' %
           ('ok  ' if ok else 'FAIL', other, worst, where, tolerance))
+# The fill-reducing ordering of a distributed run is the whole model's (rank 0 holds only its
+# share of the matrix): the factor MUMPS reports must be the serial run's, not larger.
+import re
+def factor(path):
+    m = re.search(r'last factor ([\d.Ee+-]+) entries, ([\d.Ee+-]+) flops', open(path).read())
+    return (float(m.group(1)), float(m.group(2))) if m else None
+serial = factor('serial/job.log')
+for run in ('np1', 'np2', 'np4'):
+    f = factor(run + '/job.log')
+    ok = f is not None and serial is not None and f == serial
+    failures += not ok
+    print('%s %s: factor entries and flops %s, serial MUMPS %s (expected equal: the same '
+          'ordering)' % ('ok  ' if ok else 'FAIL', run, f, serial))
 sys.exit(1 if failures else 0)
 PY
