@@ -76,9 +76,11 @@ VARIANTS = {
     'linear': ('REGULARISATION = LINEAR (static mu 0.7186)', '',
                lambda t, en: t.replace('REGULARISATION=FLOOR', 'REGULARISATION=LINEAR')),
     'flat': ('flat fault (bend 0), same E_n = E_t as the default run', '-setnumber bend_angle 0',
-             lambda t, en: with_penalties(t, en, en)),
-    'matching_nodes': ('matching fault nodes (lower_fault_factor 1)',
-                       '-setnumber lower_fault_factor 1', lambda t, en: t),
+             lambda t, en: with_penalties(t.replace('bend 5.6 deg', 'flat fault (bend 0)'),
+                                          en, en)),
+    'matching_nodes': ('matching fault nodes (lower_fault_factor 1), same E_n = E_t as the '
+                       'default run', '-setnumber lower_fault_factor 1',
+                       lambda t, en: with_penalties(t, en, en)),
 }
 
 
