@@ -31,6 +31,7 @@ module fcs_driver
   use fcs_hex8_shape, only: N_GAUSS_HEX8
   use fcs_strings, only: str, to_upper, to_lower, join_strings
   use fcs_signals, only: install_signal_handlers, signal_received
+  use fcs_heap_policy, only: keep_freed_memory
   use fcs_run_checkpoint, only: save_checkpoint, restore_checkpoint
   use fcs_checkpoint, only: checkpoint_info_t
   use fcs_files, only: truncate_file, file_size
@@ -68,6 +69,8 @@ contains
     type(run_t) :: run
     real(dp) :: t_start
     t_start = wall_time()
+    call keep_freed_memory(err)
+    if (allocated(err)) return
     call run%analysis%comm%init(err)
     if (allocated(err)) return
     run%writer = run%analysis%comm%is_root()
@@ -119,7 +122,12 @@ contains
       run%last_checkpoint = wall_time()
       call run_steps(run, model, err)
     end if
-    if (.not. allocated(err)) call summary(run, model)
+    ! A run stopped by SIGINT/SIGTERM also reports its phase times and solver figures.
+    if (.not. allocated(err)) then
+      call summary(run, model, 'done')
+    else if (err%exit_code == EXIT_INTERRUPTED) then
+      call summary(run, model, 'stopped')
+    end if
     call close_outputs(run)
   end subroutine run_job_on_ranks
 
@@ -798,15 +806,17 @@ contains
     end if
   end function memory_text
 
-  !> Run summary: size, solver, increments, time per phase, memory.
-  subroutine summary(run, model)
+  !> Run summary: size, solver, increments, time per phase, memory; `outcome` opens the line
+  !> ('done', or 'stopped' for a run stopped by a signal).
+  subroutine summary(run, model, outcome)
     type(run_t), intent(inout) :: run
     type(model_t), intent(in) :: model
+    character(len=*), intent(in) :: outcome
     character(len=*), parameter :: phases(6) = [character(len=13) :: 'assembly', 'factorisation', &
                                                 'solve', 'r-minimum', 'update', 'output']
     integer :: i
     associate (a => run%analysis)
-      call run%log%info('done: ' // str(a%state%increment) // ' increment(s), time ' // &
+      call run%log%info(outcome // ': ' // str(a%state%increment) // ' increment(s), time ' // &
         str(a%state%time) // ', wall ' // format_duration(wall_time() - run%started) // &
         ', peak memory ' // memory_text(peak_memory_mib()) // ' MiB; solver ' // a%solver%name())
       do i = 1, size(phases)

@@ -7,7 +7,8 @@ one-go run's outputs.
    one-go run's wall time; $FCS3D_TEST_SEED, else the clock), kill -TERM. Expected: exit
    status 3; on stderr "stopped by signal 15 after increment N (time t); checkpoint written
    to job.rst.h5; continue with --restart job.rst.h5", the same line in job.log; job.rst.h5
-   holds increment N and time t (the increment under way was finished, not cut); the restart
+   holds increment N and time t (the increment under way was finished, not cut); the log ends
+   with the run summary ("stopped: N increment(s), ...", phase times, linear solver); the restart
    from it ends with status 0 and every output (job.h5 bit for bit, job.dat, CSVs, XDMF
    frames) equals the one-go run's;
 3. SIGINT (signal 2, as Ctrl-C sends): the same exit status, messages and checkpoint (the
@@ -66,8 +67,17 @@ def check_stop(directory, sig, status, message):
         problems.append('the message names %s and %s, not job.rst.h5' % (found.group(4),
                                                                             found.group(5)))
     with open(os.path.join(directory, JOB + '.log')) as f:
-        if found.group(0) not in f.read():
-            problems.append('job.log lacks the message')
+        log = f.read()
+    if found.group(0) not in log:
+        problems.append('job.log lacks the message')
+    summary = re.search(r'^stopped: (\d+) increment\(s\),', log, re.M)
+    if not summary:
+        problems.append('job.log lacks the run summary ("stopped: N increment(s), ...")')
+    elif int(summary.group(1)) != increment:
+        problems.append('the summary counts %s increments, the message %d' % (summary.group(1),
+                                                                             increment))
+    elif 'linear solver:' not in log[summary.end():]:
+        problems.append('the summary lacks the linear solver line')
     step, saved_increment, saved_time, _ = rc.checkpoint_info(os.path.join(directory,
                                                                            JOB + '.rst.h5'))
     if saved_increment != increment or abs(saved_time - t) > 1e-5 * max(1.0, abs(t)):
