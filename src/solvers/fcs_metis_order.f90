@@ -16,7 +16,7 @@ module fcs_metis_order
   use fcs_sort, only: sort_integers, unique_sorted
   implicit none
   private
-  public :: metis_equation_order, metis_clique_order
+  public :: metis_equation_order
 
   !> metis.h (METIS 5.1, IDXTYPEWIDTH 32): options array length, return codes, and the
   !> index of the numbering option (0: C numbering).
@@ -56,65 +56,17 @@ contains
     type(sparse_matrix_t), intent(in) :: matrix
     integer, allocatable, intent(out) :: position(:)
     type(error_t), allocatable, intent(out) :: err
-    integer :: block
-    integer(c_int), allocatable :: xadj(:), adjncy(:)
+    integer :: block, n_vertices, k, c
+    integer(c_int), allocatable :: xadj(:), adjncy(:), perm(:), iperm(:)
+    integer(c_int) :: options(METIS_NOPTIONS), status
     block = 3
     if (mod(matrix%n, 3) /= 0) block = 1
+    n_vertices = matrix%n / block
     call block_graph(matrix, block, xadj, adjncy)
-    call order_graph(matrix%n / block, block, xadj, adjncy, position, err)
-  end subroutine metis_equation_order
-
-  !> The same ordering (3 equations per node) for the matrix whose node couplings are the
-  !> cliques clique_nodes(clique_ptr(i):clique_ptr(i+1)-1) of n_nodes nodes (each clique
-  !> couples all its nodes): the whole model's graph, which a process holding only its share
-  !> of a distributed matrix cannot see in that matrix.
-  subroutine metis_clique_order(n_nodes, clique_ptr, clique_nodes, position, err)
-    integer, intent(in) :: n_nodes, clique_ptr(:), clique_nodes(:)
-    integer, allocatable, intent(out) :: position(:)
-    type(error_t), allocatable, intent(out) :: err
-    integer, allocatable :: degree(:), fill(:), edges(:)
-    integer(c_int), allocatable :: xadj(:), adjncy(:)
-    integer :: i, a, b, pass
-    allocate (degree(n_nodes), source=0)
-    allocate (fill(n_nodes + 1), edges(0))
-    do pass = 1, 2
-      if (pass == 2) then
-        fill(1) = 1
-        do a = 1, n_nodes
-          fill(a + 1) = fill(a) + degree(a)
-        end do
-        deallocate (edges)
-        allocate (edges(fill(n_nodes + 1) - 1))
-        degree = 0
-      end if
-      do i = 1, size(clique_ptr) - 1
-        do a = clique_ptr(i), clique_ptr(i + 1) - 1
-          do b = clique_ptr(i), clique_ptr(i + 1) - 1
-            if (clique_nodes(a) == clique_nodes(b)) cycle
-            if (pass == 2) edges(fill(clique_nodes(a)) + degree(clique_nodes(a))) = clique_nodes(b)
-            degree(clique_nodes(a)) = degree(clique_nodes(a)) + 1
-          end do
-        end do
-      end do
-    end do
-    call compress_edges(n_nodes, fill, edges, xadj, adjncy)
-    call order_graph(n_nodes, 3, xadj, adjncy, position, err)
-  end subroutine metis_clique_order
-
-  !> METIS_NodeND on the vertex graph (xadj, adjncy); position(i) for each of the `block`
-  !> equations of every vertex.
-  subroutine order_graph(n_vertices, block, xadj, adjncy, position, err)
-    integer, intent(in) :: n_vertices, block
-    integer(c_int), intent(in) :: xadj(:), adjncy(:)
-    integer, allocatable, intent(out) :: position(:)
-    type(error_t), allocatable, intent(out) :: err
-    integer(c_int), allocatable :: perm(:), iperm(:)
-    integer(c_int) :: options(METIS_NOPTIONS), status
-    integer :: k, c
-    allocate (perm(n_vertices), iperm(n_vertices), position(block * n_vertices))
+    allocate (perm(n_vertices), iperm(n_vertices), position(matrix%n))
     if (size(adjncy) == 0) then
       ! No couplings (a diagonal matrix): any order is as good; METIS refuses an empty graph.
-      position = [(k, k = 1, block * n_vertices)]
+      position = [(k, k = 1, matrix%n)]
       return
     end if
     status = metis_set_default_options(options)
@@ -130,7 +82,7 @@ contains
         position(block * (k - 1) + c) = block * int(iperm(k)) + c
       end do
     end do
-  end subroutine order_graph
+  end subroutine metis_equation_order
 
   !> The graph of the vertices (groups of `block` consecutive equations) in METIS's 0-based
   !> compressed form: symmetric (an edge for every coupling in either direction, as METIS
@@ -139,8 +91,8 @@ contains
     type(sparse_matrix_t), intent(in) :: matrix
     integer, intent(in) :: block
     integer(c_int), allocatable, intent(out) :: xadj(:), adjncy(:)
-    integer, allocatable :: degree(:), fill(:), edges(:)
-    integer :: n_vertices, k, neighbour
+    integer, allocatable :: degree(:), fill(:), edges(:), unique(:)
+    integer :: n_vertices, k, neighbour, first, last, n_kept
     integer(i8) :: p
     n_vertices = matrix%n / block
     allocate (degree(n_vertices), source=0)
@@ -169,23 +121,6 @@ contains
         degree(neighbour) = degree(neighbour) + 1
       end do
     end do
-    call compress_edges(n_vertices, fill, edges, xadj, adjncy)
-  contains
-    !> Start of vertex k's rows in the matrix (k = n_vertices + 1: the end of the matrix).
-    integer(i8) function first_row_start(k)
-      integer, intent(in) :: k
-      first_row_start = matrix%row_ptr(block * (k - 1) + 1)
-    end function first_row_start
-  end subroutine block_graph
-
-  !> METIS's 0-based compressed graph from the neighbour lists edges(fill(k):fill(k+1)-1) of
-  !> each vertex k (sorted here, repeats dropped).
-  subroutine compress_edges(n_vertices, fill, edges, xadj, adjncy)
-    integer, intent(in) :: n_vertices, fill(:)
-    integer, intent(inout) :: edges(:)
-    integer(c_int), allocatable, intent(out) :: xadj(:), adjncy(:)
-    integer, allocatable :: unique(:)
-    integer :: k, first, last, n_kept
     allocate (xadj(n_vertices + 1), adjncy(size(edges)))
     xadj(1) = 0
     n_kept = 0
@@ -201,7 +136,13 @@ contains
       xadj(k + 1) = int(n_kept, c_int)
     end do
     adjncy = adjncy(1:n_kept)
-  end subroutine compress_edges
+  contains
+    !> Start of vertex k's rows in the matrix (k = n_vertices + 1: the end of the matrix).
+    integer(i8) function first_row_start(k)
+      integer, intent(in) :: k
+      first_row_start = matrix%row_ptr(block * (k - 1) + 1)
+    end function first_row_start
+  end subroutine block_graph
 
   pure function status_text(status) result(text)
     integer(c_int), intent(in) :: status

@@ -17,7 +17,7 @@ module fcs_static_explicit
   use fcs_sparse, only: sparse_matrix_t
   use fcs_linear_solver, only: linear_solver_t
   use fcs_mumps, only: mumps_solver_t
-  use fcs_metis_order, only: metis_clique_order
+  use fcs_metis_order, only: metis_equation_order
   use fcs_loading, only: step_loading_t
   use fcs_assembly, only: material_slot_t, assemble_elements, assemble_pressures, &
                           element_configuration, inverted_element_error
@@ -341,36 +341,39 @@ contains
     type(model_t), intent(in) :: model
     logical, intent(in), optional :: keep_centres
     integer, allocatable :: clique_ptr(:), clique_nodes(:)
-    integer :: k, node
+    integer :: k, node, n_nodes, n_faces, last
     call element_cliques(model, a%my_elements, clique_ptr, clique_nodes)
     if (a%contact%n_slaves() > 0) call a%contact%cliques(a%state%contact, clique_ptr, clique_nodes, &
                                                          keep_centres, a%owns_slave)
     if (a%comm%size > 1 .and. a%comm%is_root()) then
-      ! Rank 0 also holds every diagonal (constrained rows) and the pressure load stiffness.
-      do node = 1, model%mesh%n_nodes
-        clique_nodes = [clique_nodes, node]
-        clique_ptr = [clique_ptr, clique_ptr(size(clique_ptr)) + 1]
-      end do
-      do k = 1, size(a%pressure_cliques, 2)
-        clique_nodes = [clique_nodes, a%pressure_cliques(:, k)]
-        clique_ptr = [clique_ptr, clique_ptr(size(clique_ptr)) + 4]
-      end do
+      ! Rank 0 also holds every diagonal (constrained rows) and the pressure load stiffness:
+      ! a one-node clique per node, then the 4-node pressure faces (appended in one go).
+      n_nodes = model%mesh%n_nodes
+      n_faces = size(a%pressure_cliques, 2)
+      last = clique_ptr(size(clique_ptr))
+      clique_nodes = [clique_nodes, [(node, node = 1, n_nodes)], &
+                      reshape(a%pressure_cliques, [4 * n_faces])]
+      clique_ptr = [clique_ptr, [(last + node, node = 1, n_nodes)], &
+                    [(last + n_nodes + 4 * k, k = 1, n_faces)]]
     end if
     call a%matrix%build(model%mesh%n_nodes, clique_ptr, clique_nodes)
     a%ordering_due = a%comm%size > 1
   end subroutine build_pattern
 
-  !> Distributed runs: the fill-reducing ordering of the whole model's graph (every element,
-  !> contact and pressure clique, not only this process's share), computed on rank 0 and
-  !> given to MUMPS for its next analysis. The host's own matrix holds only its share of the
+  !> Distributed runs: the fill-reducing ordering of the whole model's graph (every element
+  !> and contact clique, not only this process's share), computed on rank 0 and given to
+  !> MUMPS for its next analysis. The host's own matrix holds only its share of the
   !> couplings: ordered alone, it gave 5 times the factor entries and 30 times the flops of
-  !> the serial run on the contact benchmark. The graph is the serial run's, so is the order.
+  !> the serial run on the contact benchmark. The whole pattern is built as the serial run
+  !> builds it (pressure faces are element faces, and every node couples to itself), and
+  !> ordered as the serial run orders it, so the order is the serial run's.
   subroutine give_global_ordering(a, model, err)
     type(analysis_t), intent(inout) :: a
     type(model_t), intent(in) :: model
     type(error_t), allocatable, intent(out) :: err
     integer, allocatable :: clique_ptr(:), clique_nodes(:), position(:)
-    integer :: e, k
+    type(sparse_matrix_t) :: whole
+    integer :: e
     a%ordering_due = .false.
     if (.not. a%comm%is_root()) return
     select type (solver => a%solver)
@@ -378,11 +381,9 @@ contains
       call element_cliques(model, [(e, e = 1, model%mesh%n_elements)], clique_ptr, clique_nodes)
       if (a%contact%n_slaves() > 0) call a%contact%cliques(a%state%contact, clique_ptr, &
                                                            clique_nodes, keep_centres=.true.)
-      do k = 1, size(a%pressure_cliques, 2)
-        clique_nodes = [clique_nodes, a%pressure_cliques(:, k)]
-        clique_ptr = [clique_ptr, clique_ptr(size(clique_ptr)) + 4]
-      end do
-      call metis_clique_order(model%mesh%n_nodes, clique_ptr, clique_nodes, position, err)
+      call whole%build(model%mesh%n_nodes, clique_ptr, clique_nodes)
+      call metis_equation_order(whole, position, err)
+      call whole%free()
       if (allocated(err)) return
       call solver%set_ordering(position)
     end select

@@ -44,19 +44,7 @@ import os
 import re
 import sys
 
-DURATION = re.compile(r"(?:(\d+)h (\d+)m)|(?:(\d+)m (\d+)s)|(?:([\d.]+) s)")
-
-
-def seconds(text):
-    """A duration as fcs3d's log writes it (fcs_log.f90, format_duration)."""
-    m = DURATION.fullmatch(text.strip())
-    if not m:
-        raise ValueError(f"not a duration: {text!r}")
-    if m.group(1):
-        return 3600.0 * int(m.group(1)) + 60.0 * int(m.group(2))
-    if m.group(3):
-        return 60.0 * int(m.group(3)) + int(m.group(4))
-    return float(m.group(5))
+import bench  # tests/bench/bench.py: duration() reads the log's durations
 
 
 def read_log(path):
@@ -75,7 +63,8 @@ def read_log(path):
             "time": float(head.group(2)), "peak": float(head.group(4)),
             "factorisations": int(solver.group(2)), "entries": float(solver.group(3)),
             "flops": float(solver.group(4)), "working": float(solver.group(5)),
-            "factor_s": seconds(phase["factorisation"]), "assembly_s": seconds(phase["assembly"])}
+            "factor_s": bench.duration(phase["factorisation"]),
+            "assembly_s": bench.duration(phase["assembly"])}
 
 
 def fit(xs, ys):
