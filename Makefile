@@ -1,7 +1,8 @@
 # fcs3d: Frictional Contact Systems in 3D.
 #   make run       install missing Debian packages (as root), build, run the default deck
 #   make test      the same set-up, then the whole test suite
-#   make validate  long validations (not part of make test)
+#   make validate  long validations (not part of make test), then make ccx-suite
+#   make ccx-suite CalculiX's static test decks through ccx and fcs3d (table of agreement)
 #   make bench     benchmarks that print figures (not part of make test)
 #   make figures   figures of the default run into doc/figures/
 #   make DEBUG=1 ... bounds checks and floating-point traps
@@ -18,6 +19,8 @@ MULTIARCH := $(shell gcc -print-multiarch 2>/dev/null || echo x86_64-linux-gnu)
 PACKAGES := gfortran liblapack-dev libopenblas-dev libsuitesparse-dev libhdf5-dev hdf5-tools \
             gmsh python3-numpy python3-matplotlib python3-h5py calculix-ccx libmumps-seq-dev \
             openmpi-bin libopenmpi-dev libmumps-dev libmetis-dev python3-paraview
+# Needed by make validate / make ccx-suite only: CalculiX's test decks (ccx 2.11's, with results).
+VALIDATE_PACKAGES := calculix-ccx-test
 
 ifeq ($(MPI),1)
 VARIANT := mpi
@@ -74,13 +77,13 @@ $(BUILD)/fcs_version.f90: FORCE | $(BUILD)
 .PHONY: FORCE
 FORCE:
 
-.PHONY: all build run test validate bench figures doc packages clean help unit-tests
+.PHONY: all build run test validate ccx-suite bench figures doc packages clean help unit-tests
 .DEFAULT_GOAL := all
 all: build
 build: $(BIN)
 
 help:
-	@sed -n '2,9p' Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '2,10p' Makefile | sed 's/^# \{0,1\}//'
 
 packages:
 	@sh tools/ensure_packages.sh $(PACKAGES)
@@ -127,8 +130,18 @@ run: packages
 	@sh tools/run_default.sh $(abspath $(BIN))
 
 validate: packages
+	@sh tools/ensure_packages.sh $(VALIDATE_PACKAGES)
 	@$(MAKE) --no-print-directory build
-	@FCS3D=$(abspath $(BIN)) PYTHON=$(PYTHON) sh tests/validate/run_validate.sh
+	@status=0; FCS3D=$(abspath $(BIN)) PYTHON=$(PYTHON) sh tests/validate/run_validate.sh || status=1; \
+	  echo; echo "== CalculiX's static test decks (make ccx-suite)"; \
+	  FCS3D=$(abspath $(BIN)) PYTHON=$(PYTHON) sh tests/validate/calculix_suite.sh; suite=$$?; \
+	  [ $$suite -eq 0 ] || [ $$suite -eq 77 ] || status=1; exit $$status
+
+# CCX_SUITE_ARGS: more arguments for tests/validate/calculix_suite.py, e.g. "--only beam8p".
+ccx-suite: packages
+	@sh tools/ensure_packages.sh $(VALIDATE_PACKAGES)
+	@$(MAKE) --no-print-directory build
+	@FCS3D=$(abspath $(BIN)) PYTHON=$(PYTHON) sh tests/validate/calculix_suite.sh $(CCX_SUITE_ARGS)
 
 bench: packages
 	@$(MAKE) --no-print-directory build

@@ -467,12 +467,14 @@ def reason_category(message):
     patterns = (
         (r"^\*ELEMENT: TYPE=(\S+) is not valid", lambda m: f"*ELEMENT, TYPE={m.group(1)}"),
         (r"^(\*[A-Z][A-Z0-9 -]*?) is not supported", lambda m: f"{m.group(1)} (not supported)"),
-        (r"^unknown keyword (\*[A-Z0-9][A-Z0-9 -]*[A-Z0-9])", lambda m: f"{m.group(1)} (unknown keyword)"),
+        (r"^unknown keyword (\*[A-Z0-9][A-Z0-9 -]*[A-Z0-9])",
+         lambda m: f"{m.group(1)} (unknown keyword)"),
         (keyword + r": unknown parameter \"([^\"=]*)",
          lambda m: f"{m.group(1)}, {m.group(2).strip().upper()} (unknown parameter)"),
         (keyword + r": output variable \"([^\"]*)\" is not available",
          lambda m: f"{m.group(1)}: output variable {m.group(2)} (not available)"),
-        (keyword + r": ([A-Z-]+=.+?) is not valid", lambda m: f"{m.group(1)}, {m.group(2)} (not valid)"),
+        (keyword + r": ([A-Z-]+=.+?) is not valid",
+         lambda m: f"{m.group(1)}, {m.group(2)} (not valid)"),
         (keyword + r": (element|node)( set)? .*is not defined",
          lambda m: "undefined element, node or set (mostly after a refused *ELEMENT)"),
     )
@@ -483,7 +485,7 @@ def reason_category(message):
     text = re.sub(r"\"[^\"]*\"", "\"..\"", text)
     text = re.sub(r"\b\d+\b", "N", text)
     text = re.sub(r"\(set at .*", "", text)
-    return text.split(";")[0].strip()[:90]
+    return text.split(";")[0].strip()[:120]
 
 
 # ------------------------------------------------------------------------------- report
@@ -533,7 +535,7 @@ def versions_cell(entry):
     return ("" if versions["agree"] else "DIFFERS ") + format_error(worst)
 
 
-def text_table(entries, tolerance):
+def text_table(entries):
     header = (f"{'deck':<22} {'elements':<13} {'3D':<3} {'fcs3d':<11} {'displ':>8} {'stress':>8} "
               f"{'force':>8} {'contact':>8} {'other':>8} {'agree':<9} ccx2.20-vs-2.11")
     lines = [header, "-" * len(header)]
@@ -582,7 +584,10 @@ def rankings(entries):
         if fcs["status"] == 0:
             continue
         groups = ["all"] + (["solid"] if entry["info"].solid else [])
-        head = reason_category(fcs["message"]) if fcs["status"] == 2 else f"run failed: {fcs['message']}"
+        if fcs["status"] == 2:
+            head = reason_category(fcs["message"])
+        else:
+            head = f"run failed: {fcs['message']}"
         categories = {reason_category(m) for m in fcs["errors"]} or {head}
         for group in groups:
             first[group][head] += 1
@@ -603,13 +608,12 @@ def ranking_lines(counters, markdown):
     return lines
 
 
-def counts(entries, all_infos, tolerance):
-    static = [e for e in entries]
+def counts(entries, all_infos):
     solid = [e for e in entries if e["info"].solid]
     result = {"decks": len(all_infos),
               "static": sum(1 for i in all_infos.values() if i.static),
               "solid": sum(1 for i in all_infos.values() if i.static and i.solid)}
-    for label, group in (("static", static), ("solid", solid)):
+    for label, group in (("static", entries), ("solid", solid)):
         states = collections.Counter(deck_row(e)[0].split(" ")[0] for e in group)
         agrees = collections.Counter(deck_row(e)[2] for e in group)
         result[label + "_states"] = states
@@ -638,6 +642,7 @@ def summary_lines(c, entries, tolerance):
                 f"agree with ccx 2.20 within {tolerance:g}: {agrees.get('yes', 0)}")
     ccx_failed = [e["name"] for e in entries if not e["ccx"].get("dat") or e["ccx"]["status"] != 0]
     no_tables = [e["name"] for e in entries if e["ccx"].get("dat") and e.get("ccx_tables", 0) == 0]
+    comparable = sum(1 for e in entries if e["info"].solid and e.get("ccx_tables", 0) > 0)
     differs = [e["name"] for e in entries if e.get("versions") and e["versions"]["tables"]
                and not e["versions"]["agree"]]
     lines = [
@@ -647,11 +652,14 @@ def summary_lines(c, entries, tolerance):
         + ", ".join(f"{k} {n}" for k, n in c["solid_kinds"].most_common()),
         "the other decks use (decks per procedure): "
         + ", ".join(f"*{k} {n}" for k, n in c["procedures"].most_common()),
-        f"static decks ({c['static']}): " + state_text("static"),
-        f"3D-solid static decks ({c['solid']}): " + state_text("solid"),
+        f"static decks measured ({len(entries)}): " + state_text("static"),
+        f"3D-solid static decks measured ({sum(1 for e in entries if e['info'].solid)}): "
+        + state_text("solid"),
         f"ccx 2.20 failed ({len(ccx_failed)}): " + (", ".join(ccx_failed) or "none"),
         f"ccx 2.20 printed no .dat table ({len(no_tables)}; the package checks them by .frd): "
         + (", ".join(no_tables) or "none"),
+        "3D-solid static decks with .dat tables to compare (the most that can agree): "
+        f"{comparable}",
         f"ccx 2.20 differs from the shipped 2.11 .dat.ref by more than {tolerance:g} "
         f"({len(differs)}): " + (", ".join(differs) or "none"),
     ]
@@ -659,7 +667,8 @@ def summary_lines(c, entries, tolerance):
 
 
 def write_markdown(path, text):
-    begin, end = "<!-- BEGIN MEASURED (tests/validate/calculix_suite.py) -->", "<!-- END MEASURED -->"
+    begin = "<!-- BEGIN MEASURED (tests/validate/calculix_suite.py) -->"
+    end = "<!-- END MEASURED -->"
     old = open(path).read() if os.path.exists(path) else f"# CalculiX's static test decks\n\n{begin}\n{end}\n"
     if begin not in old or end not in old:
         old = old.rstrip("\n") + f"\n\n{begin}\n{end}\n"
@@ -727,7 +736,8 @@ def main():
     parser.add_argument("--min-agree", type=int, default=0,
                         help="fail when fewer 3D-solid static decks agree")
     args = parser.parse_args()
-    command_line = " ".join(["tests/validate/calculix_suite.py"] + sys.argv[1:])
+    command_line = " ".join(["tests/validate/calculix_suite.py"] +
+                            [a.replace(ROOT + os.sep, "") for a in sys.argv[1:]])
     if shutil.which("ccx") is None:
         print("ccx (Debian package calculix-ccx) is not installed")
         return 77
@@ -769,11 +779,11 @@ def main():
     entries.sort(key=lambda e: e["name"])
     elapsed = time.monotonic() - started
     ccx_run = [e for e in entries if not e["ccx"].get("cached")]
-    c = counts(entries, infos, args.tolerance)
+    c = counts(entries, infos)
     first, any_reason = rankings(entries)
 
     print()
-    print(text_table(entries, args.tolerance))
+    print(text_table(entries))
     print()
     for line in summary_lines(c, entries, args.tolerance):
         print(line)
