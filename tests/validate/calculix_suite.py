@@ -776,7 +776,7 @@ def main():
                 print(f"\r{len(entries)}/{len(names)}", end="", file=sys.stderr, flush=True)
     if sys.stderr.isatty():
         print(file=sys.stderr)
-    entries.sort(key=lambda e: e["name"])
+    entries.sort(key=lambda e: (not e["info"].solid, e["name"]))
     elapsed = time.monotonic() - started
     ccx_run = [e for e in entries if not e["ccx"].get("cached")]
     c = counts(entries, infos)
@@ -805,7 +805,8 @@ def main():
         parts = [
             f"Measured {stamp} at commit `{git_revision()}` with `{fcs_version}`, ccx "
             f"{suite.version} (Debian calculix-ccx {package_version('calculix-ccx')}) and the "
-            f"decks of calculix-ccx-test {package_version('calculix-ccx-test')}, by",
+            f"decks of calculix-ccx-test {package_version('calculix-ccx-test')}, by `make "
+            "ccx-suite` (or `make validate`), which ran",
             "", f"    {command_line}", "",
             f"({len(entries)} decks in {elapsed:.0f} s; ccx run for {len(ccx_run)} decks, "
             f"taken from the cache for {len(entries) - len(ccx_run)}.)", "",
@@ -816,10 +817,13 @@ def main():
         parts += ["", "### Refusal reasons, every reason fcs3d reports", "",
                   "fcs3d lists at most 20 errors per deck, and only those of reading the deck.", ""]
         parts += ranking_lines(any_reason, True)
-        parts += ["", f"### Static decks ({len(entries)})", "",
+        solid = [e for e in entries if e["info"].solid]
+        others = [e for e in entries if not e["info"].solid]
+        parts += ["", "### The decks", "",
                   f"Errors are max |fcs3d - ccx| / max |ccx| per table (largest over the tables of "
-                  f"a kind); agree: every table within {args.tolerance:g}.", ""]
-        parts += [markdown_table(entries)]
+                  f"a kind); agree: every table within {args.tolerance:g}.", "",
+                  f"#### 3D-solid static decks ({len(solid)})", "", markdown_table(solid), "",
+                  f"#### Other static decks ({len(others)})", "", markdown_table(others)]
         write_markdown(args.markdown, "\n".join(parts))
         print(f"wrote {args.markdown}")
     if temporary:
