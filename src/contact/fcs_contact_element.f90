@@ -32,6 +32,8 @@ module fcs_contact_element
 
   !> Contact states of a slave node.
   integer, parameter :: CONTACT_OPEN = 0, CONTACT_STICK = 1, CONTACT_SLIP = 2, CONTACT_TIED = 3
+  !> Tangent of a slipping node on a frictionless interface (no tangential stiffness).
+  integer, parameter :: TANGENT_FREE = -1
   !> The rate-weakening part of the slip tangent is limited to -MAX_WEAKENING E_t A (the
   !> tangent only; the update is exact), so that one increment's tangent stays invertible.
   real(dp), parameter :: MAX_WEAKENING = 0.5_dp
@@ -47,6 +49,11 @@ module fcs_contact_element
     !> E_n, E_t [stress/length].
     real(dp) :: normal_stiffness = 0.0_dp
     real(dp) :: stick_stiffness = 0.0_dp
+    !> Support of the master segment at the contact point (1 on the segment, falling to 0
+    !> across the extension past a free edge of the master surface) and its derivative with
+    !> respect to the natural coordinates: the normal force is support * E_n A max(0, -g).
+    real(dp) :: support = 1.0_dp
+    real(dp) :: dsupport(2) = 0.0_dp
   end type contact_params_t
 
   !> The state of one slave node at the start of an increment.
@@ -60,6 +67,8 @@ module fcs_contact_element
     real(dp) :: tied_gap = 0.0_dp
     !> Slip rate of the previous increment (0 after stick): the rate of an explicit law.
     real(dp) :: slip_rate = 0.0_dp
+    !> Held closed through equilibrium iterations: bilateral normal spring.
+    logical :: bilateral = .false.
   end type contact_node_t
 
   !> Derivatives of the contact quantities with respect to the 15 nodal displacements.
@@ -109,24 +118,45 @@ contains
   !> linearised about the node's last slip rate V_old (node%slip_rate): a slip V_old dt keeps
   !> mu, so the force of a slipping node is the predictor f_n mu - E_t A k_v/(E_t A + k_v)
   !> V_old dt along eta.
-  pure subroutine contact_linearise(x5, p, gap, node, params, fr, dt, lin)
+  !>
+  !> Within the equilibrium iterations of an increment the node's state is an iterate that has
+  !> already slipped by `slip` (the tangential relative motion since the start of the
+  !> increment, from the point at natural coordinates with shape functions `shape_start` on
+  !> the same face) on the increment: the trial force f_start - E_t A (slip . e_m) e_m then
+  !> also changes through the master nodes' motion at the start point and through the turn of
+  !> the frame e_m under the accumulated slip (both vanish at the start of an increment).
+  pure subroutine contact_linearise(x5, p, gap, node, params, fr, dt, lin, slip, shape_start)
     real(dp), intent(in) :: x5(3, 5), gap, dt
     type(segment_point_t), intent(in) :: p
     type(contact_node_t), intent(in) :: node
     type(contact_params_t), intent(in) :: params
     type(friction_derivatives_t), intent(in) :: fr
     type(contact_linear_t), intent(out) :: lin
+    real(dp), intent(in), optional :: slip(3), shape_start(4)
     real(dp) :: dn(3, 15), de(3, 15, 2), eta(2), eta_vec(3), ft_vec(3), f(3), factor
-    real(dp) :: k_t, k_v, series, mu_eff
-    integer :: i
+    real(dp) :: k_t, k_v, series, mu_eff, penetration, dtrial(3, 15)
     call contact_kinematics(p, gap, lin, dn, de)
+    dtrial = trial_slip_derivative(p, lin%dslip, de, slip, shape_start)
     k_t = params%stick_stiffness * params%area
-    lin%dfn = -params%normal_stiffness * params%area * lin%dgap
+    penetration = max(0.0_dp, -gap)
+    if (node%bilateral) penetration = -gap
+    lin%dfn = -params%normal_stiffness * params%area * (params%support * lin%dgap - penetration * &
+              (params%dsupport(1) * lin%dxi(1, :) + params%dsupport(2) * lin%dxi(2, :)))
+    ! A bilateral node in tension carries no friction: its normal force only.
+    if (node%normal_force < 0.0_dp) then
+      lin%df = outer(p%normal, lin%dfn) + node%normal_force * dn
+      call assemble_element(p, node%normal_force * p%normal, lin)
+      return
+    end if
     ft_vec = node%friction(1) * p%e(:, 1) + node%friction(2) * p%e(:, 2)
-    lin%dft_stick = node%friction(1) * de(:, :, 1) + node%friction(2) * de(:, :, 2) - k_t * lin%dslip
-    ! A slipping node without a friction force (it slipped on first touch, f_n = 0) has no
-    ! slip direction: it gets the stick tangent until it carries a force.
-    select case (merge(node%status, CONTACT_STICK, norm2(node%friction) > 0.0_dp))
+    lin%dft_stick = node%friction(1) * de(:, :, 1) + node%friction(2) * de(:, :, 2) - k_t * dtrial
+    ! A slipping node on a cone of zero radius (mu = 0, or no normal force) carries no
+    ! tangential force and has no tangential stiffness. A slipping node with friction but without a friction force
+    ! yet (it slipped on first touch, f_n = 0) has no slip direction: it gets the stick
+    ! tangent until it carries a force.
+    select case (tangent_kind(node, fr%mu))
+    case (TANGENT_FREE)
+      lin%df = 0.0_dp
     case (CONTACT_SLIP)
       eta = node%friction / norm2(node%friction)
       eta_vec = eta(1) * p%e(:, 1) + eta(2) * p%e(:, 2)
@@ -137,9 +167,9 @@ contains
       if (dt > 0.0_dp) k_v = max(node%normal_force * fr%dmu_drate / dt, -MAX_WEAKENING * k_t)
       series = k_t / (k_t + k_v)
       mu_eff = fr%mu + node%normal_force * fr%dmu_dpressure / params%area
-      lin%df = outer(eta_vec, series * (mu_eff * lin%dfn - k_v * matmul(eta_vec, lin%dslip))) &
+      lin%df = outer(eta_vec, series * (mu_eff * lin%dfn - k_v * matmul(eta_vec, dtrial))) &
                - factor * k_t * matmul(identity3() - outer3(p%normal, p%normal) &
-                                       - outer3(eta_vec, eta_vec), lin%dslip) &
+                                       - outer3(eta_vec, eta_vec), dtrial) &
                + fr%mu * node%normal_force * (eta(1) * de(:, :, 1) + eta(2) * de(:, :, 2))
       ! Linearised about V_old, not V = 0: the friction predicted for a slip s of the
       ! increment is f_n mu(V_old) + k_v (s - V_old dt) (in series with E_t A). Without the
@@ -150,8 +180,45 @@ contains
       lin%df = lin%dft_stick
     end select
     lin%df = lin%df + outer(p%normal, lin%dfn) + node%normal_force * dn
-    ! Nodal forces F = R f and K = -dF/du; dF_I = -N_I df - (dN_I/dxi . dxi) f.
     f = node%normal_force * p%normal + ft_vec
+    call assemble_element(p, f, lin)
+  end subroutine contact_linearise
+
+  !> Derivative of the slip term sum_m (s . e_m) e_m of the trial force with respect to the
+  !> 15 nodal displacements: P_t ds + sum_m e_m (s . de_m), with ds = a_alpha dxi^alpha
+  !> (`dslip`) plus, for an accumulated slip s from a start point with shape functions
+  !> `shape_start` on the same face, sum_I (N_I - N_I,start) du_I. Without s: dslip.
+  pure function trial_slip_derivative(p, dslip, de, slip, shape_start) result(g)
+    type(segment_point_t), intent(in) :: p
+    real(dp), intent(in) :: dslip(3, 15), de(3, 15, 2)
+    real(dp), intent(in), optional :: slip(3), shape_start(4)
+    real(dp) :: g(3, 15)
+    real(dp) :: ds(3, 15), tangent_projector(3, 3)
+    integer :: i, m
+    g = dslip
+    if (.not. present(slip)) return
+    ds = dslip
+    if (present(shape_start)) then
+      do i = 1, 4
+        do m = 1, 3
+          ds(m, 3 * i + m) = ds(m, 3 * i + m) + (p%shape(i) - shape_start(i))
+        end do
+      end do
+    end if
+    tangent_projector = identity3() - outer3(p%normal, p%normal)
+    g = matmul(tangent_projector, ds)
+    do m = 1, 2
+      g = g + outer(p%e(:, m), matmul(slip, de(:, :, m)))
+    end do
+  end function trial_slip_derivative
+
+  !> Nodal forces F = R f of the force f on the slave and the tangent K = -dF/du from
+  !> lin%df and lin%dxi (eq. 8); dF_I = -N_I df - (dN_I/dxi . dxi) f on master node I.
+  pure subroutine assemble_element(p, f, lin)
+    type(segment_point_t), intent(in) :: p
+    real(dp), intent(in) :: f(3)
+    type(contact_linear_t), intent(inout) :: lin
+    integer :: i
     lin%force(1:3) = f
     lin%stiffness(1:3, :) = -lin%df
     do i = 1, 4
@@ -159,7 +226,24 @@ contains
       lin%stiffness(3 * i + 1:3 * i + 3, :) = p%shape(i) * lin%df + &
         outer(f, p%dshape(1, i) * lin%dxi(1, :) + p%dshape(2, i) * lin%dxi(2, :))
     end do
-  end subroutine contact_linearise
+  end subroutine assemble_element
+
+  !> Which tangential tangent a closed node gets: TANGENT_FREE (slipping on a cone of zero
+  !> radius, mu = 0 or no normal force (a node at the end of the extension past a free edge):
+  !> no tangential force or stiffness), CONTACT_SLIP (slipping with a friction force,
+  !> eq. 6) or CONTACT_STICK (sticking or tied, eq. 4; also a slipping node with friction
+  !> but no friction force yet, whose slip direction is unknown).
+  pure integer function tangent_kind(node, mu) result(kind)
+    type(contact_node_t), intent(in) :: node
+    real(dp), intent(in) :: mu
+    kind = CONTACT_STICK
+    if (node%status /= CONTACT_SLIP) return
+    if (mu <= 0.0_dp .or. node%normal_force <= 0.0_dp) then
+      kind = TANGENT_FREE
+    else if (norm2(node%friction) > 0.0_dp) then
+      kind = CONTACT_SLIP
+    end if
+  end function tangent_kind
 
   !> Derivatives of the contact point's geometry: the gap, the natural coordinates of the
   !> contact point (A dxi = a.du~ + g n.delta a, A = m - g h, h_12 = n.x_,12: the metric and
@@ -225,7 +309,7 @@ contains
     type(contact_params_t), intent(in) :: params
     class(friction_law_t), intent(in) :: law
     type(contact_update_t) :: out
-    real(dp) :: trial(2), k_t, pressure, mu_static, state_static
+    real(dp) :: trial(2), k_t, signed_force
     k_t = params%stick_stiffness * params%area
     out%slip_vector = p_new%x - p_old_on_new%x
     ! The frictional force on the slave opposes its motion relative to the master (eq. 4).
@@ -238,8 +322,25 @@ contains
       out%friction = trial
       return
     end if
-    out%normal_force = params%normal_stiffness * params%area * max(0.0_dp, -gap_new)
-    pressure = out%normal_force / params%area
+    ! A node held closed through equilibrium iterations has a bilateral normal spring (its
+    ! force may turn tensile, which the iterations then undo by opening it); the cone only
+    ! ever sees a compressive force.
+    signed_force = params%support * params%normal_stiffness * params%area * (-gap_new)
+    out%normal_force = max(0.0_dp, signed_force)
+    call friction_return(out, trial, k_t, params%area, law, node, dt)
+    if (node%bilateral) out%normal_force = signed_force
+  end function contact_update
+
+  !> The friction part of the return mapping of a closed node with normal force
+  !> out%normal_force (compressive): stick inside the cone of the static friction
+  !> mu(p, 0, phi), else the plastic slip of eq. (5) (explicit or implicit rate).
+  pure subroutine friction_return(out, trial, k_t, area, law, node, dt)
+    type(contact_update_t), intent(inout) :: out
+    real(dp), intent(in) :: trial(2), k_t, area, dt
+    class(friction_law_t), intent(in) :: law
+    type(contact_node_t), intent(in) :: node
+    real(dp) :: pressure, mu_static, state_static
+    pressure = out%normal_force / area
     if (law%explicit_rate) then
       call explicit_return(out, trial, pressure, k_t, law, node, dt)
       return
@@ -258,7 +359,7 @@ contains
                         dt, out%plastic_slip, out%mu, out%friction_state)
     out%friction = out%mu * out%normal_force * trial / out%trial_norm
     if (dt > 0.0_dp) out%slip_rate = out%plastic_slip / dt
-  end function contact_update
+  end subroutine friction_return
 
   !> The return mapping of a law with an explicit rate: the cone is mu_e = mu(p, V_prev,
   !> phi_old), V_prev the slip rate of the previous increment (0 after stick), so that the

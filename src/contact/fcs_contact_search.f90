@@ -13,10 +13,19 @@ module fcs_contact_search
   use fcs_contact_geometry, only: segment_point_t, segment_point, project_to_segment
   implicit none
   private
-  public :: face_grid_t, closest_face, XI_TOLERANCE
+  public :: face_grid_t, closest_face, edge_excess, edge_support, XI_TOLERANCE, EDGE_EXTENSION
 
   !> A projection this far outside [-1, 1] in natural coordinates still counts as inside.
   real(dp), parameter :: XI_TOLERANCE = 1.0e-6_dp
+  !> How far (natural coordinates, of the span 2 of a face) a master surface extends past
+  !> its free edges: a slave node flush with the edge of the master body, or pushed a hair
+  !> past it by the lateral (Poisson) expansion of the bodies, keeps its contact; one that
+  !> slides farther off loses it.
+  real(dp), parameter :: EDGE_EXTENSION = 1.0e-1_dp
+  !> The edge point of a face is a fallback contact point (a convex kink) only for a
+  !> projection at most this far (natural coordinates) past its shared edges: a point
+  !> farther out belongs to the neighbouring face, or is off the surface.
+  real(dp), parameter :: CLAMP_LIMIT = 0.5_dp
   !> Largest number of grid cells (the cell size grows if needed).
   integer, parameter :: MAX_CELLS = 4000000
 
@@ -147,7 +156,18 @@ contains
 
   !> The contact point of slave position xs among candidate faces (rule in the module
   !> header). face = 0 when no candidate face projects within `max_distance`.
-  subroutine closest_face(face_nodes, x, candidates, xs, max_distance, face, point, gap)
+  !> `free_edge(k, f)` (k = 1..4: the edges xi_2 = -1, xi_1 = 1, xi_2 = 1, xi_1 = -1) says
+  !> which edges of a face bound the master surface (no other face of the surface shares
+  !> them). Beyond such an edge the surface ends: a projection up to EDGE_EXTENSION past it
+  !> still counts (on the face's continuation, as if inside), one farther past it gives no
+  !> contact point on that face, not a point clamped to the edge. Across a shared edge (a
+  !> convex kink) the clamped edge point is the fallback, as before. A projection strictly
+  !> inside a face is preferred to one in an extension (two master bodies side by side).
+  !> Without `extend` (or with extend false) the extensions do not count: an open node
+  !> closes only strictly on the master surface, a closed one keeps its contact up to the end
+  !> of the extension (no chatter of a node on the edge between open and closed).
+  subroutine closest_face(face_nodes, x, candidates, xs, max_distance, face, point, gap, free_edge, &
+                          extend)
     integer, intent(in) :: face_nodes(:, :)
     real(dp), intent(in) :: x(:, :)
     integer, intent(in) :: candidates(:)
@@ -155,35 +175,45 @@ contains
     integer, intent(out) :: face
     type(segment_point_t), intent(out) :: point
     real(dp), intent(out) :: gap
-    type(segment_point_t) :: p, clamped
-    real(dp) :: g, xm(3, 4), best_inside, best_edge, distance, outside
-    integer :: i, f, edge_face
-    logical :: converged
-    type(segment_point_t) :: edge_point
+    logical, intent(in), optional :: free_edge(:, :)
+    logical, intent(in), optional :: extend
+    type(segment_point_t) :: p, clamped, extended_point, edge_point
+    real(dp) :: g, xm(3, 4), best_inside, best_extended, best_edge, distance, excess(4)
+    integer :: i, f, edge_face, extended_face
+    logical :: converged, free(4), extended
+    extended = .false.
+    if (present(extend)) extended = extend
     face = 0
     gap = huge(1.0_dp)
     best_inside = huge(1.0_dp)
+    best_extended = huge(1.0_dp)
     best_edge = huge(1.0_dp)
     edge_face = 0
+    extended_face = 0
     do i = 1, size(candidates)
       f = candidates(i)
       xm = x(:, face_nodes(:, f))
+      free = .false.
+      if (present(free_edge)) free = free_edge(:, f)
       call project_to_segment(xm, xs, [0.0_dp, 0.0_dp], p, g, converged)
-      outside = huge(1.0_dp)
-      if (converged) outside = maxval(abs(p%xi)) - 1.0_dp
-      if (outside <= XI_TOLERANCE) then
+      excess = huge(1.0_dp)
+      if (converged) excess = edge_excess(p%xi)
+      if (all(excess <= XI_TOLERANCE)) then
         if (abs(g) < best_inside .and. abs(g) <= max_distance) then
           best_inside = abs(g)
           face = f
           point = p
           gap = g
         end if
-      else
-        if (converged) then
-          clamped = segment_point(xm, max(-1.0_dp, min(1.0_dp, p%xi)))
-        else
-          clamped = segment_point(xm, [0.0_dp, 0.0_dp])
+      else if (converged .and. all(excess <= XI_TOLERANCE .or. (free .and. excess <= EDGE_EXTENSION))) then
+        if (.not. extended) cycle
+        if (abs(g) < best_extended .and. abs(g) <= max_distance) then
+          best_extended = abs(g)
+          extended_face = f
+          extended_point = p
         end if
+      else if (converged .and. all(excess <= merge(EDGE_EXTENSION, CLAMP_LIMIT, free))) then
+        clamped = segment_point(xm, max(-1.0_dp, min(1.0_dp, p%xi)))
         distance = norm2(xs - clamped%x)
         if (distance < best_edge .and. distance <= max_distance) then
           best_edge = distance
@@ -192,10 +222,61 @@ contains
         end if
       end if
     end do
-    if (face /= 0 .or. edge_face == 0) return
-    face = edge_face
-    point = edge_point
+    if (face /= 0) return
+    if (extended_face /= 0) then
+      face = extended_face
+      point = extended_point
+    else if (edge_face /= 0) then
+      face = edge_face
+      point = edge_point
+    else
+      return
+    end if
     gap = dot_product(xs - point%x, point%normal)
   end subroutine closest_face
+
+  !> The support a master segment gives at natural point xi (Xing & Makinouchi's segments
+  !> extended past the free edges of the master surface): 1 on the segment and past its
+  !> shared edges, falling linearly to 0 across the extension EDGE_EXTENSION past a free
+  !> edge, 0 beyond; the product of the two directions at a corner. `dw` is its derivative
+  !> with respect to xi. The normal penalty force is scaled by it, so that a node sliding off
+  !> the master surface loses its contact force continuously. (Linear, not a smooth step: a
+  !> slope that vanished at the end of the ramp would let the linear prediction of the
+  !> opening event halve the remaining distance at every increment.)
+  pure subroutine edge_support(xi, free, w, dw)
+    real(dp), intent(in) :: xi(2)
+    logical, intent(in) :: free(4)
+    real(dp), intent(out) :: w, dw(2)
+    real(dp) :: wa(2), dwa(2), t, side
+    integer :: alpha, edge
+    wa = 1.0_dp
+    dwa = 0.0_dp
+    do alpha = 1, 2
+      side = sign(1.0_dp, xi(alpha))
+      if (alpha == 1) then
+        edge = merge(2, 4, side > 0.0_dp)
+      else
+        edge = merge(3, 1, side > 0.0_dp)
+      end if
+      if (.not. free(edge) .or. abs(xi(alpha)) <= 1.0_dp) cycle
+      t = (abs(xi(alpha)) - 1.0_dp) / EDGE_EXTENSION
+      if (t >= 1.0_dp) then
+        wa(alpha) = 0.0_dp
+      else
+        wa(alpha) = 1.0_dp - t
+        dwa(alpha) = -side / EDGE_EXTENSION
+      end if
+    end do
+    w = wa(1) * wa(2)
+    dw = [dwa(1) * wa(2), wa(1) * dwa(2)]
+  end subroutine edge_support
+
+  !> How far natural point xi lies past each edge of the segment (k = 1..4: xi_2 = -1,
+  !> xi_1 = 1, xi_2 = 1, xi_1 = -1); negative inside.
+  pure function edge_excess(xi) result(excess)
+    real(dp), intent(in) :: xi(2)
+    real(dp) :: excess(4)
+    excess = [-1.0_dp - xi(2), xi(1) - 1.0_dp, xi(2) - 1.0_dp, -1.0_dp - xi(1)]
+  end function edge_excess
 
 end module fcs_contact_search

@@ -16,7 +16,8 @@ module fcs_contact_system
   use fcs_model, only: model_t, contact_pair_def_t
   use fcs_mesh, only: mesh_t, hex8_face_nodes, SURFACE_FACES
   use fcs_contact_geometry, only: segment_point_t, segment_point, project_to_segment
-  use fcs_contact_search, only: face_grid_t, closest_face, XI_TOLERANCE
+  use fcs_contact_search, only: face_grid_t, closest_face, edge_excess, edge_support, XI_TOLERANCE, &
+                                EDGE_EXTENSION
   use fcs_contact_element, only: contact_linear_t, contact_linearise, contact_update, &
                                  contact_update_t, contact_node_t, contact_params_t, CONTACT_OPEN, &
                                  CONTACT_STICK, CONTACT_SLIP, CONTACT_TIED
@@ -28,7 +29,7 @@ module fcs_contact_system
   use fcs_rmin_events, only: rmin_collector_t, EVENT_CONTACT_CLOSE, EVENT_CONTACT_OPEN, &
                              EVENT_STICK_TO_SLIP, EVENT_SEGMENT_CHANGE, &
                              EVENT_NONE
-  use fcs_sort, only: unique_sorted
+  use fcs_sort, only: unique_sorted, argsort_integers
   use fcs_strings, only: str
   implicit none
   private
@@ -38,6 +39,19 @@ module fcs_contact_system
   real(dp), parameter :: GAP_TOLERANCE = 1.0e-8_dp
   !> Largest penetration allowed, as a fraction of the mean master face size.
   real(dp), parameter :: PENETRATION_LIMIT = 0.05_dp
+  !> A node whose event (close, open, stick to slip) was taken in an increment gets the
+  !> event's state when, on the solution of the increment, it has come within this fraction
+  !> of the way to the event from where it started (the linearisation error of the event's
+  !> fraction); otherwise the corrected solution has moved it away and its state is decided
+  !> as for any node.
+  real(dp), parameter :: EVENT_BAND = 1.0e-2_dp
+  !> A node held on its face during equilibrium iterations stays on it up to this distance
+  !> (natural coordinates) past a shared edge; farther, the search rule decides again.
+  real(dp), parameter :: HOLD_LIMIT = 0.5_dp
+  !> How a node is held through equilibrium iterations.
+  integer, parameter :: HOLD_NONE = 0, HOLD_CLOSED = 1, HOLD_OPEN = 2
+  !> Largest number of changes of a held state in one increment.
+  integer, parameter :: MAX_HOLD_FLIPS = 2
   !> Contact points within this distance (natural coordinates) of a segment edge are on it.
   real(dp), parameter :: SEGMENT_EDGE_TOLERANCE = 1.0e-6_dp
 
@@ -55,6 +69,10 @@ module fcs_contact_system
     !> each face (itself included): neighbors(neighbor_ptr(f):neighbor_ptr(f+1)-1).
     integer, allocatable :: face_nodes(:, :)
     integer, allocatable :: neighbor_ptr(:), neighbors(:)
+    !> free_edge(k, f): edge k of face f (k = 1..4: nodes 1-2, 2-3, 3-4, 4-1, i.e. the edges
+    !> xi_2 = -1, xi_1 = 1, xi_2 = 1, xi_1 = -1) bounds the master surface (no other face
+    !> of the pair shares it).
+    logical, allocatable :: free_edge(:, :)
     type(face_grid_t) :: grid
     !> Slave entries of this pair in the contact state: first..last.
     integer :: first = 1
@@ -87,6 +105,20 @@ module fcs_contact_system
     integer, allocatable :: event_kind(:)
     !> How often each node's stick/slip tangent was switched in the current increment.
     integer, allocatable :: switches(:)
+    !> During the equilibrium iterations of an increment each closed node keeps the master
+    !> face its first application chose (0: none): Newton's method then sees a smooth
+    !> contact geometry, not a node flipping between two faces at a (slightly) kinked edge.
+    integer, allocatable :: held_face(:)
+    !> ... and its open or closed state (HOLD_OPEN, HOLD_CLOSED; HOLD_NONE for tied nodes),
+    !> and how often check_held changed that in the increment.
+    integer, allocatable :: hold_status(:), flips(:)
+    logical :: holding = .false.
+    !> Face and natural coordinates of every node at the start of the increment being
+    !> applied (recorded by `update`).
+    integer, allocatable :: start_face(:)
+    real(dp), allocatable :: start_xi(:, :)
+    !> The next entry of the same node in another pair (0: none; see find_twins).
+    integer, allocatable :: twin(:)
     !> Largest changes over the last increment at nodes slipping before and after it: of
     !> ln V, of mu and of ln(state), and the node where each happened.
     real(dp) :: change(3) = 0.0_dp
@@ -104,6 +136,10 @@ module fcs_contact_system
     procedure :: forces => system_forces
     procedure :: local_values => system_local_values
     procedure :: check_penetration => system_check_penetration
+    procedure :: check_gaps => system_check_gaps
+    procedure :: hold_states => system_hold_states
+    procedure :: check_held => system_check_held
+    procedure :: release_states => system_release_states
   end type contact_system_t
 
 contains
@@ -158,6 +194,7 @@ contains
     this%pattern_face = 0
     this%event_r = huge(1.0_dp)
     this%event_kind = EVENT_NONE
+    call find_twins(this)
     call initial_state(this, x, cstate)
     this%pattern_face = cstate%face
   end subroutine system_init
@@ -191,6 +228,7 @@ contains
     pair%face_size = pair%face_size / (sqrt(2.0_dp) * nf)
     pair%reach = pair%face_size
     call face_neighbours(pair, model%mesh%n_nodes)
+    call free_edges(pair)
     call pair%grid%build(face_coordinates(pair, x), pair%reach)
     frictionless%law = 'COULOMB'
     frictionless%mu0 = 0.0_dp
@@ -253,6 +291,27 @@ contains
       deallocate (found)
     end do
   end subroutine face_neighbours
+
+  !> Which face edges bound the master surface: an edge is free when no other face of the
+  !> pair has both its nodes (faces sharing a node are the only candidates).
+  pure subroutine free_edges(pair)
+    type(contact_pair_t), intent(inout) :: pair
+    integer :: f, k, j, other, a, b
+    allocate (pair%free_edge(4, size(pair%face_nodes, 2)))
+    pair%free_edge = .true.
+    do f = 1, size(pair%face_nodes, 2)
+      do k = 1, 4
+        a = pair%face_nodes(k, f)
+        b = pair%face_nodes(mod(k, 4) + 1, f)
+        do j = pair%neighbor_ptr(f), pair%neighbor_ptr(f + 1) - 1
+          other = pair%neighbors(j)
+          if (other == f) cycle
+          if (any(pair%face_nodes(:, other) == a) .and. any(pair%face_nodes(:, other) == b)) &
+            pair%free_edge(k, f) = .false.
+        end do
+      end do
+    end do
+  end subroutine free_edges
 
   !> The nodes a tie holds: slave nodes of a tied pair within its position tolerance of its
   !> master surface (those `initial_state` ties). A node both tied and a slave of a contact
@@ -327,7 +386,7 @@ contains
           cstate%status(s) = CONTACT_TIED
           cstate%tied_gap(s) = gap
         else if (gap <= GAP_TOLERANCE * pair%face_size) then
-          u = contact_update(p, gap, p, node_of(cstate, s, CONTACT_STICK), params_of(this, s), &
+          u = contact_update(p, gap, p, node_of(cstate, s, CONTACT_STICK), params_of(this, s, face, p%xi), &
                              pair%law, 0.0_dp)
           cstate%status(s) = closing_status(u%mu)
           cstate%normal_force(s) = u%normal_force
@@ -361,13 +420,16 @@ contains
   end function node_of
 
   !> The friction coefficient of slave s's cone in the coming increment: the one in use, or
-  !> for a law with an explicit rate mu at the slip rate of the last increment.
+  !> for a law with an explicit rate mu at the slip rate of the last increment (during the
+  !> equilibrium iterations, the one of the increment's return mapping).
   real(dp) function cone_mu(this, s, cstate) result(mu)
     type(contact_system_t), intent(in) :: this
     integer, intent(in) :: s
     type(contact_state_t), intent(in) :: cstate
     associate (law => this%pairs(this%slave_pair(s))%law)
-      if (law%explicit_rate) then
+      ! During the equilibrium iterations of an increment the state is an iterate whose
+      ! slip rate is the increment's own: its cone is the one its return mapping used.
+      if (law%explicit_rate .and. .not. this%holding) then
         mu = law%mu(cstate%normal_force(s) / this%area(s), cstate%slip_rate(s), &
                     cstate%friction_state(s))
       else
@@ -376,14 +438,19 @@ contains
     end associate
   end function cone_mu
 
-  !> Area and penalties of slave s.
-  pure function params_of(this, s) result(params)
+  !> Area and penalties of slave s, and the support of its master segment `face` at natural
+  !> point xi (1 when not given: tied nodes).
+  pure function params_of(this, s, face, xi) result(params)
     type(contact_system_t), intent(in) :: this
     integer, intent(in) :: s
+    integer, intent(in), optional :: face
+    real(dp), intent(in), optional :: xi(2)
     type(contact_params_t) :: params
     params%area = this%area(s)
     params%normal_stiffness = this%pairs(this%slave_pair(s))%normal_stiffness
     params%stick_stiffness = this%pairs(this%slave_pair(s))%stick_stiffness
+    if (present(face) .and. present(xi)) call edge_support(xi, &
+      this%pairs(this%slave_pair(s))%free_edge(:, face), params%support, params%dsupport)
   end function params_of
 
   !> Global search of one point: grid candidates, then the projection rule.
@@ -395,7 +462,8 @@ contains
     real(dp), intent(out) :: gap
     integer, allocatable :: candidates(:)
     call pair%grid%candidates(xs, candidates)
-    call closest_face(pair%face_nodes, x, candidates, xs, pair%reach, face, point, gap)
+    call closest_face(pair%face_nodes, x, candidates, xs, pair%reach, face, point, gap, pair%free_edge, &
+                      extend=.true.)
   end subroutine search
 
   !> Cliques for the sparse pattern: each slave with a face, with the nodes of that face and
@@ -443,9 +511,12 @@ contains
     real(dp), intent(in) :: x(:, :), dt
     type(contact_state_t), intent(in) :: cstate
     type(contact_linear_t), intent(out) :: lin
-    type(segment_point_t) :: p
+    type(segment_point_t) :: p, p_start
     type(friction_derivatives_t) :: fr
-    real(dp) :: x5(3, 5)
+    type(contact_node_t) :: node
+    type(contact_params_t) :: params
+    real(dp) :: x5(3, 5), dt_rate
+    integer :: start_face
     associate (pair => this%pairs(this%slave_pair(s)))
       x5(:, 1) = x(:, this%slave_node(s))
       x5(:, 2:5) = x(:, pair%face_nodes(:, cstate%face(s)))
@@ -453,9 +524,26 @@ contains
       fr = pair%law%evaluate(cstate%normal_force(s) / this%area(s), cstate%slip_rate(s), &
                              cstate%friction_state(s))
       fr%mu = cone_mu(this, s, cstate)
+      node = node_of(cstate, s, cstate%status(s))
+      node%bilateral = hold_mode(this, s) == HOLD_CLOSED
+      params = params_of(this, s, cstate%face(s), cstate%xi(:, s))
       ! An explicit rate is known at the start of the increment: no rate term in the tangent.
-      call contact_linearise(x5, p, cstate%gap(s), node_of(cstate, s, cstate%status(s)), &
-                             params_of(this, s), fr, merge(0.0_dp, dt, pair%law%explicit_rate), lin)
+      dt_rate = merge(0.0_dp, dt, pair%law%explicit_rate)
+      start_face = 0
+      if (this%holding) start_face = this%start_face(s)
+      if (start_face == 0) then
+        call contact_linearise(x5, p, cstate%gap(s), node, params, fr, dt_rate, lin)
+      else
+        ! An iterate of the equilibrium iterations: it has slipped since the start point.
+        p_start = segment_point(x(:, pair%face_nodes(:, start_face)), this%start_xi(:, s))
+        if (start_face == cstate%face(s)) then
+          call contact_linearise(x5, p, cstate%gap(s), node, params, fr, dt_rate, lin, &
+                                 p%x - p_start%x, p_start%shape)
+        else
+          call contact_linearise(x5, p, cstate%gap(s), node, params, fr, dt_rate, lin, &
+                                 p%x - p_start%x)
+        end if
+      end if
     end associate
   end subroutine linearise
 
@@ -515,6 +603,8 @@ contains
     integer :: s, a, nodes(5)
     this%event_r = huge(1.0_dp)
     this%event_kind = EVENT_NONE
+    ! The switch passes of this increment are over: the next increment's start afresh.
+    this%switches = 0
     do s = 1, size(this%slave_node)
       if (cstate%face(s) == 0 .or. cstate%status(s) == CONTACT_TIED) cycle
       nodes = element_nodes(this, s, cstate)
@@ -637,8 +727,8 @@ contains
     type(contact_linear_t), intent(in) :: lin
     real(dp), intent(in) :: due_fixed(15), due_scaled(15)
     type(rmin_collector_t), intent(inout) :: collector
-    real(dp) :: fn, dfn, ft(3), dft(3), mu, qa, qb, qc, xi_start(2), dxi(2), r, fn_floor
-    integer :: alpha
+    real(dp) :: fn, dfn, ft(3), dft(3), mu, qa, qb, qc, xi_start(2), dxi(2), r, fn_floor, bound
+    integer :: alpha, edge
     associate (pair => this%pairs(this%slave_pair(s)))
       fn = cstate%normal_force(s) + dot_product(lin%dfn, due_fixed)
       dfn = dot_product(lin%dfn, due_scaled)
@@ -659,12 +749,21 @@ contains
       xi_start = cstate%xi(:, s) + matmul(lin%dxi, due_fixed)
       dxi = matmul(lin%dxi, due_scaled)
       do alpha = 1, 2
-        ! A node already on the edge of its segment (nodes on master nodes or edges) changes
-        ! segment by the hand-over rule in the update; no event is needed.
-        if (abs(cstate%xi(alpha, s)) < 1.0_dp - SEGMENT_EDGE_TOLERANCE .and. &
-            abs(xi_start(alpha) + dxi(alpha)) > 1.0_dp) &
-          call offer(this, collector, s, crossing(abs(xi_start(alpha)) - 1.0_dp, &
-                     abs(xi_start(alpha) + dxi(alpha)) - 1.0_dp), EVENT_SEGMENT_CHANGE)
+        ! Reaching a shared edge (hand-over to the next segment), or the end of the extension
+        ! past a free edge (the node leaves the master surface). A node already on a shared
+        ! edge (nodes on master nodes or edges) changes segment by the hand-over rule in the
+        ! update; no event is needed.
+        if (alpha == 1) then
+          edge = merge(4, 2, xi_start(alpha) + dxi(alpha) < 0.0_dp)
+        else
+          edge = merge(1, 3, xi_start(alpha) + dxi(alpha) < 0.0_dp)
+        end if
+        bound = 1.0_dp
+        if (pair%free_edge(edge, cstate%face(s))) bound = 1.0_dp + EDGE_EXTENSION
+        if (abs(cstate%xi(alpha, s)) < bound - SEGMENT_EDGE_TOLERANCE .and. &
+            abs(xi_start(alpha) + dxi(alpha)) > bound) &
+          call offer(this, collector, s, crossing(abs(xi_start(alpha)) - bound, &
+                     abs(xi_start(alpha) + dxi(alpha)) - bound), EVENT_SEGMENT_CHANGE)
       end do
     end associate
   end subroutine closed_node_events
@@ -672,7 +771,9 @@ contains
   !> New contact state on the coordinates x after an increment of duration dt whose
   !> fraction of the trial increment was r: the return mapping of every closed node (eq. 5),
   !> segment hand-over, opening, and the search for open nodes. Events whose fractions were
-  !> within r are applied even when round-off leaves the node a hair short of them.
+  !> within r are applied even when round-off leaves the node a hair short of them. The
+  !> events of the increment are kept, so that an equilibrium iteration applying the
+  !> corrected increment again from its start decides the same events.
   subroutine system_update(this, x, cstate, dt, r)
     class(contact_system_t), intent(inout) :: this
     real(dp), intent(in) :: x(:, :), dt, r
@@ -686,6 +787,10 @@ contains
     end do
     this%change = 0.0_dp
     this%change_node = 0
+    ! Where every node starts the increment (each application of an increment starts from the
+    ! same state): the equilibrium iterations linearise about the slip since then.
+    this%start_face = cstate%face
+    this%start_xi = cstate%xi
     do s = 1, size(this%slave_node)
       was_slipping = cstate%status(s) == CONTACT_SLIP .and. cstate%slip_rate(s) > 0.0_dp
       old_rate = cstate%slip_rate(s)
@@ -707,10 +812,87 @@ contains
       if (was_slipping .and. cstate%status(s) == CONTACT_SLIP .and. cstate%slip_rate(s) > 0.0_dp) &
         call record_friction_changes(this, s, old_rate, old_mu, old_state, cstate)
     end do
-    this%event_r = huge(1.0_dp)
-    this%event_kind = EVENT_NONE
-    this%switches = 0
+    call leave_to_twins(this, cstate)
   end subroutine system_update
+
+  !> A node that is a slave of several pairs (one slave surface against master bodies side by
+  !> side) touches one master at a time: an entry whose contact point lies in the extension
+  !> past a free edge of its master opens when another entry of the same node is closed
+  !> strictly on its own master (the node has crossed the joint), so that the joint does not
+  !> carry it twice.
+  subroutine leave_to_twins(this, cstate)
+    type(contact_system_t), intent(in) :: this
+    type(contact_state_t), intent(inout) :: cstate
+    type(segment_point_t) :: p
+    integer :: s
+    if (.not. allocated(this%twin)) return
+    do s = 1, size(this%slave_node)
+      if (this%twin(s) == 0) cycle
+      if (.not. in_extension(this, s, cstate)) cycle
+      if (.not. twin_inside(this, s, cstate)) cycle
+      p%xi = cstate%xi(:, s)
+      call open_node(cstate, s, cstate%face(s), p, cstate%gap(s))
+    end do
+  end subroutine leave_to_twins
+
+  !> Closed entry s has its contact point past a free edge of its face (in the extension).
+  pure logical function in_extension(this, s, cstate)
+    type(contact_system_t), intent(in) :: this
+    integer, intent(in) :: s
+    type(contact_state_t), intent(in) :: cstate
+    in_extension = .false.
+    if (cstate%status(s) /= CONTACT_STICK .and. cstate%status(s) /= CONTACT_SLIP) return
+    if (cstate%face(s) == 0) return
+    in_extension = any(this%pairs(this%slave_pair(s))%free_edge(:, cstate%face(s)) .and. &
+                       edge_excess(cstate%xi(:, s)) > XI_TOLERANCE)
+  end function in_extension
+
+  !> Another entry of slave s's node is closed strictly on its master face.
+  pure logical function twin_inside(this, s, cstate)
+    type(contact_system_t), intent(in) :: this
+    integer, intent(in) :: s
+    type(contact_state_t), intent(in) :: cstate
+    integer :: t
+    twin_inside = .false.
+    t = this%twin(s)
+    do while (t /= s .and. t /= 0)
+      if ((cstate%status(t) == CONTACT_STICK .or. cstate%status(t) == CONTACT_SLIP) .and. &
+          cstate%face(t) /= 0) then
+        if (all(edge_excess(cstate%xi(:, t)) <= XI_TOLERANCE)) then
+          twin_inside = .true.
+          return
+        end if
+      end if
+      t = this%twin(t)
+    end do
+  end function twin_inside
+
+  !> twin(s): the next entry of the same node in another pair (a cycle through all of them),
+  !> 0 for a node that is a slave of one pair only.
+  subroutine find_twins(this)
+    type(contact_system_t), intent(inout) :: this
+    integer, allocatable :: order(:)
+    integer :: i, j, first, n
+    n = size(this%slave_node)
+    allocate (this%twin(n))
+    this%twin = 0
+    order = argsort_integers(this%slave_node)
+    i = 1
+    do while (i <= n)
+      first = i
+      do while (i < n)
+        if (this%slave_node(order(i + 1)) /= this%slave_node(order(first))) exit
+        i = i + 1
+      end do
+      if (i > first) then
+        do j = first, i - 1
+          this%twin(order(j)) = order(j + 1)
+        end do
+        this%twin(order(i)) = order(first)
+      end if
+      i = i + 1
+    end do
+  end subroutine find_twins
 
   !> The changes of slipping node s over the increment that matter to its friction law: ln V
   !> for rate-dependent laws, mu, and the law's own state measure.
@@ -789,14 +971,27 @@ contains
     type(segment_point_t) :: p, p_old
     type(contact_update_t) :: u
     type(contact_node_t) :: node
+    type(contact_params_t) :: params
     real(dp) :: xs(3), gap, friction(2), force(3)
-    integer :: face, old_face
+    integer :: face, old_face, mode
     associate (pair => this%pairs(this%slave_pair(s)))
       xs = x(:, this%slave_node(s))
       old_face = cstate%face(s)
       p_old = segment_point(x(:, pair%face_nodes(:, old_face)), cstate%xi(:, s))
-      call follow(pair, x, xs, old_face, cstate%xi(:, s), face, p, gap)
-      if (face == 0 .or. kind == EVENT_CONTACT_OPEN .or. gap > GAP_TOLERANCE * pair%face_size) then
+      mode = hold_mode(this, s)
+      face = 0
+      if (mode == HOLD_CLOSED) call held_point(this, s, pair, x, xs, old_face, cstate%xi(:, s), face, p, gap)
+      if (face == 0) call follow(pair, x, xs, old_face, cstate%xi(:, s), face, p, gap)
+      if (mode == HOLD_OPEN .or. face == 0 .or. &
+          (mode == HOLD_NONE .and. gap > GAP_TOLERANCE * pair%face_size)) then
+        call open_node(cstate, s, face, p, gap)
+        return
+      end if
+      ! The opening event of the increment was taken: the node opens if its normal force
+      ! has (up to the linearisation error) come down to zero.
+      params = params_of(this, s, face, p%xi)
+      if (mode == HOLD_NONE .and. kind == EVENT_CONTACT_OPEN .and. &
+          params%support * pair%normal_stiffness * this%area(s) * (-gap) <= EVENT_BAND * cstate%normal_force(s)) then
         call open_node(cstate, s, face, p, gap)
         return
       end if
@@ -809,29 +1004,46 @@ contains
       end if
       node = node_of(cstate, s, cstate%status(s))
       node%friction = friction
-      u = contact_update(p, gap, p_old, node, params_of(this, s), pair%law, dt)
-      ! A node whose stick-to-slip event was taken has reached the cone up to the
-      ! linearisation error: it slips from now on; so does any node without friction.
-      if (kind == EVENT_STICK_TO_SLIP) u%status = CONTACT_SLIP
+      node%bilateral = mode == HOLD_CLOSED
+      u = contact_update(p, gap, p_old, node, params, pair%law, dt)
+      ! A node whose stick-to-slip event was taken and whose trial force has reached the
+      ! cone up to the linearisation error slips from now on, its force on the cone (the
+      ! state its slip tangent describes); so does any node without friction.
+      if (kind == EVENT_STICK_TO_SLIP .and. u%status == CONTACT_STICK .and. &
+          u%trial_norm >= (1.0_dp - EVENT_BAND) * u%mu * u%normal_force .and. u%trial_norm > 0.0_dp) then
+        u%status = CONTACT_SLIP
+        u%friction = u%friction * (u%mu * u%normal_force / u%trial_norm)
+      end if
       if (u%status == CONTACT_STICK) u%status = closing_status(u%mu)
       cstate%face(s) = face
       cstate%xi(:, s) = p%xi
       cstate%gap(s) = gap
-      cstate%status(s) = u%status
-      cstate%normal_force(s) = u%normal_force
-      cstate%friction(:, s) = u%friction
-      cstate%trial_norm(s) = u%trial_norm
-      cstate%slip(s) = cstate%slip(s) + u%plastic_slip
-      cstate%work(s) = cstate%work(s) + norm2(u%friction) * u%plastic_slip
-      cstate%tangential_displacement(:, s) = cstate%tangential_displacement(:, s) + u%slip_vector
-      cstate%slip_rate(s) = u%slip_rate
-      cstate%mu(s) = u%mu
-      cstate%friction_state(s) = u%friction_state
+      call store_update(cstate, s, u)
     end associate
   end subroutine update_closed
 
-  !> Where a closed node's contact point is now: its face if the projection stays on it,
-  !> else the neighbouring face chosen by the search rule (face = 0: nothing in reach).
+  !> The result of a return mapping of slave s into its state.
+  pure subroutine store_update(cstate, s, u)
+    type(contact_state_t), intent(inout) :: cstate
+    integer, intent(in) :: s
+    type(contact_update_t), intent(in) :: u
+    cstate%status(s) = u%status
+    cstate%normal_force(s) = u%normal_force
+    cstate%friction(:, s) = u%friction
+    cstate%trial_norm(s) = u%trial_norm
+    cstate%slip(s) = cstate%slip(s) + u%plastic_slip
+    cstate%work(s) = cstate%work(s) + norm2(u%friction) * u%plastic_slip
+    cstate%tangential_displacement(:, s) = cstate%tangential_displacement(:, s) + u%slip_vector
+    cstate%slip_rate(s) = u%slip_rate
+    cstate%mu(s) = u%mu
+    cstate%friction_state(s) = u%friction_state
+  end subroutine store_update
+
+  !> Where a closed node's contact point is now: its face if the projection stays on it (or
+  !> within the extension past a free edge), else the face chosen by the search rule among
+  !> the faces sharing a node with it and those the search grid holds near the node (a
+  !> neighbouring master body that shares no node with it); face = 0: nothing in reach, or
+  !> the node has slid off the master surface.
   subroutine follow(pair, x, xs, face_old, xi_old, face, p, gap)
     type(contact_pair_t), intent(in) :: pair
     real(dp), intent(in) :: x(:, :), xs(3), xi_old(2)
@@ -839,13 +1051,127 @@ contains
     integer, intent(out) :: face
     type(segment_point_t), intent(out) :: p
     real(dp), intent(out) :: gap
+    integer, allocatable :: candidates(:)
+    real(dp) :: excess(4)
     logical :: converged
     call project_to_segment(x(:, pair%face_nodes(:, face_old)), xs, xi_old, p, gap, converged)
     face = face_old
-    if (converged .and. maxval(abs(p%xi)) <= 1.0_dp + XI_TOLERANCE) return
-    call closest_face(pair%face_nodes, x, pair%neighbors(pair%neighbor_ptr(face_old): &
-                      pair%neighbor_ptr(face_old + 1) - 1), xs, pair%reach, face, p, gap)
+    if (converged) then
+      excess = edge_excess(p%xi)
+      if (all(excess <= XI_TOLERANCE)) return
+    end if
+    call pair%grid%candidates(xs, candidates)
+    candidates = unique_sorted([candidates, pair%neighbors(pair%neighbor_ptr(face_old): &
+                                                           pair%neighbor_ptr(face_old + 1) - 1)])
+    call closest_face(pair%face_nodes, x, candidates, xs, pair%reach, face, p, gap, pair%free_edge, &
+                      extend=.true.)
   end subroutine follow
+
+  !> The contact point of slave s on the face held for it (face = 0: none held, or the node
+  !> has moved more than HOLD_LIMIT past one of its shared edges, or past the extension of a
+  !> free edge). xi_old on face_old is the start of the projection when it is that face.
+  subroutine held_point(this, s, pair, x, xs, face_old, xi_old, face, p, gap)
+    type(contact_system_t), intent(in) :: this
+    integer, intent(in) :: s, face_old
+    type(contact_pair_t), intent(in) :: pair
+    real(dp), intent(in) :: x(:, :), xs(3), xi_old(2)
+    integer, intent(out) :: face
+    type(segment_point_t), intent(out) :: p
+    real(dp), intent(out) :: gap
+    real(dp) :: start(2), excess(4)
+    logical :: converged
+    integer :: held
+    face = 0
+    held = this%held_face(s)
+    if (held == 0) return
+    start = 0.0_dp
+    if (held == face_old) start = xi_old
+    call project_to_segment(x(:, pair%face_nodes(:, held)), xs, start, p, gap, converged)
+    if (.not. converged) return
+    excess = edge_excess(p%xi)
+    if (any(excess > merge(EDGE_EXTENSION, HOLD_LIMIT, pair%free_edge(:, held)))) return
+    if (abs(gap) > pair%reach) return
+    face = held
+  end subroutine held_point
+
+  !> Hold every node in its open or closed state, and every closed node on its face,
+  !> through the equilibrium iterations that follow (the contact states "held" while the
+  !> forces are corrected; `check_held` then re-evaluates them on the corrected solution).
+  subroutine system_hold_states(this, cstate)
+    class(contact_system_t), intent(inout) :: this
+    type(contact_state_t), intent(in) :: cstate
+    logical, allocatable :: closed(:)
+    closed = cstate%status == CONTACT_STICK .or. cstate%status == CONTACT_SLIP
+    this%held_face = merge(cstate%face, 0, closed)
+    this%hold_status = merge(HOLD_CLOSED, HOLD_OPEN, closed)
+    where (cstate%status == CONTACT_TIED) this%hold_status = HOLD_NONE
+    ! The entries of a node in several pairs are decided together by the twin rule
+    ! (leave_to_twins) in every application, not held one by one.
+    where (this%twin /= 0) this%hold_status = HOLD_NONE
+    if (.not. allocated(this%flips)) allocate (this%flips(size(this%slave_node)))
+    this%flips = 0
+    this%holding = .true.
+  end subroutine system_hold_states
+
+  !> The held states against the corrected solution: a node held closed whose (bilateral)
+  !> normal force turned tensile is to open, a node held open that penetrates a master face
+  !> is to close. Each node changes at most MAX_HOLD_FLIPS times per increment (no endless
+  !> flip-flop); `n_changed` counts the changes, after which the caller iterates again.
+  subroutine system_check_held(this, cstate, n_changed)
+    class(contact_system_t), intent(inout) :: this
+    type(contact_state_t), intent(in) :: cstate
+    integer, intent(out) :: n_changed
+    type(contact_params_t) :: params
+    integer :: s
+    n_changed = 0
+    if (.not. this%holding) return
+    do s = 1, size(this%slave_node)
+      if (this%flips(s) >= MAX_HOLD_FLIPS) cycle
+      select case (this%hold_status(s))
+      case (HOLD_CLOSED)
+        if (cstate%normal_force(s) >= -normal_force_floor(this, s)) cycle
+        this%hold_status(s) = HOLD_OPEN
+        this%held_face(s) = 0
+      case (HOLD_OPEN)
+        if (cstate%face(s) == 0) cycle
+        if (this%twin(s) /= 0) then
+          if (twin_inside(this, s, cstate)) cycle
+        end if
+        if (cstate%gap(s) >= -GAP_TOLERANCE * this%pairs(this%slave_pair(s))%face_size) cycle
+        params = params_of(this, s, cstate%face(s), cstate%xi(:, s))
+        if (params%support <= 0.0_dp) cycle
+        this%hold_status(s) = HOLD_CLOSED
+        this%held_face(s) = cstate%face(s)
+      case default
+        cycle
+      end select
+      this%flips(s) = this%flips(s) + 1
+      n_changed = n_changed + 1
+    end do
+  end subroutine system_check_held
+
+  !> End of the equilibrium iterations: the nodes decide their states freely again; a
+  !> closed node left with a tensile force below the force floor carries none.
+  subroutine system_release_states(this, cstate)
+    class(contact_system_t), intent(inout) :: this
+    type(contact_state_t), intent(inout) :: cstate
+    integer :: s
+    this%holding = .false.
+    do s = 1, size(this%slave_node)
+      if (cstate%status(s) /= CONTACT_STICK .and. cstate%status(s) /= CONTACT_SLIP) cycle
+      if (cstate%normal_force(s) >= 0.0_dp) cycle
+      cstate%normal_force(s) = 0.0_dp
+      cstate%friction(:, s) = 0.0_dp
+    end do
+  end subroutine system_release_states
+
+  !> How slave s is held now: HOLD_NONE outside the equilibrium iterations.
+  pure integer function hold_mode(this, s) result(mode)
+    type(contact_system_t), intent(in) :: this
+    integer, intent(in) :: s
+    mode = HOLD_NONE
+    if (this%holding) mode = this%hold_status(s)
+  end function hold_mode
 
   subroutine open_node(cstate, s, face, p, gap)
     type(contact_state_t), intent(inout) :: cstate
@@ -864,26 +1190,42 @@ contains
     cstate%gap(s) = gap
   end subroutine open_node
 
-  !> An open node: search; it closes if it penetrates or its closing event was taken.
+  !> An open node: search; it closes if it penetrates or its closing event was taken. A
+  !> node that closes measures its tangential motion from its projection at the start of the
+  !> increment (on the same face), so that its stick force follows the stick tangent it
+  !> gets (the R-minimum closing event makes that motion small: the node touches at the end
+  !> of the increment).
   subroutine update_open(this, s, x, cstate, kind)
     type(contact_system_t), intent(in) :: this
     integer, intent(in) :: s, kind
     real(dp), intent(in) :: x(:, :)
     type(contact_state_t), intent(inout) :: cstate
-    type(segment_point_t) :: p
+    type(segment_point_t) :: p, p_start
     type(contact_update_t) :: u
     real(dp) :: gap
-    integer :: face
+    integer :: face, start_face, mode
+    real(dp) :: start_xi(2), start_gap
+    type(contact_node_t) :: node
     associate (pair => this%pairs(this%slave_pair(s)))
-      call search(pair, x, x(:, this%slave_node(s)), face, p, gap)
+      start_face = cstate%face(s)
+      start_xi = cstate%xi(:, s)
+      start_gap = cstate%gap(s)
+      mode = hold_mode(this, s)
+      face = 0
+      if (mode == HOLD_CLOSED) call held_point(this, s, pair, x, x(:, this%slave_node(s)), start_face, &
+                                               start_xi, face, p, gap)
+      if (face == 0) call search(pair, x, x(:, this%slave_node(s)), face, p, gap)
       call open_node(cstate, s, face, p, gap)
-      if (face == 0) return
-      if (gap < -GAP_TOLERANCE * pair%face_size .or. kind == EVENT_CONTACT_CLOSE) then
-        u = contact_update(p, gap, p, node_of(cstate, s, CONTACT_STICK), params_of(this, s), &
-                           pair%law, 0.0_dp)
-        cstate%status(s) = closing_status(u%mu)
-        cstate%normal_force(s) = u%normal_force
-        cstate%mu(s) = u%mu
+      if (face == 0 .or. mode == HOLD_OPEN) return
+      if (mode == HOLD_CLOSED .or. gap < -GAP_TOLERANCE * pair%face_size .or. &
+          (kind == EVENT_CONTACT_CLOSE .and. gap <= EVENT_BAND * start_gap)) then
+        p_start = p
+        if (start_face == face) p_start = segment_point(x(:, pair%face_nodes(:, face)), start_xi)
+        node = node_of(cstate, s, CONTACT_STICK)
+        node%bilateral = mode == HOLD_CLOSED
+        u = contact_update(p, gap, p_start, node, params_of(this, s, face, p%xi), pair%law, 0.0_dp)
+        if (u%status == CONTACT_STICK) u%status = closing_status(u%mu)
+        call store_update(cstate, s, u)
       end if
     end associate
   end subroutine update_open
@@ -911,15 +1253,41 @@ contains
       gap = cstate%gap(s) + relative_normal(p, due)
       associate (pair => this%pairs(this%slave_pair(s)))
         if (-gap <= PENETRATION_LIMIT * pair%face_size) cycle
-        call fatal_error(err, 'excessive penetration: slave node ' // str(model_node_id(nodes(1))) // &
-          ' of contact pair ' // pair%name // ' would end ' // str(-gap) // ' deep in the master ' // &
-          'surface (more than ' // str(nint(100 * PENETRATION_LIMIT)) // '% of its face size ' // &
-          str(pair%face_size) // '): the normal penalty E_n = ' // str(pair%normal_stiffness) // &
-          ' is too small for the contact pressure, or the node went through the master body')
+        call penetration_error(pair, model_node_id(nodes(1)), -gap, err)
         return
       end associate
     end do
   end subroutine system_check_penetration
+
+  !> After an increment: no closed node may be deeper in its master than PENETRATION_LIMIT
+  !> times the mean master face size (as `check_penetration` predicts before it).
+  subroutine system_check_gaps(this, model_node_id, cstate, err)
+    class(contact_system_t), intent(in) :: this
+    integer, intent(in) :: model_node_id(:)
+    type(contact_state_t), intent(in) :: cstate
+    type(error_t), allocatable, intent(out) :: err
+    integer :: s
+    do s = 1, size(this%slave_node)
+      if (cstate%status(s) /= CONTACT_STICK .and. cstate%status(s) /= CONTACT_SLIP) cycle
+      associate (pair => this%pairs(this%slave_pair(s)))
+        if (-cstate%gap(s) <= PENETRATION_LIMIT * pair%face_size) cycle
+        call penetration_error(pair, model_node_id(this%slave_node(s)), -cstate%gap(s), err)
+        return
+      end associate
+    end do
+  end subroutine system_check_gaps
+
+  subroutine penetration_error(pair, node_id, depth, err)
+    type(contact_pair_t), intent(in) :: pair
+    integer, intent(in) :: node_id
+    real(dp), intent(in) :: depth
+    type(error_t), allocatable, intent(out) :: err
+    call fatal_error(err, 'excessive penetration: slave node ' // str(node_id) // &
+      ' of contact pair ' // pair%name // ' would end ' // str(depth) // ' deep in the master ' // &
+      'surface (more than ' // str(nint(100 * PENETRATION_LIMIT)) // '% of its face size ' // &
+      str(pair%face_size) // '): the normal penalty E_n = ' // str(pair%normal_stiffness) // &
+      ' is too small for the contact pressure, or the node went through the master body')
+  end subroutine penetration_error
 
   !> Values of slave s in the local frame of its master face, as CalculiX prints them:
   !> relative displacement (normal = gap, tangential components of the accumulated

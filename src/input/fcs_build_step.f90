@@ -133,9 +133,9 @@ contains
     type(card_t), intent(in) :: card
     type(builder_t), intent(inout) :: state
     type(diagnostics_t), intent(inout) :: diag
-    real(dp) :: strain, rotation, tolerance, rate_change, mu_change, state_change
+    real(dp) :: strain, rotation, tolerance, rate_change, mu_change, state_change, balance
     logical :: ok
-    integer :: n_before
+    integer :: n_before, iterations
     if (state%step%has_rmin) then
       call diag%report(card%loc, '*RMIN: the step already has a *RMIN (one per step)')
       return
@@ -148,6 +148,8 @@ contains
     call parse_real(param_value(card, 'MAX LOG RATE CHANGE'), rate_change, ok)
     call parse_real(param_value(card, 'MAX FRICTION CHANGE'), mu_change, ok)
     call parse_real(param_value(card, 'MAX STATE CHANGE'), state_change, ok)
+    call parse_real(param_value(card, 'EQUILIBRIUM TOLERANCE'), balance, ok)
+    call parse_int(param_value(card, 'MAX ITERATIONS'), iterations, ok)
     if (strain <= 0.0_dp .or. strain > 0.1_dp) &
       call diag%report(card%loc, '*RMIN: MAX STRAIN INCREMENT must lie in (0, 0.1]')
     if (rotation <= 0.0_dp .or. rotation > 10.0_dp) &
@@ -157,7 +159,14 @@ contains
     if (rate_change <= 0.0_dp) call diag%report(card%loc, '*RMIN: MAX LOG RATE CHANGE must be positive')
     if (mu_change <= 0.0_dp) call diag%report(card%loc, '*RMIN: MAX FRICTION CHANGE must be positive')
     if (state_change <= 0.0_dp) call diag%report(card%loc, '*RMIN: MAX STATE CHANGE must be positive')
+    if (balance <= 0.0_dp .or. balance > 1.0_dp) &
+      call diag%report(card%loc, '*RMIN: EQUILIBRIUM TOLERANCE must lie in (0, 1]')
+    if (iterations < 1 .or. iterations > 100) &
+      call diag%report(card%loc, '*RMIN: MAX ITERATIONS must lie in [1, 100]')
     if (diag%count > n_before) return
+    state%step%rmin%equilibrium_tolerance = balance
+    state%step%rmin%max_iterations = iterations
+    state%step%rmin%carry_unbalanced = param_upper(card, 'NO EQUILIBRIUM') == 'CARRY'
     state%step%rmin%max_log_rate_change = rate_change
     state%step%rmin%max_friction_change = mu_change
     state%step%rmin%max_state_change = state_change

@@ -251,7 +251,21 @@ contains
           p('MAX FRICTION CHANGE', PARAM_REAL, default='5e-3', unit='-', description='Largest ' // &
             'change of mu of a slipping node from one increment to the next.'), &
           p('MAX STATE CHANGE', PARAM_REAL, default='0.2', unit='-', description='Largest ' // &
-            'change of ln(state) (rate-and-state laws) from one increment to the next.')]), &
+            'change of ln(state) (rate-and-state laws) from one increment to the next.'), &
+          p('EQUILIBRIUM TOLERANCE', PARAM_REAL, default='1e-3', unit='-', description='Largest ' // &
+            'out-of-balance force left at the end of an increment: the largest nodal ' // &
+            'residual over the mean nodal internal force flux. An increment that leaves more ' // &
+            'is corrected by equilibrium iterations (Newton, contact and friction states ' // &
+            'decided on the corrected solution), and cut if they do not converge.'), &
+          p('MAX ITERATIONS', PARAM_INTEGER, default='12', description='Equilibrium ' // &
+            'iterations allowed in one increment before it is cut in four.'), &
+          p('NO EQUILIBRIUM', PARAM_CHOICE, default='STOP', choices=[s('STOP'), s('CARRY')], &
+            description='What an increment at the minimum size whose equilibrium iterations ' // &
+            'do not converge does: STOP the run, naming the node and direction of the largest ' // &
+            'out-of-balance force; or CARRY it: the increment is taken without iterations and ' // &
+            'its out-of-balance force carried into the next one (the static-explicit scheme ' // &
+            'of the paper), with a warning in the log. A velocity-weakening slip event has no ' // &
+            'quasi-static equilibrium: without radiation damping only CARRY runs through it.')]), &
       kw('BOUNDARY', CONTEXT_ANY, 'CalculiX', 'Prescribed displacements (fixed or ' // &
          'given values) or velocities on nodes or node sets.', &
          'node or node set, first dof, last dof (default: first), value (default 0); ' // &

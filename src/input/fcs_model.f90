@@ -111,6 +111,16 @@ module fcs_model
     real(dp) :: max_log_rate_change = 1.0_dp
     real(dp) :: max_friction_change = 5.0e-3_dp
     real(dp) :: max_state_change = 0.2_dp
+    !> Largest out-of-balance force left at the end of an increment, relative to the model's
+    !> force scale (the mean nodal internal force flux) [-]; an increment that leaves more is
+    !> corrected by equilibrium iterations.
+    real(dp) :: equilibrium_tolerance = 1.0e-3_dp
+    !> Equilibrium iterations allowed per increment before it is cut.
+    integer :: max_iterations = 12
+    !> At the minimum increment, an increment whose iterations do not converge stops the run
+    !> (false) or is taken without them, its out-of-balance force carried into the next
+    !> increment (true: NO EQUILIBRIUM=CARRY).
+    logical :: carry_unbalanced = .false.
   end type rmin_settings_t
 
   !> One step (loading stage). The condition lists are complete: they hold every condition

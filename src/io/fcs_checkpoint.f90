@@ -29,7 +29,10 @@ module fcs_checkpoint
   !> 2: checksums with the xor-shift step (fcs_checksum); the layouts since 418dfd4
   !> (friction step control in /state/scalars and /state/counters, the frame count in
   !> /meta/sizes), which version-1 files may lack.
-  integer, parameter :: CHECKPOINT_VERSION = 2
+  !> 3: the out-of-balance ratio of the last increment, the largest of the step and the
+  !> step's force scale in /state/scalars, the increment that had the largest in
+  !> /state/counters.
+  integer, parameter :: CHECKPOINT_VERSION = 3
 
   !> What a checkpoint says about itself (the /meta attributes).
   type :: checkpoint_info_t
@@ -131,7 +134,8 @@ contains
       call put_real3(archive, '/state/material_state', state%material_state, err)
     if (.not. allocated(err)) call put_real1(archive, '/state/scalars', state_scalars(state), err)
     if (.not. allocated(err)) call put_int1(archive, '/state/counters', &
-      [state%step, state%increment, state%step_increment, state%friction_kind, state%friction_node], err)
+      [state%step, state%increment, state%step_increment, state%friction_kind, state%friction_node, &
+       state%step_worst_residual_increment], err)
     if (.not. allocated(err) .and. contact%n_slaves() > 0) &
       call write_contact(archive, state, contact, err)
   end subroutine write_contents
@@ -203,9 +207,9 @@ contains
 
   pure function state_scalars(state) result(values)
     type(state_t), intent(in) :: state
-    real(dp) :: values(6)
+    real(dp) :: values(8)
     values = [state%time, state%step_time, state%last_increment, state%last_r, state%residual_norm, &
-              state%friction_dt]
+              state%friction_dt, state%step_worst_residual, state%force_scale]
   end function state_scalars
 
   subroutine write_contact(archive, state, contact, err)
@@ -350,7 +354,7 @@ contains
     if (.not. allocated(err) .and. size(state%material_state, 1) > 0) &
       call get_real3(archive, '/state/material_state', state%material_state, err)
     if (allocated(err)) return
-    allocate (scalars(6), counters(5))
+    allocate (scalars(8), counters(6))
     call get_real1(archive, '/state/scalars', scalars, err)
     if (.not. allocated(err)) call get_int1(archive, '/state/counters', counters, err)
     if (allocated(err)) return
@@ -360,11 +364,14 @@ contains
     state%last_r = scalars(4)
     state%residual_norm = scalars(5)
     state%friction_dt = scalars(6)
+    state%step_worst_residual = scalars(7)
+    state%force_scale = scalars(8)
     state%step = counters(1)
     state%increment = counters(2)
     state%step_increment = counters(3)
     state%friction_kind = counters(4)
     state%friction_node = counters(5)
+    state%step_worst_residual_increment = counters(6)
   end subroutine read_state
 
   subroutine read_contact(archive, state, contact, err)

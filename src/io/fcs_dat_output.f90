@@ -2,9 +2,10 @@
 !> (vx,vy,vz) for set X and time t" blocks), so that printed results of classic decks can be
 !> compared line by line with CalculiX's.
 !>
-!> Conventions as CalculiX: forces (RF) are the internal nodal forces, i.e. the reaction at a
-!> supported node and the applied load at a loaded free node; strains are printed as tensor
-!> components (exy = gamma_xy / 2). Rows are in ascending id order.
+!> Conventions: forces (RF) are the reactions at prescribed degrees of freedom and, as
+!> CalculiX prints them, the internal forces (the applied load) at free ones (the caller
+!> computes them: fcs_static_explicit, current_reactions); strains are printed as tensor
+!> components (exy = gamma_xy / 2), as CalculiX. Rows are in ascending id order.
 module fcs_dat_output
   use fcs_kinds, only: dp
   use fcs_error, only: error_t, fatal_error

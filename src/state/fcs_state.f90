@@ -34,8 +34,14 @@ module fcs_state
     !> Size of the last increment and its R-minimum factor.
     real(dp) :: last_increment = 0.0_dp
     real(dp) :: last_r = 1.0_dp
-    !> Out-of-balance force norm at the start of the last increment.
+    !> Out-of-balance force left by the last increment (ratio to the force scale), and the
+    !> largest ratio of the current step with the increment that left it.
     real(dp) :: residual_norm = 0.0_dp
+    real(dp) :: step_worst_residual = 0.0_dp
+    !> Mean over the increments of the run of the mean nodal force flux (the force scale of
+    !> the out-of-balance tolerance).
+    real(dp) :: force_scale = 0.0_dp
+    integer :: step_worst_residual_increment = 0
     !> Trial time increment allowed by the friction-rate limits (0: no limit), and what set
     !> it (event kind and node), from the changes over the last increment.
     real(dp) :: friction_dt = 0.0_dp

@@ -86,8 +86,11 @@ contains
   end subroutine inverted_element_error
 
   !> Internal forces f_int (3*n_nodes) of the given elements and, when `matrix` is present,
-  !> their tangent K added into it (values only: the caller zeroes it).
-  subroutine assemble_elements(model, state, slots, nlgeom, elements, f_int, err, matrix)
+  !> their tangent K added into it (values only: the caller zeroes it). With `flux`
+  !> (n_nodes), the sum over the elements of a node of the magnitudes of their nodal forces:
+  !> the force the node passes on, the scale its out-of-balance force is measured against
+  !> (f_int itself vanishes at a free node in equilibrium).
+  subroutine assemble_elements(model, state, slots, nlgeom, elements, f_int, err, matrix, flux)
     type(model_t), intent(in) :: model
     type(state_t), intent(in) :: state
     type(material_slot_t), intent(in) :: slots(:)
@@ -96,11 +99,13 @@ contains
     real(dp), intent(out) :: f_int(:)
     type(error_t), allocatable, intent(out) :: err
     type(sparse_matrix_t), intent(inout), optional :: matrix
+    real(dp), intent(out), optional :: flux(:)
     type(hex8_geometry_t) :: geo
     real(dp) :: k(24, 24), f(24), c(6, 6, N_GAUSS_HEX8)
     integer :: e, q, a, node, s, i
     logical :: ok, bbar, missing
     f_int = 0.0_dp
+    if (present(flux)) flux = 0.0_dp
     do i = 1, size(elements)
       e = elements(i)
       call hex8_geometry(element_configuration(model, state, e, nlgeom), geo, ok)
@@ -115,6 +120,12 @@ contains
         node = model%mesh%connectivity(a, e)
         f_int(3 * node - 2:3 * node) = f_int(3 * node - 2:3 * node) + f(3 * a - 2:3 * a)
       end do
+      if (present(flux)) then
+        do a = 1, 8
+          node = model%mesh%connectivity(a, e)
+          flux(node) = flux(node) + norm2(f(3 * a - 2:3 * a))
+        end do
+      end if
       if (.not. present(matrix)) cycle
       associate (material => slots(model%sections(s)%material)%m)
         do q = 1, N_GAUSS_HEX8

@@ -13,7 +13,7 @@ module fcs_driver
   use fcs_loading, only: build_step_loading
   use fcs_assembly, only: make_materials
   use fcs_static_explicit, only: analysis_t, take_increment, increment_record_t, build_pattern, &
-                                 contact_positions, internal_forces, gather_element_fields
+                                 contact_positions, current_reactions, gather_element_fields
   use fcs_comm, only: comm_t
   use fcs_partition, only: partition_elements
   use fcs_mumps, only: mumps_solver_t
@@ -185,9 +185,12 @@ contains
       end select
       n = 3 * model%mesh%n_nodes
       allocate (a%f_int(n), a%f_ext0(n), a%f_ext1(n), a%rhs(n), a%du(n), a%prescribed(n), &
-                a%constrained(n), a%f_contact(n), a%du_load(n), a%du_residual(n), a%rhs_residual(n))
+                a%constrained(n), a%f_contact(n), a%du_load(n), a%du_residual(n), a%rhs_residual(n), &
+                a%f_ext_end(n), a%correction(n), a%flux(model%mesh%n_nodes))
       a%f_int = 0.0_dp
       a%f_contact = 0.0_dp
+      a%f_ext_end = 0.0_dp
+      a%constrained = .false.
     end associate
     run%total_time = sum(model%steps(:)%period)
   end subroutine setup
@@ -448,11 +451,15 @@ contains
         if (.not. allocated(err)) call increment_outputs(run, model, .true., err)
         if (allocated(err)) return
         call run%log%info('end of step ' // str(k) // ' ("' // model%steps(k)%name // '") at time ' // &
-                          str(state%time) // ' after ' // str(state%step_increment) // ' increment(s)')
+                          str(state%time) // ' after ' // str(state%step_increment) // ' increment(s)' // &
+                          '; largest out-of-balance ' // str(state%step_worst_residual) // &
+                          ' (increment ' // str(state%step_worst_residual_increment) // ')')
         call log_contact_totals(run, .false.)
         state%step = k + 1
         state%step_time = 0.0_dp
         state%step_increment = 0
+        state%step_worst_residual = 0.0_dp
+        state%step_worst_residual_increment = 0
         call checkpoint(run, model, err)
         if (allocated(err)) return
       end do
@@ -572,10 +579,9 @@ contains
         str(state%time, 10) // ' dt ' // str(state%last_increment) // ' r ' // str(record%r) // &
         ' limit ' // event_kind_name(record%limiting%kind) // entity // &
         trim(merge(' (floor)', '        ', record%floored)) // ' events ' // &
-        str(record%n_events_taken) // trim(merge(' switches ' // str(record%n_switches), &
-        repeat(' ', 10 + len(str(record%n_switches))), record%n_switches > 0)) // &
-        ' residual ' // str(record%residual_norm) // &
-        ' (internal force ' // str(record%force_norm) // ')'
+        str(record%n_events_taken) // optional_count(' switches ', record%n_switches) // &
+        optional_count(' iterations ', record%iterations) // optional_count(' cuts ', record%cuts) // &
+        ' residual ' // str(record%residual_ratio) // trim(merge(' (carried)', '          ', record%carried))
       call run%log%detail(trim(line))
       call run%log%progress('time ' // str(state%time) // ' of ' // str(run%total_time) // ', inc ' // &
         str(state%increment) // ', dt ' // str(state%last_increment) // ' (' // &
@@ -583,6 +589,15 @@ contains
         wall_time() - run%started)
     end associate
   end subroutine log_increment
+
+  !> " <label> n" when n > 0, else nothing.
+  pure function optional_count(label, n) result(text)
+    character(len=*), intent(in) :: label
+    integer, intent(in) :: n
+    character(len=:), allocatable :: text
+    text = ''
+    if (n > 0) text = label // str(n)
+  end function optional_count
 
   !> Print and write whatever is due after an increment (or at the end of the step).
   subroutine increment_outputs(run, model, end_of_step, err)
@@ -608,13 +623,9 @@ contains
       end do
       if (.not. (need_frame .or. need_print)) return
       call run%analysis%timers%start('output')
-      call internal_forces(run%analysis, model, step%nlgeom, run%analysis%f_int, err)
+      call current_reactions(run%analysis, model, state%reaction, err)
       if (allocated(err)) return
       call gather_element_fields(run%analysis)
-      run%analysis%f_contact = 0.0_dp
-      if (run%analysis%contact%n_slaves() > 0) call run%analysis%contact%forces( &
-        run%analysis%x_contact, state%contact, run%analysis%f_contact)
-      state%reaction = reshape(run%analysis%f_int - run%analysis%f_contact, shape(state%reaction))
       do i = 1, size(step%outputs)
         if (.not. run%writer) exit
         if (.not. is_due(model, step, step%outputs(i), state, end_of_step)) cycle

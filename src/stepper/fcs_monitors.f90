@@ -5,7 +5,7 @@ module fcs_monitors
   use fcs_error, only: error_t
   use fcs_model, only: model_t, history_request_t, HISTORY_NSET_U, HISTORY_NSET_RF, &
                        HISTORY_CONTACT, HISTORY_ENERGY
-  use fcs_static_explicit, only: analysis_t, internal_forces
+  use fcs_static_explicit, only: analysis_t, current_reactions
   use fcs_history, only: history_table_t
   use fcs_event_catalog, only: event_catalog_t
   use fcs_contact_system, only: pair_totals_t
@@ -150,7 +150,8 @@ contains
     real(dp), allocatable :: row(:), reaction(:, :)
     integer :: k, i
     if (.not. any(due)) return
-    call current_reactions(model, a, reaction, err)
+    allocate (reaction(3, model%mesh%n_nodes))
+    call current_reactions(a, model, reaction, err)
     if (allocated(err)) return
     do k = 1, size(this%tables)
       if (.not. due(k)) cycle
@@ -164,20 +165,6 @@ contains
     end do
   end subroutine monitors_sample
 
-  !> Reactions of the current state: internal forces less contact forces (as CalculiX's RF).
-  subroutine current_reactions(model, a, reaction, err)
-    type(model_t), intent(in) :: model
-    type(analysis_t), intent(inout) :: a
-    real(dp), allocatable, intent(out) :: reaction(:, :)
-    type(error_t), allocatable, intent(out) :: err
-    real(dp), allocatable :: f_int(:), f_contact(:)
-    allocate (f_int(3 * model%mesh%n_nodes), f_contact(3 * model%mesh%n_nodes))
-    call internal_forces(a, model, model%steps(min(a%state%step, size(model%steps)))%nlgeom, f_int, err)
-    if (allocated(err)) return
-    f_contact = 0.0_dp
-    if (a%contact%n_slaves() > 0) call a%contact%forces(a%x_contact, a%state%contact, f_contact)
-    reaction = reshape(f_int - f_contact, [3, model%mesh%n_nodes])
-  end subroutine current_reactions
 
   function item_values(this, model, a, kind, target, reaction) result(values)
     type(monitors_t), intent(in) :: this

@@ -37,7 +37,7 @@ module fcs_static_explicit
   implicit none
   private
   public :: analysis_t, take_increment, increment_record_t, build_pattern, contact_positions
-  public :: internal_forces, gather_element_fields
+  public :: gather_element_fields, current_reactions
 
   !> What one increment did, for the log.
   type :: increment_record_t
@@ -45,15 +45,32 @@ module fcs_static_explicit
     real(dp) :: r = 1.0_dp
     type(rmin_event_t) :: limiting
     integer :: n_events_taken = 0
-    real(dp) :: residual_norm = 0.0_dp
-    real(dp) :: force_norm = 0.0_dp
     logical :: floored = .false.
     !> Contact tangents switched at the start of the increment (stick/slip, re-solved).
     integer :: n_switches = 0
+    !> Equilibrium iterations after the increment, and cuts of the increment when they did
+    !> not converge.
+    integer :: iterations = 0
+    integer :: cuts = 0
+    !> Out-of-balance force left at the end of the increment: its ratio to the force scale,
+    !> and where it is largest (node index, direction 1..3).
+    real(dp) :: residual_ratio = 0.0_dp
+    !> Taken without converged equilibrium iterations (NO EQUILIBRIUM=CARRY).
+    logical :: carried = .false.
+    !> The mean nodal force flux at the end of the increment (the force scale).
+    real(dp) :: force_scale = 0.0_dp
+    integer :: residual_node = 0
+    integer :: residual_direction = 0
   end type increment_record_t
 
   !> Largest number of solves of one increment while contact tangents are switched.
   integer, parameter :: MAX_STATE_PASSES = 12
+  !> Largest number of cuts (by CUT_FACTOR each) of one increment whose equilibrium
+  !> iterations do not converge.
+  integer, parameter :: MAX_CUTS = 8
+  real(dp), parameter :: CUT_FACTOR = 0.25_dp
+  !> Largest number of trial step lengths (1, 1/2, 1/4, ...) of one equilibrium iteration.
+  integer, parameter :: MAX_LINE_SEARCH = 4
 
   !> Working storage of the analysis, allocated once and reused every increment.
   type :: analysis_t
@@ -69,6 +86,9 @@ module fcs_static_explicit
     !> state (applied in full, so that equilibrium errors do not linger); rhs_residual its
     !> right-hand side.
     real(dp), allocatable :: du_load(:), du_residual(:), rhs_residual(:)
+    !> Equilibrium iterations: external forces at the end of the increment, nodal force
+    !> flux (the force scale, per node), the correction of one iteration.
+    real(dp), allocatable :: f_ext_end(:), flux(:), correction(:)
     logical, allocatable :: constrained(:)
     type(rmin_collector_t) :: collector
     type(phase_timer_t) :: timers
@@ -92,111 +112,397 @@ module fcs_static_explicit
 contains
 
   !> One static-explicit increment of the current step. On return the state has advanced by
-  !> r_min times the trial increment; `record` says what limited it.
+  !> r_min times the trial increment (less if it had to be cut), in equilibrium within the
+  !> step's EQUILIBRIUM TOLERANCE; `record` says what limited it.
   subroutine take_increment(a, model, record, err)
     type(analysis_t), intent(inout) :: a
     type(model_t), intent(in) :: model
     type(increment_record_t), intent(out) :: record
     type(error_t), allocatable, intent(out) :: err
-    real(dp) :: t0, t1, dt, r
-    integer :: pass, n_switched
-    logical :: limited_by_friction
-    associate (step => model%steps(a%state%step), state => a%state)
-      t0 = state%step_time
-      dt = step%max_increment
-      if (state%step_increment == 0) dt = step%initial_increment
-      limited_by_friction = .false.
-      if (a%state%friction_dt > 0.0_dp .and. max(a%state%friction_dt, step%min_increment) < dt) then
-        dt = max(a%state%friction_dt, step%min_increment)
-        limited_by_friction = .true.
-      end if
-      dt = min(dt, a%loading%next_breakpoint(t0) - t0)
-      t1 = t0 + dt
+    type(state_t) :: start
+    real(dp) :: t0, dt, r
+    logical :: limited_by_friction, converged
+    associate (step => model%steps(a%state%step))
+      call trial_time_increment(a, step, t0, dt, limited_by_friction)
       record%trial_increment = dt
-      call external_forces(a, model, step%nlgeom, t0, t1)
-      call prescribed_increments(a, model, t0, t1)
-      if (a%contact%pattern_dirty) call build_pattern(a, model)
-      if (a%ordering_due) then
-        call give_global_ordering(a, model, err)
-        call a%comm%agree_error(err)
-        if (allocated(err)) return
-      end if
-      do pass = 1, MAX_STATE_PASSES
-        call a%timers%start('assembly')
-        call assemble_system(a, model, step, t0, dt, err)
-        call a%timers%stop('assembly')
-        if (allocated(err)) return
-        if (pass == 1) then
-          record%residual_norm = norm2(merge(0.0_dp, a%f_ext0 + a%f_contact - a%f_int, a%constrained))
-          record%force_norm = norm2(a%f_int)
-          state%residual_norm = record%residual_norm
-        end if
-        a%rhs_residual = merge(0.0_dp, a%f_ext0 + a%f_contact - a%f_int, a%constrained)
-        call impose_constraints(a)
-        call solve_system(a, model%mesh%node_id, err)
-        call a%comm%agree_error(err)
-        if (allocated(err)) return
-        if (a%contact%n_slaves() == 0) exit
-        a%du = a%du_residual + a%du_load
-        call a%contact%switch_states(a%x_contact, state%contact, a%du, n_switched)
-        record%n_switches = record%n_switches + n_switched
-        if (n_switched == 0) exit
-      end do
-      call a%timers%start('r-minimum')
-      call collect_events(a, model, step, err)
-      call a%comm%agree_error(err)
+      call external_forces(a, model, step%nlgeom, t0, t0 + dt)
+      call prescribed_increments(a, model, t0, t0 + dt)
+      call ensure_pattern(a, model, err)
       if (allocated(err)) return
-      call global_fraction(a, step%rmin%event_tolerance, r)
-      record%limiting = a%collector%limiting
-      if (limited_by_friction .and. record%limiting%kind == EVENT_FULL_INCREMENT) &
-        record%limiting = rmin_event_t(1.0_dp, a%state%friction_kind, a%state%friction_node, 0)
-      if (r * dt < step%min_increment .and. r < 1.0_dp) then
-        if (a%collector%limiting%kind == EVENT_STRAIN_LIMIT .or. &
-            a%collector%limiting%kind == EVENT_ROTATION_LIMIT) then
-          call fatal_error(err, 'the ' // event_kind_name(a%collector%limiting%kind) // &
-            ' cuts the time increment to ' // str(r * dt) // ', below the minimum ' // &
-            str(step%min_increment) // ' of *STATIC (element ' // &
-            str(model%mesh%element_id(a%collector%limiting%entity)) // '): the deformation ' // &
-            'is too fast for the time scale; lower the minimum increment or check the loading')
+      call trial_solution(a, model, step, t0, dt, record, err)
+      if (allocated(err)) return
+      call a%timers%start('r-minimum')
+      call choose_fraction(a, model, step, dt, limited_by_friction, record, r, err)
+      call a%timers%stop('r-minimum')
+      if (allocated(err)) return
+      start = a%state
+      do
+        a%du = a%du_residual + r * a%du_load
+        ! The increment as the R-minimum strategy chose it must keep every element valid
+        ! and every contact node within the penetration limit: if not, the deformation or
+        ! the penalty is wrong, not the increment.
+        call apply_increment(a, model, step, t0, dt, r, err, .true.)
+        if (allocated(err)) then
+          a%state = start
           return
         end if
-        r = min(1.0_dp, step%min_increment / dt)
-        record%floored = .true.
-      end if
+        if (a%contact%n_slaves() > 0) call a%contact%hold_states(a%state%contact)
+        call equilibrate(a, model, step, start, t0, dt, r, record, converged, err)
+        if (a%contact%n_slaves() > 0) call a%contact%release_states(a%state%contact)
+        if (.not. allocated(err) .and. converged .and. a%contact%n_slaves() > 0) &
+          call a%contact%check_gaps(model%mesh%node_id, a%state%contact, err)
+        if (allocated(err)) then
+          a%state = start
+          return
+        end if
+        ! Iterations that do not converge cut the increment.
+        if (converged) exit
+        call cut_increment(a, model, step, start, dt, record, r, err)
+        if (allocated(err) .and. step%rmin%carry_unbalanced) then
+          ! NO EQUILIBRIUM=CARRY: the minimum increment as the static-explicit scheme takes
+          ! it, without iterations; its out-of-balance force goes into the next increment.
+          deallocate (err)
+          a%du = a%du_residual + r * a%du_load
+          call apply_increment(a, model, step, t0, dt, r, err, .true.)
+          if (.not. allocated(err)) call out_of_balance(a, model, step, record, err)
+          if (allocated(err)) then
+            a%state = start
+            return
+          end if
+          record%carried = .true.
+          exit
+        end if
+        if (allocated(err)) return
+      end do
       record%r = r
-      call a%timers%stop('r-minimum')
-      call a%timers%start('update')
-      a%du = a%du_residual + r * a%du_load
-      ! Nothing of the state changes before every element is known to stay valid, so that an
-      ! error leaves the state of the last good increment (to checkpoint and report).
+      record%n_events_taken = count_taken(a, r)
+      a%state%residual_norm = record%residual_ratio
+      a%state%increment = a%state%increment + 1
+      a%state%force_scale = a%state%force_scale + (record%force_scale - a%state%force_scale) / &
+                            a%state%increment
+      if (record%residual_ratio >= a%state%step_worst_residual) then
+        a%state%step_worst_residual = record%residual_ratio
+        a%state%step_worst_residual_increment = a%state%increment
+      end if
+      a%state%step_increment = a%state%step_increment + 1
+    end associate
+  end subroutine take_increment
+
+  !> The trial time increment from t0: the step's maximum (its initial increment first), or
+  !> less if the friction-rate limits of the last increment say so (not below the minimum),
+  !> cut at the next breakpoint of the loading.
+  subroutine trial_time_increment(a, step, t0, dt, limited_by_friction)
+    type(analysis_t), intent(in) :: a
+    type(step_t), intent(in) :: step
+    real(dp), intent(out) :: t0, dt
+    logical, intent(out) :: limited_by_friction
+    t0 = a%state%step_time
+    dt = step%max_increment
+    if (a%state%step_increment == 0) dt = step%initial_increment
+    limited_by_friction = .false.
+    if (a%state%friction_dt > 0.0_dp .and. max(a%state%friction_dt, step%min_increment) < dt) then
+      dt = max(a%state%friction_dt, step%min_increment)
+      limited_by_friction = .true.
+    end if
+    dt = min(dt, a%loading%next_breakpoint(t0) - t0)
+  end subroutine trial_time_increment
+
+  !> Rebuild the sparse pattern when the contact elements have moved out of it (and, in a
+  !> distributed run, give MUMPS the whole model's ordering).
+  subroutine ensure_pattern(a, model, err)
+    type(analysis_t), intent(inout) :: a
+    type(model_t), intent(in) :: model
+    type(error_t), allocatable, intent(out) :: err
+    if (a%contact%pattern_dirty) call build_pattern(a, model)
+    if (a%ordering_due) then
+      call give_global_ordering(a, model, err)
+      call a%comm%agree_error(err)
+    end if
+  end subroutine ensure_pattern
+
+  !> The trial solution du_residual + du_load on the current state (10a-b), solved again
+  !> with switched tangents while contact nodes switch between stick and slip at its start.
+  subroutine trial_solution(a, model, step, t0, dt, record, err)
+    type(analysis_t), intent(inout) :: a
+    type(model_t), intent(in) :: model
+    type(step_t), intent(in) :: step
+    real(dp), intent(in) :: t0, dt
+    type(increment_record_t), intent(inout) :: record
+    type(error_t), allocatable, intent(out) :: err
+    integer :: pass, n_switched
+    do pass = 1, MAX_STATE_PASSES
+      call a%timers%start('assembly')
+      call assemble_system(a, model, step, t0, dt, err)
+      call a%timers%stop('assembly')
+      if (allocated(err)) return
+      a%rhs_residual = merge(0.0_dp, a%f_ext0 + a%f_contact - a%f_int, a%constrained)
+      call impose_constraints(a)
+      call solve_system(a, model%mesh%node_id, err)
+      call a%comm%agree_error(err)
+      if (allocated(err)) return
+      if (a%contact%n_slaves() == 0) exit
+      a%du = a%du_residual + a%du_load
+      call a%contact%switch_states(a%x_contact, a%state%contact, a%du, n_switched)
+      record%n_switches = record%n_switches + n_switched
+      if (n_switched == 0) exit
+    end do
+  end subroutine trial_solution
+
+  !> Collect the events of the trial increment and choose the fraction r to take (10e),
+  !> floored at the step's minimum increment unless a strain or rotation limit cuts it.
+  subroutine choose_fraction(a, model, step, dt, limited_by_friction, record, r, err)
+    type(analysis_t), intent(inout) :: a
+    type(model_t), intent(in) :: model
+    type(step_t), intent(in) :: step
+    real(dp), intent(in) :: dt
+    logical, intent(in) :: limited_by_friction
+    type(increment_record_t), intent(inout) :: record
+    real(dp), intent(out) :: r
+    type(error_t), allocatable, intent(out) :: err
+    call collect_events(a, model, step, err)
+    call a%comm%agree_error(err)
+    if (allocated(err)) return
+    call global_fraction(a, step%rmin%event_tolerance, r)
+    record%limiting = a%collector%limiting
+    if (limited_by_friction .and. record%limiting%kind == EVENT_FULL_INCREMENT) &
+      record%limiting = rmin_event_t(1.0_dp, a%state%friction_kind, a%state%friction_node, 0)
+    if (r * dt < step%min_increment .and. r < 1.0_dp) then
+      if (a%collector%limiting%kind == EVENT_STRAIN_LIMIT .or. &
+          a%collector%limiting%kind == EVENT_ROTATION_LIMIT) then
+        call fatal_error(err, 'the ' // event_kind_name(a%collector%limiting%kind) // &
+          ' cuts the time increment to ' // str(r * dt) // ', below the minimum ' // &
+          str(step%min_increment) // ' of *STATIC (element ' // &
+          str(model%mesh%element_id(a%collector%limiting%entity)) // '): the deformation ' // &
+          'is too fast for the time scale; lower the minimum increment or check the loading')
+        return
+      end if
+      r = min(1.0_dp, step%min_increment / dt)
+      record%floored = .true.
+    end if
+  end subroutine choose_fraction
+
+  !> Apply the increment a%du (fraction r of the trial increment over [t0, t0 + dt]) to the
+  !> state: stresses, displacements, positions, time, and the contact states decided on the
+  !> new positions. Nothing changes before every element is known to stay valid.
+  subroutine apply_increment(a, model, step, t0, dt, r, err, predict_penetration)
+    type(analysis_t), intent(inout) :: a
+    type(model_t), intent(in) :: model
+    type(step_t), intent(in) :: step
+    real(dp), intent(in) :: t0, dt, r
+    type(error_t), allocatable, intent(out) :: err
+    !> Check the penetration the increment predicts (the first application; the iterates of
+    !> the equilibrium iterations are checked on their result instead).
+    logical, intent(in) :: predict_penetration
+    call a%timers%start('update')
+    associate (state => a%state)
       if (step%nlgeom) call check_new_geometry(a, model, err)
       call a%comm%agree_error(err)
-      if (.not. allocated(err) .and. a%contact%n_slaves() > 0) &
+      if (.not. allocated(err) .and. a%contact%n_slaves() > 0 .and. predict_penetration) &
         call a%contact%check_penetration(model%mesh%node_id, a%x_contact, state%contact, a%du, err)
-      if (allocated(err)) return
-      call update_elements(a, model, step, r, record, err)
+      if (.not. allocated(err)) call update_elements(a, model, step, err)
       call a%comm%agree_error(err)
-      if (allocated(err)) return
+      if (allocated(err)) then
+        call a%timers%stop('update')
+        return
+      end if
       state%u = state%u + reshape(a%du, shape(state%u))
       if (step%nlgeom) state%x = state%x + reshape(a%du, shape(state%x))
       if (r >= 1.0_dp) then
-        state%step_time = t1
+        state%step_time = t0 + dt
       else
         state%step_time = t0 + r * dt
       end if
+      call contact_positions(a, model)
       if (a%contact%n_slaves() > 0) then
-        call contact_positions(a, model)
         call a%contact%update(a%x_contact, state%contact, state%step_time - t0, r)
         call friction_step_control(a, step, state%step_time - t0)
       end if
       state%time = state%time + (state%step_time - t0)
       state%last_increment = state%step_time - t0
       state%last_r = r
-      state%increment = state%increment + 1
-      state%step_increment = state%step_increment + 1
-      call a%timers%stop('update')
     end associate
-  end subroutine take_increment
+    call a%timers%stop('update')
+  end subroutine apply_increment
+
+  !> Equilibrium iterations on the increment just applied: while the out-of-balance force
+  !> at its end exceeds the step's EQUILIBRIUM TOLERANCE, solve K dc = R with the tangent of
+  !> the current iterate (prescribed values held), add dc to the increment and apply it
+  !> again from the state `start` at the start of the increment, so that stresses, contact
+  !> and friction states are decided on the corrected solution (Newton's method on the
+  !> increment, as in an implicit step; the R-minimum choice of the increment keeps the
+  !> state changes within it small). `converged` is false when the iterations did not reach
+  !> the tolerance within MAX ITERATIONS or started to diverge: the caller cuts the increment.
+  subroutine equilibrate(a, model, step, start, t0, dt, r, record, converged, err)
+    type(analysis_t), intent(inout) :: a
+    type(model_t), intent(in) :: model
+    type(step_t), intent(in) :: step
+    type(state_t), intent(in) :: start
+    real(dp), intent(in) :: t0, dt, r
+    type(increment_record_t), intent(inout) :: record
+    logical, intent(out) :: converged
+    type(error_t), allocatable, intent(out) :: err
+    real(dp), allocatable :: base(:)
+    real(dp) :: norm, trial_norm, step_length
+    integer :: iteration, search, n_growing, n_changed
+    converged = .false.
+    n_growing = 0
+    call out_of_balance(a, model, step, record, err)
+    if (allocated(err)) return
+    norm = norm2(a%rhs_residual)
+    do iteration = 1, step%rmin%max_iterations + 1
+      if (record%residual_ratio <= step%rmin%equilibrium_tolerance) then
+        ! In equilibrium with the held contact states: are they still right?
+        n_changed = 0
+        if (a%contact%n_slaves() > 0) call a%contact%check_held(a%state%contact, n_changed)
+        if (n_changed == 0) then
+          converged = .true.
+          return
+        end if
+        a%state = start
+        call apply_increment(a, model, step, t0, dt, r, err, .false.)
+        if (.not. allocated(err)) call out_of_balance(a, model, step, record, err)
+        if (allocated(err)) return
+        norm = norm2(a%rhs_residual)
+        n_growing = 0
+      end if
+      if (iteration > step%rmin%max_iterations) return
+      ! A correction that cannot be solved (the iterate lost the contact that supported a
+      ! body: a singular tangent) is a failed iteration: the increment is cut.
+      call correction(a, model, step, t0, a%state%step_time - t0, err)
+      if (allocated(err)) then
+        deallocate (err)
+        return
+      end if
+      record%iterations = record%iterations + 1
+      ! Backtracking on the norm of the out-of-balance force: the contact and friction
+      ! states make the residual only piecewise smooth, and a full Newton step across a
+      ! change of state can overshoot.
+      base = a%du
+      step_length = 1.0_dp
+      do search = 1, MAX_LINE_SEARCH
+        a%du = base + step_length * a%correction
+        a%state = start
+        call apply_increment(a, model, step, t0, dt, r, err, .false.)
+        if (.not. allocated(err)) call out_of_balance(a, model, step, record, err)
+        if (allocated(err)) return
+        trial_norm = norm2(a%rhs_residual)
+        if (trial_norm < norm .or. search == MAX_LINE_SEARCH) exit
+        step_length = 0.5_dp * step_length
+      end do
+      if (trial_norm >= norm) then
+        n_growing = n_growing + 1
+        if (n_growing >= 2) return
+      end if
+      norm = trial_norm
+    end do
+  end subroutine equilibrate
+
+  !> The out-of-balance force R = f_ext + f_c - f_int of the current state at its time (free
+  !> degrees of freedom, into a%rhs_residual) and its size: the largest nodal |R| over the
+  !> mean nodal force flux of the elements (nodes that carry force).
+  subroutine out_of_balance(a, model, step, record, err)
+    type(analysis_t), intent(inout) :: a
+    type(model_t), intent(in) :: model
+    type(step_t), intent(in) :: step
+    type(increment_record_t), intent(inout) :: record
+    type(error_t), allocatable, intent(out) :: err
+    real(dp) :: worst, scale, node_norm, sums(2)
+    integer :: node
+    call a%timers%start('equilibrium')
+    call assemble_elements(model, a%state, a%materials, step%nlgeom, a%my_elements, a%f_int, err, &
+                           flux=a%flux)
+    call a%comm%agree_error(err)
+    if (allocated(err)) then
+      call a%timers%stop('equilibrium')
+      return
+    end if
+    call a%comm%sum_real(a%f_int)
+    call a%comm%sum_real(a%flux)
+    a%f_contact = 0.0_dp
+    if (a%contact%n_slaves() > 0) call a%contact%forces(a%x_contact, a%state%contact, a%f_contact)
+    call external_force_at(a, model, step%nlgeom, a%state%step_time, a%f_ext_end)
+    a%rhs_residual = merge(0.0_dp, a%f_ext_end + a%f_contact - a%f_int, a%constrained)
+    worst = 0.0_dp
+    record%residual_node = 0
+    do node = 1, model%mesh%n_nodes
+      node_norm = norm2(a%rhs_residual(3 * node - 2:3 * node))
+      if (node_norm > worst) then
+        worst = node_norm
+        record%residual_node = node
+        record%residual_direction = maxloc(abs(a%rhs_residual(3 * node - 2:3 * node)), 1)
+      end if
+    end do
+    sums = [sum(a%flux, mask=a%flux > 0.0_dp), real(count(a%flux > 0.0_dp), dp)]
+    record%force_scale = 0.0_dp
+    if (sums(2) > 0.0_dp) record%force_scale = sums(1) / sums(2)
+    ! The scale is never below the mean over the increments of the run so far (CalculiX
+    ! averages its force scale over the increments of a step): a body unloaded to nearly no
+    ! stress keeps a tolerance relative to the forces it carried, not to its round-off.
+    scale = max(record%force_scale, a%state%force_scale)
+    record%residual_ratio = 0.0_dp
+    if (worst > 0.0_dp) record%residual_ratio = worst / max(scale, tiny(1.0_dp))
+    call a%timers%stop('equilibrium')
+  end subroutine out_of_balance
+
+  !> One equilibrium correction: K dc = R (a%rhs_residual) with K the tangent of the current
+  !> state and dc = 0 on the prescribed degrees of freedom; dt is the duration of the
+  !> increment (the rate term of the friction tangent).
+  subroutine correction(a, model, step, t0, dt, err)
+    type(analysis_t), intent(inout) :: a
+    type(model_t), intent(in) :: model
+    type(step_t), intent(in) :: step
+    real(dp), intent(in) :: t0, dt
+    type(error_t), allocatable, intent(out) :: err
+    real(dp), allocatable :: residual(:)
+    call ensure_pattern(a, model, err)
+    if (allocated(err)) return
+    residual = a%rhs_residual
+    call a%timers%start('assembly')
+    call assemble_system(a, model, step, t0, dt, err)
+    call a%timers%stop('assembly')
+    if (allocated(err)) return
+    a%correction = 0.0_dp
+    call constrain_system(a, a%correction)
+    a%rhs = merge(0.0_dp, residual, a%constrained)
+    call a%timers%start('factorisation')
+    call a%solver%factor(a%matrix, err)
+    call a%timers%stop('factorisation')
+    if (.not. allocated(err)) then
+      call a%timers%start('solve')
+      call a%solver%solve(a%matrix, a%rhs, a%correction, err)
+      call a%timers%stop('solve')
+    end if
+    if (.not. allocated(err)) call check_finite(a%correction, model%mesh%node_id, err)
+    call a%comm%agree_error(err)
+  end subroutine correction
+
+  !> The equilibrium iterations of the increment did not converge: go back to its start and
+  !> take CUT_FACTOR of it (not less than the step's minimum increment); at the minimum the
+  !> run stops, naming where the out-of-balance force is largest.
+  subroutine cut_increment(a, model, step, start, dt, record, r, err)
+    type(analysis_t), intent(inout) :: a
+    type(model_t), intent(in) :: model
+    type(step_t), intent(in) :: step
+    type(state_t), intent(in) :: start
+    real(dp), intent(in) :: dt
+    type(increment_record_t), intent(inout) :: record
+    real(dp), intent(inout) :: r
+    type(error_t), allocatable, intent(out) :: err
+    character(len=1), parameter :: AXIS(3) = ['x', 'y', 'z']
+    a%state = start
+    if (record%cuts >= MAX_CUTS .or. r * dt <= step%min_increment * (1.0_dp + 1.0e-12_dp)) then
+      call fatal_error(err, 'no equilibrium: after ' // str(record%iterations) // ' iteration(s) ' // &
+        'and ' // str(record%cuts) // ' cut(s) of the increment (to ' // str(r * dt) // &
+        '), the out-of-balance force is still ' // str(record%residual_ratio) // ' of the force ' // &
+        'scale (tolerance ' // str(step%rmin%equilibrium_tolerance) // '), largest at node ' // &
+        str(model%mesh%node_id(max(record%residual_node, 1))) // ' in ' // &
+        AXIS(max(record%residual_direction, 1)) // '; check the loading and the supports, or ' // &
+        'raise EQUILIBRIUM TOLERANCE or MAX ITERATIONS on *RMIN')
+      return
+    end if
+    record%cuts = record%cuts + 1
+    r = max(r * CUT_FACTOR, step%min_increment / dt)
+  end subroutine cut_increment
 
   !> The trial time increment for the next increment from the friction changes over the last
   !> one (duration dt): each change of ln V, mu, state at a slipping node may be at most its
@@ -255,6 +561,29 @@ contains
     call a%comm%sum_real(a%f_contact)
   end subroutine assemble_system
 
+  !> The nodal forces printed as RF, (3, n_nodes): at a prescribed degree of freedom the
+  !> reaction, the force the support exerts: internal force less contact force less the load
+  !> applied there at the current time (CalculiX prints the internal force, which also holds
+  !> that load); at a free degree of freedom, as CalculiX prints it, the internal force less
+  !> the contact force, i.e. the load applied there (up to the equilibrium tolerance). Leaves
+  !> the internal and contact forces in a%f_int, a%f_contact.
+  subroutine current_reactions(a, model, reaction, err)
+    type(analysis_t), intent(inout) :: a
+    type(model_t), intent(in) :: model
+    real(dp), intent(out) :: reaction(:, :)
+    type(error_t), allocatable, intent(out) :: err
+    logical :: nlgeom
+    nlgeom = model%steps(min(a%state%step, size(model%steps)))%nlgeom
+    call internal_forces(a, model, nlgeom, a%f_int, err)
+    if (allocated(err)) return
+    a%f_contact = 0.0_dp
+    if (a%contact%n_slaves() > 0) call a%contact%forces(a%x_contact, a%state%contact, a%f_contact)
+    a%f_ext_end = 0.0_dp
+    if (allocated(a%loading%bc_dof)) call external_force_at(a, model, nlgeom, a%state%step_time, a%f_ext_end)
+    where (.not. a%constrained) a%f_ext_end = 0.0_dp
+    reaction = reshape(a%f_int - a%f_contact - a%f_ext_end, shape(reaction))
+  end subroutine current_reactions
+
   !> Internal forces of the current state (all elements, summed over the processes).
   subroutine internal_forces(a, model, nlgeom, f_int, err)
     type(analysis_t), intent(in) :: a
@@ -294,6 +623,16 @@ contains
   !> the summed matrix (approximated by the sum of the processes' diagonals).
   subroutine impose_constraints(a)
     type(analysis_t), intent(inout) :: a
+    call constrain_system(a, a%prescribed)
+    where (.not. a%constrained) a%rhs = a%rhs + a%f_ext1 - a%f_ext0
+  end subroutine impose_constraints
+
+  !> Eliminate the prescribed degrees of freedom (values `values`) from the matrix: a%rhs gets
+  !> the eliminated columns' contribution on the free rows and scale * value on the
+  !> constrained ones, whose diagonals become `scale`.
+  subroutine constrain_system(a, values)
+    type(analysis_t), intent(inout) :: a
+    real(dp), intent(in) :: values(:)
     real(dp) :: total(2), scale
     integer :: n_free
     call a%matrix%free_diagonal_sum(a%constrained, total(1), n_free)
@@ -303,12 +642,11 @@ contains
     if (total(2) > 0.0_dp) scale = total(1) / (total(2) / a%comm%size)
     if (.not. (scale > 0.0_dp)) scale = 1.0_dp
     a%rhs = 0.0_dp
-    call a%matrix%eliminate(a%constrained, a%prescribed, a%rhs)
+    call a%matrix%eliminate(a%constrained, values, a%rhs)
     call a%comm%sum_real(a%rhs)
-    a%rhs = a%rhs + a%f_ext1 - a%f_ext0
-    where (a%constrained) a%rhs = scale * a%prescribed
+    where (a%constrained) a%rhs = scale * values
     if (a%comm%is_root()) call a%matrix%set_diagonal(a%constrained, scale)
-  end subroutine impose_constraints
+  end subroutine constrain_system
 
   !> The fraction of the trial increment taken, over all processes: the smallest event
   !> fraction (and its event, from the process that has it), widened to the near-simultaneous
@@ -411,6 +749,18 @@ contains
     call assemble_pressures(model, a%loading, t0, a%state, nlgeom, a%f_ext0)
     call assemble_pressures(model, a%loading, t1, a%state, nlgeom, a%f_ext1)
   end subroutine external_forces
+
+  !> The external forces at step time t on the current geometry.
+  subroutine external_force_at(a, model, nlgeom, t, f_ext)
+    type(analysis_t), intent(in) :: a
+    type(model_t), intent(in) :: model
+    logical, intent(in) :: nlgeom
+    real(dp), intent(in) :: t
+    real(dp), intent(out) :: f_ext(:)
+    f_ext = 0.0_dp
+    call a%loading%force_at(model%amplitudes, t, f_ext)
+    call assemble_pressures(model, a%loading, t, a%state, nlgeom, f_ext)
+  end subroutine external_force_at
 
   !> Constrained degrees of freedom and their prescribed increments over [t0, t1]. Nodes in
   !> no element are held where they are.
@@ -530,12 +880,10 @@ contains
 
   !> Stress and strain update for the (scaled) increment: gradients on the mid-increment
   !> configuration, objective rotation (Hughes & Winget 1980), then the material law.
-  subroutine update_elements(a, model, step, r, record, err)
+  subroutine update_elements(a, model, step, err)
     type(analysis_t), intent(inout) :: a
     type(model_t), intent(in) :: model
     type(step_t), intent(in) :: step
-    real(dp), intent(in) :: r
-    type(increment_record_t), intent(inout) :: record
     type(error_t), allocatable, intent(out) :: err
     type(hex8_geometry_t) :: geo
     real(dp) :: strain(6, N_GAUSS_HEX8), spin(3, 3, N_GAUSS_HEX8), equivalent(N_GAUSS_HEX8)
@@ -576,7 +924,6 @@ contains
         end do
       end associate
     end do
-    record%n_events_taken = count_taken(a, r)
   end subroutine update_elements
 
   !> Every element must keep a positive Jacobian on the mid-increment and the end

@@ -40,7 +40,10 @@ ALLOWED = {'KEYWORD', 'DYNAMIC', 'FRICTION', 'PLASTIC', 'EQUATION', 'COUPLING', 
            'BUCKLE', 'FREQUENCY', 'HEAT TRANSFER', 'COUPLED TEMPERATURE-DISPLACEMENT',
            'DLOAD', 'GAP', 'SPRING', 'MPC', 'ORIENTATION', 'SHELL SECTION', 'BEAM SECTION',
            'CONTACT DAMPING', 'CLEARANCE', 'INITIAL CONDITIONS', 'TEMPERATURE', 'EXPANSION',
-           'CONDUCTIVITY', 'SPECIFIC HEAT', 'CHANGE FRICTION', 'MODEL CHANGE', 'NODAL THICKNESS'}
+           'CONDUCTIVITY', 'SPECIFIC HEAT', 'CHANGE FRICTION', 'MODEL CHANGE', 'NODAL THICKNESS',
+           'MODAL DYNAMIC', 'STEADY STATE DYNAMICS', 'COMPLEX FREQUENCY', 'ELECTROMAGNETICS',
+           'GREEN', 'SENSITIVITY', 'SUBSTRUCTURE GENERATE', 'NO ANALYSIS', 'CFD', 'TRANSFORM',
+           'UNCOUPLED TEMPERATURE-DISPLACEMENT'}
 docs = [p for p in [os.path.join(root, 'README.md')] if os.path.exists(p)] + glob.glob(os.path.join(root, 'doc', '**', '*.md'),
                                                       recursive=True)
 for path in docs:

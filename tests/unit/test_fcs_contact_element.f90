@@ -22,6 +22,8 @@ program test_fcs_contact_element
   call test_tangent(suite, CONTACT_STICK, 'stick')
   call test_tangent(suite, CONTACT_SLIP, 'slip')
   call test_tangent(suite, CONTACT_TIED, 'tied')
+  call test_iterate_tangent(suite, CONTACT_STICK, 'stick')
+  call test_iterate_tangent(suite, CONTACT_SLIP, 'slip')
   call test_return_mapping(suite)
   call test_rate_tangent(suite, log_rate_law_t(c=0.02_dp), 'rate strengthening')
   call test_rate_tangent(suite, log_rate_law_t(c=-0.003_dp), 'rate weakening')
@@ -52,9 +54,11 @@ contains
   end subroutine test_projection
 
   !> Nodal forces after moving the 5 nodes by du (the stepper's update, eq. 5).
-  function forces_after(xm, xs, xi0, ft0, status, du, tied_gap) result(f)
+  function forces_after(xm, xs, xi0, ft0, status, du, tied_gap, xi_guess) result(f)
     real(dp), intent(in) :: xm(3, 4), xs(3), xi0(2), ft0(2), du(15), tied_gap
     integer, intent(in) :: status
+    !> Start of the projection (default xi0).
+    real(dp), intent(in), optional :: xi_guess(2)
     real(dp) :: f(15)
     real(dp) :: xm_new(3, 4), xs_new(3), gap, total(3)
     type(segment_point_t) :: p, p_old
@@ -63,7 +67,11 @@ contains
     integer :: i
     xs_new = xs + du(1:3)
     xm_new = xm + reshape(du(4:15), [3, 4])
-    call project_to_segment(xm_new, xs_new, xi0, p, gap, converged)
+    if (present(xi_guess)) then
+      call project_to_segment(xm_new, xs_new, xi_guess, p, gap, converged)
+    else
+      call project_to_segment(xm_new, xs_new, xi0, p, gap, converged)
+    end if
     p_old = segment_point(xm_new, xi0)
     u = contact_update(p, gap, p_old, contact_node_t(status, 0.0_dp, ft0, 0.0_dp, 0.0_dp, tied_gap), &
                        PARAMS, COULOMB, 1.0_dp)
@@ -120,6 +128,52 @@ contains
     call suite%check(dot_product(p%normal, matmul(lin%stiffness(1:3, 1:3), p%normal)) > 0.0_dp, &
                      'normal stiffness is positive, ' // label)
   end subroutine test_tangent
+
+  !> The tangent at an iterate of the equilibrium iterations: the node has slipped since the
+  !> start point xi0 of the increment (same face), and the update measures the slip from xi0
+  !> on the current master coordinates; K_f (with the accumulated slip and the start point's
+  !> shape functions) against central differences of that update.
+  subroutine test_iterate_tangent(suite, status, label)
+    type(test_suite_t), intent(inout) :: suite
+    integer, intent(in) :: status
+    character(len=*), intent(in) :: label
+    real(dp) :: xm(3, 4), xs(3), gap, fn, f0(2), v(15), fd(15), eps, xi0(2)
+    type(segment_point_t) :: p, p0
+    type(contact_linear_t) :: lin
+    type(contact_update_t) :: u
+    type(friction_derivatives_t) :: fr
+    logical :: converged
+    call configuration(xm, xs)
+    call project_to_segment(xm, xs, [0.0_dp, 0.0_dp], p, gap, converged)
+    xi0 = p%xi + [0.01_dp, -0.005_dp]
+    if (status == CONTACT_SLIP) xi0 = p%xi + [0.15_dp, -0.1_dp]
+    p0 = segment_point(xm, xi0)
+    fn = EN * AREA * (-gap)
+    ! Start force: inside the cone for stick (the slip since xi0 keeps it there), outside for
+    ! slip (the node slips on).
+    f0 = [0.05_dp, 0.02_dp] * MU * fn
+    if (status == CONTACT_SLIP) f0 = [0.9_dp, -0.6_dp] * MU * fn
+    u = contact_update(p, gap, p0, contact_node_t(CONTACT_STICK, 0.0_dp, f0, 0.0_dp, 0.0_dp, 0.0_dp), &
+                       PARAMS, COULOMB, 1.0_dp)
+    call suite%check(u%status == status, 'iterate in the intended state, ' // label)
+    fr%mu = MU
+    call contact_linearise(reshape([xs, xm], [3, 5]), p, gap, &
+                           contact_node_t(u%status, u%normal_force, u%friction, u%trial_norm, 0.0_dp, 0.0_dp), &
+                           PARAMS, fr, 0.0_dp, lin, p%x - p0%x, p0%shape)
+    call random_number(v)
+    v = v - 0.5_dp
+    eps = 1.0e-6_dp
+    fd = (forces_after(xm, xs, xi0, f0, CONTACT_STICK, eps * v, 0.0_dp, p%xi) - &
+          forces_after(xm, xs, xi0, f0, CONTACT_STICK, -eps * v, 0.0_dp, p%xi)) / (2 * eps)
+    call suite%close_array(matmul(lin%stiffness, v), -fd, 1.0e-7_dp, &
+                           'K_f = -dF/du at an iterate that has slipped, ' // label)
+    ! The terms of the accumulated slip matter: without them the tangent is off.
+    call contact_linearise(reshape([xs, xm], [3, 5]), p, gap, &
+                           contact_node_t(u%status, u%normal_force, u%friction, u%trial_norm, 0.0_dp, 0.0_dp), &
+                           PARAMS, fr, 0.0_dp, lin)
+    call suite%check(norm2(matmul(lin%stiffness, v) + fd) > 1.0e-3_dp * norm2(fd), &
+                     'the tangent without the accumulated slip differs, ' // label)
+  end subroutine test_iterate_tangent
 
   !> Return mapping: a large tangential trial lands on the cone; the slip is its excess / E_t A.
   subroutine test_return_mapping(suite)

@@ -11,20 +11,22 @@ parts. E = 1000, nu = 0.3 both; mu = 0.3, E_n = E_t = 10 E / h (h = 0.5, the bas
 height). Step 1: pressure p = 10 on the slider's top, whose nodes (TOP) are held in x and y.
 Step 2: TOP moved by u_x = U (default 3: the slider crosses 10 master segments on the flat
 part, then the kink, and ends on the slope), held in y, free in z (the slider may tilt and
-climb). Output: *NODE PRINT, NSET=TOP, TOTALS=ONLY at every 1/150 of the push (U/150 = 0.02).
+climb). Output: *NODE PRINT, NSET=BOTTOM, TOTALS=ONLY at every 1/150 of the push (U/150 =
+0.02): the reactions of the base's fixed bottom, where no load is applied, give the push and
+the load the slider passes on: T = -RF_x, N = RF_z of BOTTOM.
 
 Closed forms (Coulomb, rigid slider; N0 = p A = 10 the pressure resultant): on the flat part
 T = mu N0. Fully on a slope of angle THETA, pushed horizontally, under the follower pressure
-normal to its (tilted) top: the push is T = mu N0 / (cos THETA - mu sin THETA), and RF_x of
-TOP, which at these loaded nodes includes the x component N0 sin THETA of the pressure load
-(fcs3d prints, like CalculiX, the internal force: reaction plus applied load), is
-RF_x = N0 (mu / (cos THETA - mu sin THETA) + sin THETA) (0.4160 N0 for 6 degrees, against
-0.3 N0 on the flat).
+normal to its (tilted) top: the push at TOP is mu N0 / (cos THETA - mu sin THETA), and the base
+also takes the x component N0 sin THETA of the pressure load:
+T = -RF_x(BOTTOM) = N0 (mu / (cos THETA - mu sin THETA) + sin THETA) (0.4160 N0 for 6 degrees,
+against 0.3 N0 on the flat). (fcs3d's RF is the reaction: at TOP, loaded by the pressure, it
+would not include the pressure load; at the unloaded BOTTOM it is the whole force passed on.)
 
-Checks, on T = RF_x of TOP at consecutive outputs (jumps in units of mu N0):
+Checks, on T = -RF_x of BOTTOM at consecutive outputs (jumps in units of mu N0):
   - flat part (the slider crosses 5 master segments): jumps <= B_flat (default 0.03; the
     slave nodes crossing master nodes of the indented base give steps of about 0.014) and
-    T / N = mu within 2 % (N = -RF_z; measured within 1 %);
+    T / N = mu within 2 % (N = RF_z of BOTTOM; measured within 1 %);
   - crossing the kink (the leading edge reaches it at u = 1.5, the trailing edge leaves the
     flat part at u = 2.5): while the slider bridges the kink it rests on its trailing part
     and on its leading row of slave nodes, which carries about a third of the load; T rises
@@ -34,7 +36,7 @@ Checks, on T = RF_x of TOP at consecutive outputs (jumps in units of mu N0):
     exceed B_kink (default 0.2, half of the change 0.39 across the kink; measured 0.13 fine,
     0.16 coarse), and T stays between the flat and the slope values within 2 % (no spike,
     no dip);
-  - fully on the slope: RF_x = N0 (mu / (cos - mu sin) + sin) within 2 % (the slider is
+  - fully on the slope: T = N0 (mu / (cos - mu sin) + sin) within 2 % (the slider is
     deformable: its top does not stay exactly parallel to the slope).
 """
 import argparse
@@ -92,16 +94,16 @@ def make_deck(path, angle, push, max_increment, mesh):
               '*DSLOAD', 'LOADED, P, %.12g' % PRESSURE, '*END STEP']
     lines += ['*STEP, NLGEOM', '*STATIC', '%.12g, 1., 1e-7, %.12g' % (max_increment, max_increment),
               '*BOUNDARY', 'TOP, 1, 1, %.12g' % push,
-              '*NODE PRINT, NSET=TOP, TOTALS=ONLY, TIME POINTS=OUT', 'RF', '*END STEP']
+              '*NODE PRINT, NSET=BOTTOM, TOTALS=ONLY, TIME POINTS=OUT', 'RF', '*END STEP']
     cc.write_deck(path, lines)
 
 
 def check(job, angle, push, jump_bound, kink_bound, csv, png):
     checker = cc.Checker()
-    times, forces = cc.totals(cc.read_dat(job + '.dat'), 'TOP')
+    times, forces = cc.totals(cc.read_dat(job + '.dat'), 'BOTTOM')
     keep = times > 1.0 + 1e-9
     u = push * (times[keep] - 1.0)
-    t, n = forces[keep, 0], -forces[keep, 2]
+    t, n = -forces[keep, 0], forces[keep, 2]
     checker.check(len(u) >= N_OUTPUTS - 1, '%d outputs of the push (expected %d)'
                   % (len(u), N_OUTPUTS))
     normal = PRESSURE
@@ -135,11 +137,11 @@ def check(job, angle, push, jump_bound, kink_bound, csv, png):
                       '(2 %%)' % (lo, hi, MU * normal, expected))
         slope_t = t[on_slope]
         error = np.abs(slope_t / expected - 1).max()
-        checker.check(on_slope.sum() >= 5 and error <= 0.02, 'on the slope (%d outputs): RF_x = '
+        checker.check(on_slope.sum() >= 5 and error <= 0.02, 'on the slope (%d outputs): T = '
                       '%.4f .. %.4f, closed form N0 (mu / (cos - mu sin) + sin) = %.4f, max '
                       'error %.4f (tolerance 0.02)' % (on_slope.sum(), slope_t.min(),
                                                        slope_t.max(), expected, error))
-        summary += '; kink jumps max %.4f mu N; slope RF_x %.4f..%.4f vs %.4f' % (
+        summary += '; kink jumps max %.4f mu N; slope T %.4f..%.4f vs %.4f' % (
             cross_jumps.max(), slope_t.min(), slope_t.max(), expected)
     print(summary)
     if csv:
@@ -154,7 +156,7 @@ def plot(png, u, t, n, angle):
     matplotlib.use('Agg')
     import matplotlib.pyplot as plt
     fig, ax = plt.subplots(figsize=(6.4, 4.0))
-    ax.plot(u, t / PRESSURE, '.-', markersize=3, label='RF_x / (p A) of the pushed nodes')
+    ax.plot(u, t / PRESSURE, '.-', markersize=3, label='-RF_x / (p A) of the base (the push)')
     ax.axhline(MU, color='k', linestyle='--', linewidth=0.8, label='mu')
     if angle > 0:
         theta = np.radians(angle)
@@ -163,7 +165,7 @@ def plot(png, u, t, n, angle):
                    label='mu / (cos - mu sin) + sin: on the %g deg slope' % angle)
         ax.axvspan(1.5, 2.5, color='0.9', label='slider crossing the kink')
     ax.set_xlabel('push u')
-    ax.set_ylabel('RF_x / (p A)')
+    ax.set_ylabel('T / (p A)')
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
     fig.tight_layout()

@@ -172,8 +172,8 @@ LIMIT_NAMES = ('full', 'strain-limit', 'rotation-limit', 'yield', 'close', 'open
 NUMBER = r'[-+0-9.Ee]+'
 INCREMENT_LINE = re.compile(
     r'^inc (\d+) step (\d+) time (%s) dt (%s) r (%s) limit (\S+)( element \d+ ip \d+| node \d+)?'
-    r'( \(floor\))? events (\d+)( switches \d+)? residual (%s) \(internal force (%s)\)$'
-    % (NUMBER, NUMBER, NUMBER, NUMBER, NUMBER))
+    r'( \(floor\))? events (\d+)( switches \d+)?( iterations \d+)?( cuts \d+)? residual (%s)$'
+    % (NUMBER, NUMBER, NUMBER, NUMBER))
 
 
 def read_increments(path):
