@@ -203,7 +203,11 @@ contains
     type(error_t), allocatable, intent(out) :: err
     call this%free()
     call check_definition(def, err)
-    if (.not. allocated(err)) call this%basis%init(def%node_xi, def%basis_terms, err)
+    if (allocated(err)) then
+      if (allocated(def%name)) call add_context(err, 'element kind ' // def%name)
+      return
+    end if
+    call this%basis%init(def%node_xi, def%basis_terms, err)
     if (allocated(err)) then
       call add_context(err, 'element kind ' // def%name)
       return
@@ -241,7 +245,7 @@ contains
   subroutine kind_free(this)
     class(element_kind_t), intent(inout) :: this
     type(element_kind_t) :: empty
-    call this%basis%free()
+    ! Every component back to its default (allocatable ones deallocated by the assignment).
     select type (this)
     type is (element_kind_t)
       this = empty

@@ -249,6 +249,7 @@ contains
     type(test_suite_t), intent(inout) :: suite
     type(element_catalogue_t), intent(inout) :: catalogue
     type(kind_definition_t) :: def
+    type(element_kind_t) :: unnamed
     type(error_t), allocatable :: err
     logical :: found
     integer :: f, index
@@ -283,6 +284,11 @@ contains
     call suite%check(allocated(err), 'a face node outside the element is refused')
     if (allocated(err)) call suite%check(err%message == 'element kind BROKEN: face 1: node &
                                          &outside the element', 'broken: ' // err%message)
+    deallocate (def%name)
+    call catalogue%add(def, err)
+    call suite%check(allocated(err), 'a kind without a name is refused')
+    call unnamed%init(def, err)
+    call suite%check(allocated(err) .and. unnamed%n_nodes == 0, 'init refuses a kind without a name')
     call suite%equal_int(catalogue%size(), 10, 'refused kinds are not added')
   end subroutine check_registration
 
