@@ -33,7 +33,8 @@
 !> interpolations reproduce u), so it is exact whatever the shapes and the degree.
 !> Faces: 4-node bilinear quads. The public interface takes the node count from the array
 !> shape and the result is sized by MORTAR_FACE_NODES_MAX, so that other face kinds (3, 6,
-!> 8 nodes) need only newton_plane/map_plane_point and their corner lists here.
+!> 8 nodes) need only their shape functions (bilinear_shape, newton_plane), corner lists and a
+!> closest-point projection here.
 module fcs_tie_mortar
   use fcs_kinds, only: dp
   use fcs_contact_geometry, only: segment_point_t, segment_point, project_to_segment
@@ -82,6 +83,9 @@ module fcs_tie_mortar
   integer, parameter :: NEWTON_MAX_ITERATIONS = 30
   !> A plane point inside a projected face maps to |xi_alpha| <= 1 + this.
   real(dp), parameter :: INSIDE_TOLERANCE = 1.0e-8_dp
+  !> Natural coordinates of the 4 corners of a bilinear quad.
+  real(dp), parameter :: XI_CORNER(2, QUAD4_NODES) = reshape([-1.0_dp, -1.0_dp, 1.0_dp, -1.0_dp, &
+    1.0_dp, 1.0_dp, -1.0_dp, 1.0_dp], [2, 4])
 
   !> Radon's 7-point rule, Dunavant (1985) degree 5: barycentric points and weights (sum 1).
   real(dp), parameter :: SQRT15 = sqrt(15.0_dp)
@@ -153,6 +157,16 @@ module fcs_tie_mortar
     real(dp) :: axis(3, 2) = 0.0_dp
   end type mid_plane_t
 
+  !> One face pair seen from the slave mid-plane: both faces' nodes, and the plane
+  !> coordinates of their corners in node order (the projected faces' bilinear maps).
+  type :: pair_geometry_t
+    type(mid_plane_t) :: plane
+    real(dp) :: xs(3, QUAD4_NODES) = 0.0_dp
+    real(dp) :: xm(3, QUAD4_NODES) = 0.0_dp
+    real(dp) :: slave_corners(2, QUAD4_NODES) = 0.0_dp
+    real(dp) :: master_corners(2, QUAD4_NODES) = 0.0_dp
+  end type pair_geometry_t
+
   !> The slave and master points of one plane point y (master: the closest point P(x_s)), and
   !> the master coordinates of the point below y along n_0.
   type :: point_pair_t
@@ -181,7 +195,7 @@ contains
     integer, intent(out) :: status
     type(mortar_options_t), intent(in), optional :: options
     type(mortar_options_t) :: opts
-    type(mid_plane_t) :: plane
+    type(pair_geometry_t) :: geometry
     type(polygon_t) :: slave_polygon, master_polygon, overlap
     type(point_pair_t) :: points
     if (present(options)) opts = options
@@ -195,10 +209,10 @@ contains
       status = MORTAR_UNSUPPORTED_FACE
       return
     end if
-    call orientation_check(xs, xm, opts, plane, status)
+    call orientation_check(xs, xm, opts, geometry, status)
     if (status /= MORTAR_FOUND) return
-    slave_polygon = projected_face(xs, plane)
-    master_polygon = projected_face(xm, plane)
+    slave_polygon = corner_polygon(geometry%slave_corners)
+    master_polygon = corner_polygon(geometry%master_corners)
     if (.not. (is_convex(slave_polygon) .and. is_convex(master_polygon))) then
       status = MORTAR_BAD_POLYGON
       return
@@ -210,29 +224,35 @@ contains
       status = MORTAR_NO_OVERLAP
       return
     end if
-    call distance_check(xs, xm, plane, overlap, max_distance, points, status)
+    call distance_check(geometry, overlap, max_distance, points, status)
     if (status /= MORTAR_FOUND) return
     pair%slave_nodes = QUAD4_NODES
     pair%master_nodes = QUAD4_NODES
-    call integrate_overlap(xs, xm, plane, overlap, triangle_rule(opts%degree), points, pair, status)
+    call integrate_overlap(geometry, overlap, triangle_rule(opts%degree), points, pair, status)
     if (status /= MORTAR_FOUND) pair = mortar_pair_t()
   end subroutine mortar_face_pair
 
-  !> The slave mid-plane, and whether the normals at the face centres are parallel enough.
-  pure subroutine orientation_check(xs, xm, opts, plane, status)
+  !> The pair's geometry (slave mid-plane, corners in it), and whether the normals at the
+  !> face centres are parallel enough.
+  pure subroutine orientation_check(xs, xm, opts, geometry, status)
     real(dp), intent(in) :: xs(3, QUAD4_NODES), xm(3, QUAD4_NODES)
     type(mortar_options_t), intent(in) :: opts
-    type(mid_plane_t), intent(out) :: plane
+    type(pair_geometry_t), intent(out) :: geometry
     integer, intent(out) :: status
     type(segment_point_t) :: ps, pm
     real(dp) :: cosine
+    integer :: i
     ps = segment_point(xs, [0.0_dp, 0.0_dp])
     pm = segment_point(xm, [0.0_dp, 0.0_dp])
     status = MORTAR_BAD_POLYGON
     if (ps%area_factor <= tiny(1.0_dp) .or. pm%area_factor <= tiny(1.0_dp)) return
-    plane%origin = ps%x
-    plane%normal = ps%normal
-    plane%axis = ps%e
+    geometry%plane = mid_plane_t(ps%x, ps%normal, ps%e)
+    geometry%xs = xs
+    geometry%xm = xm
+    do i = 1, QUAD4_NODES
+      geometry%slave_corners(:, i) = plane_coordinates(geometry%plane, xs(:, i))
+      geometry%master_corners(:, i) = plane_coordinates(geometry%plane, xm(:, i))
+    end do
     cosine = dot_product(ps%normal, pm%normal)
     if (opts%opposed) then
       cosine = -cosine
@@ -251,18 +271,14 @@ contains
     y = matmul(x - plane%origin, plane%axis)
   end function plane_coordinates
 
-  !> The polygon of a face's corners projected onto the plane, made counter-clockwise.
-  pure function projected_face(x, plane) result(polygon)
-    real(dp), intent(in) :: x(3, QUAD4_NODES)
-    type(mid_plane_t), intent(in) :: plane
+  !> The polygon of a face's projected corners, made counter-clockwise.
+  pure function corner_polygon(corners) result(polygon)
+    real(dp), intent(in) :: corners(:, :)
     type(polygon_t) :: polygon
-    integer :: i
-    polygon%n = QUAD4_NODES
-    do i = 1, QUAD4_NODES
-      polygon%y(:, i) = plane_coordinates(plane, x(:, i))
-    end do
+    polygon%n = size(corners, 2)
+    polygon%y(:, 1:polygon%n) = corners
     if (signed_area(polygon) < 0.0_dp) polygon%y(:, 1:polygon%n) = polygon%y(:, polygon%n:1:-1)
-  end function projected_face
+  end function corner_polygon
 
   !> Shoelace area, positive for a counter-clockwise polygon.
   pure function signed_area(polygon) result(area)
@@ -388,66 +404,75 @@ contains
     c = sum(polygon%y(:, 1:polygon%n), dim=2) / polygon%n
   end function vertex_centroid
 
-  !> Newton for the face point above plane point y: solve P_plane(x(xi)) = y, the projected
-  !> bilinear map, from xi_start; p is the face geometry there.
-  pure subroutine newton_plane(x, plane, y, xi_start, p, converged)
-    real(dp), intent(in) :: x(3, QUAD4_NODES), y(2), xi_start(2)
-    type(mid_plane_t), intent(in) :: plane
-    type(segment_point_t), intent(out) :: p
+  !> Bilinear shape functions N_a(xi) and their derivatives dN_a/dxi_alpha as dshape(alpha, a).
+  pure subroutine bilinear_shape(xi, shape, dshape)
+    real(dp), intent(in) :: xi(2)
+    real(dp), intent(out) :: shape(QUAD4_NODES), dshape(2, QUAD4_NODES)
+    shape = 0.25_dp * (1.0_dp + XI_CORNER(1, :) * xi(1)) * (1.0_dp + XI_CORNER(2, :) * xi(2))
+    dshape(1, :) = 0.25_dp * XI_CORNER(1, :) * (1.0_dp + XI_CORNER(2, :) * xi(2))
+    dshape(2, :) = 0.25_dp * XI_CORNER(2, :) * (1.0_dp + XI_CORNER(1, :) * xi(1))
+  end subroutine bilinear_shape
+
+  !> Natural coordinates of plane point y in the projected face with plane corners
+  !> `corners`: Newton on y(xi) = sum_a N_a(xi) y_a from xi_start. A face projects onto
+  !> the bilinear map of its projected corners, so xi is that of the face point above y.
+  pure subroutine newton_plane(corners, y, xi_start, xi, converged)
+    real(dp), intent(in) :: corners(2, QUAD4_NODES), y(2), xi_start(2)
+    real(dp), intent(out) :: xi(2)
     logical, intent(out) :: converged
-    real(dp) :: residual(2), jac(2, 2), step(2), det
+    real(dp) :: shape(QUAD4_NODES), dshape(2, QUAD4_NODES), residual(2), jac(2, 2), step(2), det
     integer :: iteration
     converged = .false.
-    p = segment_point(x, xi_start)
+    xi = xi_start
     do iteration = 1, NEWTON_MAX_ITERATIONS
-      residual = plane_coordinates(plane, p%x) - y
-      jac = matmul(transpose(plane%axis), p%a)
+      call bilinear_shape(xi, shape, dshape)
+      residual = matmul(corners, shape) - y
+      jac = matmul(corners, transpose(dshape))
       det = jac(1, 1) * jac(2, 2) - jac(1, 2) * jac(2, 1)
       if (abs(det) <= tiny(1.0_dp)) return
       step = -[jac(2, 2) * residual(1) - jac(1, 2) * residual(2), &
                jac(1, 1) * residual(2) - jac(2, 1) * residual(1)] / det
-      if (any(abs(p%xi + step) > 1.0e3_dp)) return
-      p = segment_point(x, p%xi + step)
-      if (maxval(abs(step)) <= 1.0e-13_dp * max(1.0_dp, maxval(abs(p%xi)))) then
+      if (any(abs(xi + step) > 1.0e3_dp)) return
+      xi = xi + step
+      if (maxval(abs(step)) <= 1.0e-13_dp * max(1.0_dp, maxval(abs(xi)))) then
         converged = .true.
         return
       end if
     end do
   end subroutine newton_plane
 
-  !> The face point above plane point y, for y inside the face's projected polygon: Newton
-  !> from xi_start, and again from the centre if that fails or lands outside the face (the
-  !> projected bilinear map has a second root, outside a convex face). converged: found
-  !> within the face (|xi_alpha| <= 1 + INSIDE_TOLERANCE).
-  pure subroutine face_point(x, plane, y, xi_start, p, converged)
-    real(dp), intent(in) :: x(3, QUAD4_NODES), y(2), xi_start(2)
-    type(mid_plane_t), intent(in) :: plane
-    type(segment_point_t), intent(out) :: p
+  !> newton_plane for y inside the projected face: from xi_start, and again from the centre if
+  !> that fails or lands outside the face (the bilinear map has a second root, outside a
+  !> convex face). converged: found within the face (|xi_alpha| <= 1 + INSIDE_TOLERANCE).
+  pure subroutine plane_inverse(corners, y, xi_start, xi, converged)
+    real(dp), intent(in) :: corners(2, QUAD4_NODES), y(2), xi_start(2)
+    real(dp), intent(out) :: xi(2)
     logical, intent(out) :: converged
-    call newton_plane(x, plane, y, xi_start, p, converged)
-    if (converged) converged = maxval(abs(p%xi)) <= 1.0_dp + INSIDE_TOLERANCE
+    call newton_plane(corners, y, xi_start, xi, converged)
+    if (converged) converged = maxval(abs(xi)) <= 1.0_dp + INSIDE_TOLERANCE
     if (converged) return
-    call newton_plane(x, plane, y, [0.0_dp, 0.0_dp], p, converged)
-    if (converged) converged = maxval(abs(p%xi)) <= 1.0_dp + INSIDE_TOLERANCE
-  end subroutine face_point
+    call newton_plane(corners, y, [0.0_dp, 0.0_dp], xi, converged)
+    if (converged) converged = maxval(abs(xi)) <= 1.0_dp + INSIDE_TOLERANCE
+  end subroutine plane_inverse
 
   !> The points of plane point y: the slave point above it, the master point below it along
   !> n_0, and from there the closest-point projection P(x_s) onto the master. `points` holds
   !> the previous plane point's results on entry (the starts of the Newton iterations).
-  pure subroutine map_plane_point(xs, xm, plane, y, points, converged)
-    real(dp), intent(in) :: xs(3, QUAD4_NODES), xm(3, QUAD4_NODES), y(2)
-    type(mid_plane_t), intent(in) :: plane
+  pure subroutine map_plane_point(geometry, y, points, converged)
+    type(pair_geometry_t), intent(in) :: geometry
+    real(dp), intent(in) :: y(2)
     type(point_pair_t), intent(inout) :: points
     logical, intent(out) :: converged
-    type(segment_point_t) :: slave, below, master
-    real(dp) :: gap
-    call face_point(xs, plane, y, points%slave%xi, slave, converged)
+    type(segment_point_t) :: slave, master
+    real(dp) :: xi_slave(2), xi_below(2), gap
+    call plane_inverse(geometry%slave_corners, y, points%slave%xi, xi_slave, converged)
     if (.not. converged) return
-    call face_point(xm, plane, y, points%master_below, below, converged)
+    call plane_inverse(geometry%master_corners, y, points%master_below, xi_below, converged)
     if (.not. converged) return
-    call project_to_segment(xm, slave%x, below%xi, master, gap, converged)
+    slave = segment_point(geometry%xs, xi_slave)
+    call project_to_segment(geometry%xm, slave%x, xi_below, master, gap, converged)
     if (.not. converged) return
-    points = point_pair_t(slave, master, below%xi)
+    points = point_pair_t(slave, master, xi_below)
   end subroutine map_plane_point
 
   !> Area factor dA_surface / dA_plane = |a_1 x a_2| / |(a_1 x a_2) . n_0| at slave point p.
@@ -460,14 +485,14 @@ contains
 
   !> Distance between the slave surface and its closest point on the master at the overlap's
   !> centroid; MORTAR_TOO_FAR beyond max_distance. points: the points found there.
-  pure subroutine distance_check(xs, xm, plane, overlap, max_distance, points, status)
-    real(dp), intent(in) :: xs(3, QUAD4_NODES), xm(3, QUAD4_NODES), max_distance
-    type(mid_plane_t), intent(in) :: plane
+  pure subroutine distance_check(geometry, overlap, max_distance, points, status)
+    type(pair_geometry_t), intent(in) :: geometry
+    real(dp), intent(in) :: max_distance
     type(polygon_t), intent(in) :: overlap
     type(point_pair_t), intent(out) :: points
     integer, intent(out) :: status
     logical :: converged
-    call map_plane_point(xs, xm, plane, vertex_centroid(overlap), points, converged)
+    call map_plane_point(geometry, vertex_centroid(overlap), points, converged)
     status = MORTAR_NOT_CONVERGED
     if (.not. converged) return
     status = MORTAR_FOUND
@@ -477,15 +502,14 @@ contains
   !> Integrate D, M, E and the area over the clip polygon: a fan of triangles from the vertex
   !> centroid, `rule` on each (see the module comment). D and E are made exactly symmetric.
   !> points: those of the centroid, where the searches start.
-  pure subroutine integrate_overlap(xs, xm, plane, overlap, rule, points, pair, status)
-    real(dp), intent(in) :: xs(3, QUAD4_NODES), xm(3, QUAD4_NODES)
-    type(mid_plane_t), intent(in) :: plane
+  pure subroutine integrate_overlap(geometry, overlap, rule, points, pair, status)
+    type(pair_geometry_t), intent(in) :: geometry
     type(polygon_t), intent(in) :: overlap
     type(triangle_rule_t), intent(in) :: rule
     type(point_pair_t), intent(inout) :: points
     type(mortar_pair_t), intent(inout) :: pair
     integer, intent(out) :: status
-    real(dp) :: corner(2, 3), triangle_area
+    real(dp) :: corner(2, 3), triangle_area, weight
     logical :: converged
     integer :: i, q
     status = MORTAR_NOT_CONVERGED
@@ -495,10 +519,10 @@ contains
       corner(:, 3) = overlap%y(:, modulo(i, overlap%n) + 1)
       triangle_area = 0.5_dp * cross2(corner(:, 2) - corner(:, 1), corner(:, 3) - corner(:, 1))
       do q = 1, rule%n
-        call map_plane_point(xs, xm, plane, matmul(corner, rule%point(:, q)), points, converged)
+        call map_plane_point(geometry, matmul(corner, rule%point(:, q)), points, converged)
         if (.not. converged) return
-        call add_point(pair, rule%weight(q) * triangle_area * area_factor(points%slave, plane), &
-                       points%slave%shape, points%master%shape)
+        weight = rule%weight(q) * triangle_area * area_factor(points%slave, geometry%plane)
+        call add_point(pair, weight, points%slave%shape, points%master%shape)
       end do
     end do
     pair%d = 0.5_dp * (pair%d + transpose(pair%d))
@@ -597,7 +621,8 @@ contains
   pure function mortar_pair_stiffness(pair, penalty) result(k)
     type(mortar_pair_t), intent(in) :: pair
     real(dp), intent(in) :: penalty
-    real(dp) :: k(3 * (pair%slave_nodes + pair%master_nodes), 3 * (pair%slave_nodes + pair%master_nodes))
+    real(dp) :: k(3 * (pair%slave_nodes + pair%master_nodes), &
+                  3 * (pair%slave_nodes + pair%master_nodes))
     real(dp) :: scalar(pair%slave_nodes + pair%master_nodes, pair%slave_nodes + pair%master_nodes)
     integer :: ns, nm, a, b, i
     ns = pair%slave_nodes
