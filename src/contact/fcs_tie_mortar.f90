@@ -118,7 +118,8 @@ module fcs_tie_mortar
 
   !> Tolerances of the pair test besides the distance.
   type :: mortar_options_t
-    !> Smallest accepted |n_s . n_m| at the face centres (cosine of the largest angle).
+    !> Smallest accepted cosine of the angle between n_s and -n_m (opposed) or +-n_m (not
+    !> opposed), the unit normals at the face centres; in (0, 1].
     real(dp) :: min_cosine = MORTAR_DEFAULT_MIN_COSINE
     !> .true.: the normals must be opposed (outward faces of two bodies); .false.: either
     !> opposed or pointing the same way.
@@ -137,7 +138,8 @@ module fcs_tie_mortar
   end type triangle_rule_t
 
   !> The pairs of a whole tie, built from candidate lists (init), with the count of each
-  !> outcome and the list of refused pairs (bad polygon, no convergence, unsupported face).
+  !> outcome and the list of refused pairs (bad polygon, no convergence, unsupported face,
+  !> bad options): the benign outcomes (no overlap, too far, not parallel) are only counted.
   type :: mortar_tie_t
     type(mortar_pair_t), allocatable :: pairs(:)
     integer :: n_pairs = 0
@@ -187,7 +189,8 @@ contains
   !> nodes ordered so that a_1 x a_2 points out of each body). status = MORTAR_FOUND when
   !> they overlap and pair holds the matrices (slave_face, master_face left 0); otherwise the
   !> reason, and pair is zero. max_distance (length): pairs whose master surface is farther
-  !> than it from the slave surface, at the centroid of the overlap, are skipped.
+  !> than it from the slave surface, at the centroid of the overlap, are skipped (status
+  !> MORTAR_TOO_FAR). options: angle tolerance, orientation, quadrature degree.
   pure subroutine mortar_face_pair(xs, xm, max_distance, pair, status, options)
     real(dp), intent(in) :: xs(:, :), xm(:, :)
     real(dp), intent(in) :: max_distance
@@ -667,9 +670,11 @@ contains
     end select
   end function mortar_status_name
 
-  !> All pairs of a tie: slave face s (nodes slave_x(:, :, s)) against the master faces
-  !> candidates(candidate_start(s) : candidate_start(s + 1) - 1) (indices into master_x),
-  !> e.g. from a bucket grid. The pairs found are kept in slave, candidate order.
+  !> All pairs of a tie: slave face s (node coordinates slave_x(:, :, s), of shape (3, nodes
+  !> per face, slave faces)) against the master faces candidates(candidate_start(s) :
+  !> candidate_start(s + 1) - 1) (indices into master_x(3, nodes per face, master faces)),
+  !> e.g. from a bucket grid; candidate_start has one entry per slave face plus one. The
+  !> pairs found are kept in slave, candidate order, with their face indices set.
   pure subroutine tie_init(this, slave_x, master_x, candidate_start, candidates, max_distance, &
                            options)
     class(mortar_tie_t), intent(inout) :: this
