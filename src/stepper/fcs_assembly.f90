@@ -18,7 +18,7 @@ module fcs_assembly
   implicit none
   private
   public :: material_slot_t, make_materials, assemble_elements, assemble_pressures
-  public :: element_cliques, element_configuration, inverted_element_error
+  public :: element_cliques, element_configuration, inverted_element_error, plastic_fields
 
   !> One material object per *MATERIAL.
   type :: material_slot_t
@@ -38,12 +38,34 @@ contains
     allocate (slots(size(model%materials)))
     n_state = 0
     do k = 1, size(model%materials)
-      call create_material('HYPOELASTIC', model%materials(k)%youngs_modulus, &
-                           model%materials(k)%poisson_ratio, slots(k)%m, err)
+      call create_material(model%materials(k)%youngs_modulus, model%materials(k)%poisson_ratio, &
+                           model%materials(k)%plastic, slots(k)%m, err)
       if (allocated(err)) return
       n_state = max(n_state, slots(k)%m%n_state())
     end do
   end subroutine make_materials
+
+  !> The plastic state of every integration point, as each element's material reports it:
+  !> equivalent plastic strain peeq(q, e), plastic strain(6, q, e) (Voigt, engineering shear)
+  !> and back stress(6, q, e); zeros for materials without plasticity.
+  subroutine plastic_fields(model, state, slots, peeq, plastic_strain, back_stress)
+    type(model_t), intent(in) :: model
+    type(state_t), intent(in) :: state
+    type(material_slot_t), intent(in) :: slots(:)
+    real(dp), allocatable, intent(out) :: peeq(:, :), plastic_strain(:, :, :), back_stress(:, :, :)
+    integer :: e, q
+    allocate (peeq(N_GAUSS_HEX8, state%n_elements), plastic_strain(6, N_GAUSS_HEX8, state%n_elements), &
+              back_stress(6, N_GAUSS_HEX8, state%n_elements))
+    do e = 1, state%n_elements
+      associate (material => slots(model%sections(model%element_section(e))%material)%m)
+        do q = 1, N_GAUSS_HEX8
+          peeq(q, e) = material%equivalent_plastic_strain(state%material_state(:, q, e))
+          plastic_strain(:, q, e) = material%plastic_strain(state%material_state(:, q, e))
+          back_stress(:, q, e) = material%back_stress(state%material_state(:, q, e))
+        end do
+      end associate
+    end do
+  end subroutine plastic_fields
 
   !> Node lists of the given elements as cliques for the sparse pattern.
   subroutine element_cliques(model, elements, clique_ptr, clique_nodes)

@@ -28,7 +28,9 @@ module fcs_static_explicit
   use fcs_rmin_events, only: rmin_collector_t, rmin_event_t, EVENT_STRAIN_LIMIT, &
                              EVENT_ROTATION_LIMIT, EVENT_YIELD, event_kind_name, EVENT_NONE, &
                              EVENT_FULL_INCREMENT, EVENT_SLIP_RATE_CHANGE, EVENT_FRICTION_CHANGE, &
-                             EVENT_STATE_CHANGE
+                             EVENT_STATE_CHANGE, EVENT_PLASTIC_STRAIN_LIMIT
+  use fcs_material, only: material_t
+  use fcs_voigt, only: spin_rotation, rotate_stress_like, rotate_strain_like
   use fcs_timer, only: phase_timer_t
   use fcs_contact_system, only: contact_system_t
   use fcs_assembly, only: element_cliques
@@ -477,8 +479,8 @@ contains
     type(error_t), allocatable, intent(out) :: err
     type(hex8_geometry_t) :: geo
     real(dp) :: strain(6, N_GAUSS_HEX8), spin(3, 3, N_GAUSS_HEX8), equivalent(N_GAUSS_HEX8)
-    real(dp) :: angle(N_GAUSS_HEX8), du(3, 8), stress_increment(6), strain_fixed(6, N_GAUSS_HEX8)
-    real(dp) :: tangent(6, 6), stress_start(6)
+    real(dp) :: angle(N_GAUSS_HEX8), du(3, 8), strain_fixed(6, N_GAUSS_HEX8)
+    real(dp) :: r_yield, r_plastic
     integer :: e, q, s, i
     logical :: ok, bbar
     call a%collector%reset()
@@ -507,11 +509,11 @@ contains
       call hex8_strain_increments(geo, du, bbar, strain_fixed, spin, equivalent, angle)
       associate (material => a%materials(model%sections(s)%material)%m)
         do q = 1, N_GAUSS_HEX8
-          tangent = material%tangent(a%state%stress(:, q, e), a%state%material_state(:, q, e))
-          stress_start = a%state%stress(:, q, e) + matmul(tangent, strain_fixed(:, q))
-          stress_increment = matmul(tangent, strain(:, q))
-          call a%collector%offer(material%event_fraction(stress_start, stress_increment, &
-                                 a%state%material_state(:, q, e)), EVENT_YIELD, e, q)
+          call material%point_events(a%state%stress(:, q, e), a%state%material_state(:, q, e), &
+                                     strain_fixed(:, q), strain(:, q), &
+                                     step%rmin%max_plastic_strain_increment, r_yield, r_plastic)
+          call a%collector%offer(r_yield, EVENT_YIELD, e, q)
+          call a%collector%offer(r_plastic, EVENT_PLASTIC_STRAIN_LIMIT, e, q)
         end do
       end associate
     end do
@@ -539,7 +541,7 @@ contains
     type(error_t), allocatable, intent(out) :: err
     type(hex8_geometry_t) :: geo
     real(dp) :: strain(6, N_GAUSS_HEX8), spin(3, 3, N_GAUSS_HEX8), equivalent(N_GAUSS_HEX8)
-    real(dp) :: angle(N_GAUSS_HEX8), du(3, 8), x(3, 8), updated(6), increment(6)
+    real(dp) :: angle(N_GAUSS_HEX8), du(3, 8), x(3, 8)
     integer :: e, q, s, i
     logical :: ok, bbar, nlgeom
     nlgeom = step%nlgeom
@@ -558,26 +560,51 @@ contains
       call hex8_strain_increments(geo, du, bbar, strain, spin, equivalent, angle)
       associate (material => a%materials(model%sections(s)%material)%m)
         do q = 1, N_GAUSS_HEX8
-          updated = a%state%stress(:, q, e)
-          call material%update(updated, strain(:, q), a%state%material_state(:, q, e))
-          if (nlgeom) then
-            ! Half of the constitutive increment before the rotation, half after: the
-            ! midpoint form of the Hughes-Winget update, second order in the increment and
-            ! still exact under rigid rotation (the increment is zero then).
-            increment = updated - a%state%stress(:, q, e)
-            a%state%stress(:, q, e) = hex8_rotate_stress(a%state%stress(:, q, e) + 0.5_dp * increment, &
-                                                         spin(:, :, q)) + 0.5_dp * increment
-            a%state%strain(:, q, e) = rotate_strain(a%state%strain(:, q, e) + 0.5_dp * strain(:, q), &
-                                                    spin(:, :, q)) + 0.5_dp * strain(:, q)
-          else
-            a%state%stress(:, q, e) = updated
-            a%state%strain(:, q, e) = a%state%strain(:, q, e) + strain(:, q)
-          end if
+          call update_point(material, nlgeom, strain(:, q), spin(:, :, q), a%state%stress(:, q, e), &
+                            a%state%strain(:, q, e), a%state%material_state(:, q, e))
         end do
       end associate
     end do
     record%n_events_taken = count_taken(a, r)
   end subroutine update_elements
+
+  !> The objective update of one integration point (doc/theory.md, 1.4): strain increment
+  !> and spin increment on the mid-increment configuration; `stress`, `strain` (accumulated,
+  !> output only) and the material's `state` go from the start to the end of the increment and
+  !> depend on nothing else, so an increment recomputed from its saved start gives the same
+  !> result.
+  !> * A material without internal variables: the midpoint Hughes-Winget update (1f), half of
+  !>   the constitutive increment before the rotation and half after, second order in the
+  !>   increment and exact under rigid rotation.
+  !> * A material with internal variables (a yield surface): the stress and the tensor-valued
+  !>   variables are rotated first, Q sigma Q^T, and the material's update (return mapping)
+  !>   then works in the rotated frame (1g; Simo & Hughes 1998, section 8.3), so that the
+  !>   stress it returns lies on the yield surface; the midpoint split would move the returned
+  !>   stress off the surface by the rotation of half an increment (second order).
+  !> Without NLGEOM there is no rotation: sigma + the material's increment.
+  pure subroutine update_point(material, nlgeom, strain_increment, spin, stress, strain, state)
+    class(material_t), intent(in) :: material
+    logical, intent(in) :: nlgeom
+    real(dp), intent(in) :: strain_increment(6), spin(3, 3)
+    real(dp), intent(inout) :: stress(6), strain(6), state(:)
+    real(dp) :: updated(6), increment(6), q(3, 3)
+    if (nlgeom .and. material%n_state() > 0) then
+      q = spin_rotation(spin)
+      stress = rotate_stress_like(stress, q)
+      call material%rotate_state(state, q)
+      call material%update(stress, strain_increment, state)
+      strain = rotate_strain_like(strain, q) + strain_increment
+    else if (nlgeom) then
+      updated = stress
+      call material%update(updated, strain_increment, state)
+      increment = updated - stress
+      stress = hex8_rotate_stress(stress + 0.5_dp * increment, spin) + 0.5_dp * increment
+      strain = rotate_strain(strain + 0.5_dp * strain_increment, spin) + 0.5_dp * strain_increment
+    else
+      call material%update(stress, strain_increment, state)
+      strain = strain + strain_increment
+    end if
+  end subroutine update_point
 
   !> Every element must keep a positive Jacobian on the mid-increment and the end
   !> configurations of the increment about to be applied.
@@ -621,7 +648,8 @@ contains
     n = 0
     do i = 1, a%collector%n_events
       if (a%collector%events(i)%kind == EVENT_STRAIN_LIMIT .or. &
-          a%collector%events(i)%kind == EVENT_ROTATION_LIMIT) cycle
+          a%collector%events(i)%kind == EVENT_ROTATION_LIMIT .or. &
+          a%collector%events(i)%kind == EVENT_PLASTIC_STRAIN_LIMIT) cycle
       if (a%collector%events(i)%r <= r) n = n + 1
     end do
   end function count_taken
