@@ -49,6 +49,7 @@ module fcs_drucker_prager
     procedure :: plastic_strain => drucker_prager_plastic_strain
     procedure :: is_plastic => drucker_prager_is_plastic
     procedure :: cohesion => drucker_prager_cohesion
+    procedure :: unloads => drucker_prager_unloads
   end type drucker_prager_t
 
 contains
@@ -228,6 +229,22 @@ contains
       r = min(r, roots(i))
     end do
   end function drucker_prager_event_fraction
+
+  !> Elastic unloading from the smooth part of the cone: dF = 3/2 s : ds / q - tan(beta) dp < 0
+  !> for the elastic trial ds, dp of the increment (at the apex the tangent is elastic anyway).
+  pure logical function drucker_prager_unloads(this, stress, state, strain_increment) result(unloads)
+    class(drucker_prager_t), intent(in) :: this
+    real(dp), intent(in) :: stress(6), state(:), strain_increment(6)
+    real(dp) :: s(6), rate(6), q, p, d
+    s = deviator(stress)
+    q = sqrt(1.5_dp) * stress_norm(s)
+    p = -trace(stress) / 3.0_dp
+    d = this%cohesion(state(PEEQ))
+    unloads = q - p * this%tan_friction - d >= -YIELD_TOLERANCE * d .and. q > YIELD_TOLERANCE * d
+    if (.not. unloads) return
+    rate = matmul(this%elastic_matrix(), strain_increment)
+    unloads = 1.5_dp * stress_dot(s, deviator(rate)) / q + this%tan_friction * trace(rate) / 3.0_dp < 0.0_dp
+  end function drucker_prager_unloads
 
   !> Rotate the plastic strain with the stress.
   pure subroutine drucker_prager_rotate_state(this, state, q)

@@ -49,6 +49,7 @@ module fcs_von_mises
     procedure :: plastic_strain => von_mises_plastic_strain
     procedure :: back_stress => von_mises_back_stress
     procedure :: is_plastic => von_mises_is_plastic
+    procedure :: unloads => von_mises_unloads
   end type von_mises_t
 
 contains
@@ -143,6 +144,17 @@ contains
       r = (root - b) / (2.0_dp * a)
     end if
   end function von_mises_event_fraction
+
+  !> Elastic unloading from the surface: xi : dev(C de) < 0 for a point on it.
+  pure logical function von_mises_unloads(this, stress, state, strain_increment) result(unloads)
+    class(von_mises_t), intent(in) :: this
+    real(dp), intent(in) :: stress(6), state(:), strain_increment(6)
+    real(dp) :: xi(6)
+    xi = deviator(stress) - state(BACK_STRESS:BACK_STRESS + 5)
+    unloads = sqrt(1.5_dp) * stress_norm(xi) >= this%radius%value(state(PEEQ)) * &
+              (1.0_dp - YIELD_TOLERANCE)
+    if (unloads) unloads = stress_dot(xi, deviator(matmul(this%elastic_matrix(), strain_increment))) < 0.0_dp
+  end function von_mises_unloads
 
   !> Rotate the plastic strain and the back stress with the stress.
   pure subroutine von_mises_rotate_state(this, state, q)

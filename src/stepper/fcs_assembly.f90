@@ -108,8 +108,9 @@ contains
   end subroutine inverted_element_error
 
   !> Internal forces f_int (3*n_nodes) of the given elements and, when `matrix` is present,
-  !> their tangent K added into it (values only: the caller zeroes it).
-  subroutine assemble_elements(model, state, slots, nlgeom, elements, f_int, err, matrix)
+  !> their tangent K added into it (values only: the caller zeroes it). Points marked in
+  !> `elastic(q, e)` (elastic unloading) take the elastic tangent.
+  subroutine assemble_elements(model, state, slots, nlgeom, elements, f_int, err, matrix, elastic)
     type(model_t), intent(in) :: model
     type(state_t), intent(in) :: state
     type(material_slot_t), intent(in) :: slots(:)
@@ -118,6 +119,7 @@ contains
     real(dp), intent(out) :: f_int(:)
     type(error_t), allocatable, intent(out) :: err
     type(sparse_matrix_t), intent(inout), optional :: matrix
+    logical, intent(in), optional :: elastic(:, :)
     type(hex8_geometry_t) :: geo
     real(dp) :: k(24, 24), f(24), c(6, 6, N_GAUSS_HEX8)
     integer :: e, q, a, node, s, i
@@ -142,6 +144,11 @@ contains
         do q = 1, N_GAUSS_HEX8
           c(:, :, q) = material%tangent(state%stress(:, q, e), state%material_state(:, q, e))
         end do
+        if (present(elastic)) then
+          do q = 1, N_GAUSS_HEX8
+            if (elastic(q, e)) c(:, :, q) = material%elastic_matrix()
+          end do
+        end if
       end associate
       call hex8_tangent(geo, state%stress(:, :, e), c, bbar, nlgeom, k)
       call matrix%add_matrix(model%mesh%connectivity(:, e), k, missing)

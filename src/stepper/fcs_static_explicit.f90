@@ -89,6 +89,9 @@ module fcs_static_explicit
     integer, allocatable :: pressure_cliques(:, :)
     !> A distributed run's pattern changed: the solver needs the whole model's ordering.
     logical :: ordering_due = .false.
+    !> Integration points on their yield surface that the trial increment unloads (q, e):
+    !> assembled with the elastic tangent for the rest of the increment.
+    logical, allocatable :: unloading(:, :)
   end type analysis_t
 
 contains
@@ -123,6 +126,7 @@ contains
         call a%comm%agree_error(err)
         if (allocated(err)) return
       end if
+      if (a%materials_have_states) call reset_unloading(a)
       do pass = 1, MAX_STATE_PASSES
         call a%timers%start('assembly')
         call assemble_system(a, model, step, t0, dt, err)
@@ -138,9 +142,11 @@ contains
         call solve_system(a, model%mesh%node_id, err)
         call a%comm%agree_error(err)
         if (allocated(err)) return
-        if (a%contact%n_slaves() == 0) exit
+        if (a%contact%n_slaves() == 0 .and. .not. a%materials_have_states) exit
         a%du = a%du_residual + a%du_load
-        call a%contact%switch_states(a%x_contact, state%contact, a%du, n_switched)
+        n_switched = 0
+        if (a%contact%n_slaves() > 0) call a%contact%switch_states(a%x_contact, state%contact, a%du, n_switched)
+        if (a%materials_have_states) call switch_unloading(a, model, step%nlgeom, n_switched)
         record%n_switches = record%n_switches + n_switched
         if (n_switched == 0) exit
       end do
@@ -239,8 +245,13 @@ contains
     type(error_t), allocatable, intent(out) :: err
     real(dp), allocatable :: scratch(:)
     call a%matrix%zero()
-    call assemble_elements(model, a%state, a%materials, step%nlgeom, a%my_elements, a%f_int, err, &
-                           a%matrix)
+    if (a%materials_have_states) then
+      call assemble_elements(model, a%state, a%materials, step%nlgeom, a%my_elements, a%f_int, err, &
+                             a%matrix, a%unloading)
+    else
+      call assemble_elements(model, a%state, a%materials, step%nlgeom, a%my_elements, a%f_int, err, &
+                             a%matrix)
+    end if
     call a%comm%agree_error(err)
     if (allocated(err)) return
     if (step%nlgeom .and. a%comm%is_root()) then
@@ -518,6 +529,51 @@ contains
       end associate
     end do
   end subroutine collect_events
+
+  !> No point unloads at the start of an increment.
+  subroutine reset_unloading(a)
+    type(analysis_t), intent(inout) :: a
+    if (.not. allocated(a%unloading)) allocate (a%unloading(N_GAUSS_HEX8, a%state%n_elements))
+    a%unloading = .false.
+  end subroutine reset_unloading
+
+  !> Elastic unloading as a state switch (doc/theory.md 6.3; Yamada, Yoshimura & Sakurai
+  !> 1968): every point on its yield surface that the trial increment a%du moves inwards
+  !> (material%unloads, strain increment on the start configuration) takes the elastic tangent
+  !> for the rest of the increment; `n_switched` grows by the number of new such points over
+  !> all processes (the increment is then solved again).
+  subroutine switch_unloading(a, model, nlgeom, n_switched)
+    type(analysis_t), intent(inout) :: a
+    type(model_t), intent(in) :: model
+    logical, intent(in) :: nlgeom
+    integer, intent(inout) :: n_switched
+    type(hex8_geometry_t) :: geo
+    real(dp) :: strain(6, N_GAUSS_HEX8), spin(3, 3, N_GAUSS_HEX8), equivalent(N_GAUSS_HEX8)
+    real(dp) :: angle(N_GAUSS_HEX8), count(1)
+    integer :: e, q, s, i
+    logical :: ok
+    count = 0.0_dp
+    do i = 1, size(a%my_elements)
+      e = a%my_elements(i)
+      s = model%element_section(e)
+      call hex8_geometry(element_configuration(model, a%state, e, nlgeom), geo, ok)
+      if (.not. ok) cycle
+      call hex8_strain_increments(geo, element_increment(a%du, model%mesh%connectivity(:, e)), &
+                                  model%sections(s)%formulation == FORMULATION_BBAR, strain, spin, &
+                                  equivalent, angle)
+      associate (material => a%materials(model%sections(s)%material)%m)
+        do q = 1, N_GAUSS_HEX8
+          if (a%unloading(q, e)) cycle
+          if (.not. material%unloads(a%state%stress(:, q, e), a%state%material_state(:, q, e), &
+                                     strain(:, q))) cycle
+          a%unloading(q, e) = .true.
+          count = count + 1.0_dp
+        end do
+      end associate
+    end do
+    call a%comm%sum_real(count)
+    n_switched = n_switched + nint(count(1))
+  end subroutine switch_unloading
 
   !> Nodal displacement increments of one element.
   pure function element_increment(du, nodes) result(du_e)
