@@ -62,7 +62,7 @@ def drucker_prager_cards(young, poisson, beta, psi, curve, hardening_type='COMPR
 
 class Frames:
     """The frames of <job>.h5: times (n), stress (n, ne, 8, 6) in fcs3d's Voigt order,
-    peeq (n, ne, 8), displacement (n, nodes, 3) and reference coordinates (nodes, 3);
+    peeq (n, ne, 8), plastic_strain (n, ne, 8, 6: tensor components, Voigt order), displacement (n, nodes, 3) and reference coordinates (nodes, 3);
     node_ids to find nodes by id."""
 
     def __init__(self, path):
@@ -74,6 +74,8 @@ class Frames:
                                     for n in names])
             self.peeq = np.array([f['frames'][n]['integration_points/PEEQ'][()][..., 0]
                                   for n in names])
+            self.plastic_strain = np.array([f['frames'][n]['integration_points/PE'][()][..., FROM_XDMF]
+                                            for n in names])
             self.displacement = np.array([f['frames'][n]['nodal/displacement'][()]
                                           for n in names])
             self.force = np.array([f['frames'][n]['nodal/force'][()] for n in names])
