@@ -37,13 +37,19 @@ contains
     logical, intent(in), optional :: append
     integer :: stat
     character(len=256) :: msg
-    character(len=8) :: position
-    position = 'rewind'
-    if (present(append)) then
-      if (append) position = 'append'
+    logical :: appending
+    appending = .false.
+    if (present(append)) appending = append
+    ! A new run replaces an earlier run's file at once: opened without status='replace', the
+    ! old contents would stay until the first table is written, and a checkpoint written
+    ! before that would record their size as this run's (a restart then kept them).
+    if (appending) then
+      open (newunit=this%unit, file=path, action='write', position='append', iostat=stat, &
+            iomsg=msg)
+    else
+      open (newunit=this%unit, file=path, action='write', status='replace', iostat=stat, &
+            iomsg=msg)
     end if
-    open (newunit=this%unit, file=path, action='write', position=trim(position), iostat=stat, &
-          iomsg=msg)
     if (stat /= 0) call fatal_error(err, 'opening ' // path // ': ' // trim(msg))
   end subroutine dat_open
 
