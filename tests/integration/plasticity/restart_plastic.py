@@ -4,8 +4,8 @@ from its newest checkpoint ends with the one-go run's outputs, bit for bit.
     restart_plastic.py WORKDIR
 
 The problem: a bar 6 x 2 x 2 (8 x 2 x 2 C3D8, B-bar) clamped at x = 0, its end x = 6 pushed
-sideways by 0.3 (NLGEOM) and back to -0.1 (about 160 increments, under a second): von Mises plasticity with combined hardening (isotropic *CYCLIC HARDENING,
-kinematic *PLASTIC curve), so that the checkpoint must carry the equivalent plastic strain,
+sideways by 0.3 (NLGEOM) and back to -0.1 (about 160 increments, under a second): von Mises
+plasticity with combined hardening (isotropic *CYCLIC HARDENING, kinematic *PLASTIC curve), so that the checkpoint must carry the equivalent plastic strain,
 the plastic strain and the back stress of every point, and the restarted run must rotate them
 and return-map as the one-go run does. Step 1 bends the bar until the plastic zone spreads
 from the clamp (yield events, the plastic strain limit); step 2 unloads and reverses
