@@ -18,7 +18,7 @@
 !> Internal variables (7): eps_bar (PEEQ) and the plastic strain (6, engineering shear).
 module fcs_drucker_prager
   use fcs_kinds, only: dp
-  use fcs_material, only: material_t, YIELD_TOLERANCE
+  use fcs_material, only: material_t, YIELD_TOLERANCE, UNLOADING_COSINE
   use fcs_hardening_table, only: hardening_table_t, solve_flow_equation
   use fcs_voigt, only: VOIGT_IDENTITY, deviator, stress_norm, stress_dot, trace, &
                        deviatoric_projector, outer, rotate_strain_like
@@ -50,6 +50,8 @@ module fcs_drucker_prager
     procedure :: is_plastic => drucker_prager_is_plastic
     procedure :: cohesion => drucker_prager_cohesion
     procedure :: unloads => drucker_prager_unloads
+    procedure :: on_surface => drucker_prager_on_surface
+    procedure :: loading_cosine => drucker_prager_loading_cosine
   end type drucker_prager_t
 
 contains
@@ -71,14 +73,10 @@ contains
     class(drucker_prager_t), intent(in) :: this
     real(dp), intent(in) :: stress(6), state(:)
     real(dp) :: c(6, 6)
-    real(dp) :: s(6), q, p, d, g, k, a
+    real(dp) :: s(6), g, k, a
     c = this%elastic_matrix()
+    if (.not. this%on_surface(stress, state)) return
     s = deviator(stress)
-    q = sqrt(1.5_dp) * stress_norm(s)
-    p = -trace(stress) / 3.0_dp
-    d = this%cohesion(state(PEEQ))
-    if (q - p * this%tan_friction - d < -YIELD_TOLERANCE * d) return
-    if (q <= YIELD_TOLERANCE * d) return
     g = this%shear_modulus()
     k = this%bulk_modulus()
     s = s / stress_norm(s)
@@ -172,13 +170,13 @@ contains
   !> c < 0 inside the cone. Leaving the cone continuously, the path meets q = h with h >= 0
   !> first, so the yield fraction is the smallest positive root of phi with h >= 0; when phi
   !> has no such root the path can only leave through the apex, where h(r) = 0. A point on the
-  !> cone that keeps loading (dF/dr >= 0) reports none; one that unloads leaves the root at 0
-  !> out and reports where it reaches the cone again.
+  !> cone that keeps loading reports none; one that unloads (cosine with the normal below
+  !> -UNLOADING_COSINE) leaves the root at 0 out and reports where it reaches the cone again.
   pure real(dp) function drucker_prager_event_fraction(this, stress, stress_increment, state) &
       result(r)
     class(drucker_prager_t), intent(in) :: this
     real(dp), intent(in) :: stress(6), stress_increment(6), state(:)
-    real(dp) :: s(6), ds(6), p, dp_, d, h, dh, a, b, c, disc, roots(3), q
+    real(dp) :: s(6), ds(6), p, dp_, d, h, dh, a, b, c, disc, roots(3)
     integer :: i
     logical :: on_cone
     r = huge(1.0_dp)
@@ -189,11 +187,13 @@ contains
     d = this%cohesion(state(PEEQ))
     h = this%tan_friction * p + d
     dh = this%tan_friction * dp_
-    q = sqrt(1.5_dp) * stress_norm(s)
-    on_cone = q - h >= -YIELD_TOLERANCE * d
+    ! At the apex (a corner of a convex cone) a straight path stays outside or goes inside
+    ! for good: no event.
+    if (sqrt(1.5_dp) * stress_norm(s) - h >= -YIELD_TOLERANCE * d .and. &
+        sqrt(1.5_dp) * stress_norm(s) <= YIELD_TOLERANCE * d) return
+    on_cone = this%on_surface(stress, state)
     if (on_cone) then
-      if (q <= YIELD_TOLERANCE * d) return
-      if (1.5_dp * stress_dot(s, ds) / q - dh >= 0.0_dp) return
+      if (this%loading_cosine(stress, stress_increment) >= -UNLOADING_COSINE) return
     end if
     a = 1.5_dp * stress_dot(ds, ds) - dh**2
     b = 3.0_dp * stress_dot(s, ds) - 2.0_dp * h * dh
@@ -230,20 +230,39 @@ contains
     end do
   end function drucker_prager_event_fraction
 
-  !> Elastic unloading from the smooth part of the cone: dF = 3/2 s : ds / q - tan(beta) dp < 0
-  !> for the elastic trial ds, dp of the increment (at the apex the tangent is elastic anyway).
+  !> On the smooth part of the cone: F >= -YIELD_TOLERANCE d and q > YIELD_TOLERANCE d (the
+  !> apex is a corner: its tangent is elastic and its events are those of a point inside).
+  pure logical function drucker_prager_on_surface(this, stress, state) result(on)
+    class(drucker_prager_t), intent(in) :: this
+    real(dp), intent(in) :: stress(6), state(:)
+    real(dp) :: q, d
+    q = sqrt(1.5_dp) * stress_norm(deviator(stress))
+    d = this%cohesion(state(PEEQ))
+    on = q + this%tan_friction * trace(stress) / 3.0_dp - d >= -YIELD_TOLERANCE * d .and. &
+         q > YIELD_TOLERANCE * d
+  end function drucker_prager_on_surface
+
+  !> Cosine of a stress rate with the normal dF/dsigma = sqrt(3/2) N + tan(beta)/3 I of the
+  !> cone (0 for a vanishing rate).
+  pure real(dp) function drucker_prager_loading_cosine(this, stress, rate) result(cosine)
+    class(drucker_prager_t), intent(in) :: this
+    real(dp), intent(in) :: stress(6), rate(6)
+    real(dp) :: s(6), normal(6), size
+    s = deviator(stress)
+    normal = sqrt(1.5_dp) * s / stress_norm(s) + this%tan_friction / 3.0_dp * VOIGT_IDENTITY
+    size = stress_norm(normal) * stress_norm(rate)
+    cosine = 0.0_dp
+    if (size > 0.0_dp) cosine = stress_dot(normal, rate) / size
+  end function drucker_prager_loading_cosine
+
+  !> Elastic unloading from the smooth part of the cone: the elastic trial C de of the
+  !> increment has a cosine below -UNLOADING_COSINE with the cone's normal.
   pure logical function drucker_prager_unloads(this, stress, state, strain_increment) result(unloads)
     class(drucker_prager_t), intent(in) :: this
     real(dp), intent(in) :: stress(6), state(:), strain_increment(6)
-    real(dp) :: s(6), rate(6), q, p, d
-    s = deviator(stress)
-    q = sqrt(1.5_dp) * stress_norm(s)
-    p = -trace(stress) / 3.0_dp
-    d = this%cohesion(state(PEEQ))
-    unloads = q - p * this%tan_friction - d >= -YIELD_TOLERANCE * d .and. q > YIELD_TOLERANCE * d
-    if (.not. unloads) return
-    rate = matmul(this%elastic_matrix(), strain_increment)
-    unloads = 1.5_dp * stress_dot(s, deviator(rate)) / q + this%tan_friction * trace(rate) / 3.0_dp < 0.0_dp
+    unloads = this%on_surface(stress, state)
+    if (unloads) unloads = this%loading_cosine(stress, matmul(this%elastic_matrix(), strain_increment)) &
+                           < -UNLOADING_COSINE
   end function drucker_prager_unloads
 
   !> Rotate the plastic strain with the stress.

@@ -18,7 +18,7 @@ module fcs_material
   use fcs_kinds, only: dp
   implicit none
   private
-  public :: material_t, isotropic_elastic_matrix, YIELD_TOLERANCE
+  public :: material_t, isotropic_elastic_matrix, YIELD_TOLERANCE, UNLOADING_COSINE
 
   !> A point whose yield function f lies within YIELD_TOLERANCE times the current yield
   !> stress of the surface counts as on it: its tangent is elastoplastic (unless the increment
@@ -32,6 +32,16 @@ module fcs_material
   !> would overshoot with the elastic tangent (measured: 3e-4 of the yield stress of
   !> out-of-balance in uniaxial stress, against 1e-5 with this tolerance).
   real(dp), parameter :: YIELD_TOLERANCE = 1.0e-3_dp
+
+  !> A point on its yield surface unloads when the elastic trial of the increment points into
+  !> the elastic domain by more than this cosine (with the normal of the surface): more than
+  !> about 6 degrees inwards. Flowing points (contained plastic flow, perfect plasticity) have
+  !> trials close to the tangent plane on either side; counted as unloading they would report
+  !> a re-crossing of the surface a hair into every increment (the far root of the yield
+  !> event, at a fraction proportional to the cosine) and stall the stepper. Between 0 and
+  !> this cosine the point keeps the elastoplastic tangent; the return mapping decides the
+  !> update in every case.
+  real(dp), parameter :: UNLOADING_COSINE = 0.1_dp
 
   type, abstract :: material_t
     real(dp) :: youngs_modulus = 0.0_dp
@@ -53,6 +63,7 @@ module fcs_material
     procedure :: plastic_strain_fraction => material_plastic_strain_fraction
     procedure :: point_events => material_point_events
     procedure :: unloads => material_unloads
+    procedure :: on_surface => material_on_surface
   end type material_t
 
   abstract interface
@@ -196,7 +207,8 @@ contains
   end function material_plastic_strain_fraction
 
   !> Whether a point on its yield surface leaves it inwards under the elastic trial of
-  !> `strain_increment` (dF/dr < 0 at the start of the path): elastic unloading, whose
+  !> `strain_increment` (the trial's cosine with the normal of the surface below
+  !> -UNLOADING_COSINE): elastic unloading, whose
   !> tangent is the elastic one (Yamada, Yoshimura & Sakurai 1968). False for a point inside
   !> the surface and for a material without plasticity (the default).
   pure logical function material_unloads(this, stress, state, strain_increment) result(unloads)
@@ -204,6 +216,14 @@ contains
     real(dp), intent(in) :: stress(6), state(:), strain_increment(6)
     unloads = .false.
   end function material_unloads
+
+  !> Whether the point lies on its yield surface (within YIELD_TOLERANCE): false for a
+  !> material without plasticity (the default).
+  pure logical function material_on_surface(this, stress, state) result(on)
+    class(material_t), intent(in) :: this
+    real(dp), intent(in) :: stress(6), state(:)
+    on = .false.
+  end function material_on_surface
 
   !> The R-minimum fractions of one integration point for a trial increment that applies
   !> `strain_fixed` (the out-of-balance correction) in full and r times `strain_load`, both
@@ -218,12 +238,18 @@ contains
     real(dp), intent(out) :: r_yield, r_plastic
     real(dp) :: tangent(6, 6)
     if (this%unloads(stress, state, strain_fixed + strain_load)) then
+      ! Elastic unloading: where the elastic path reaches the surface again (reverse yield).
       tangent = this%elastic_matrix()
+      r_yield = this%event_fraction(stress + matmul(tangent, strain_fixed), &
+                                    matmul(tangent, strain_load), state)
+    else if (this%on_surface(stress, state)) then
+      ! Plastic loading: no event (the elastoplastic stress path stays on the surface).
+      r_yield = huge(1.0_dp)
     else
       tangent = this%tangent(stress, state)
+      r_yield = this%event_fraction(stress + matmul(tangent, strain_fixed), &
+                                    matmul(tangent, strain_load), state)
     end if
-    r_yield = this%event_fraction(stress + matmul(tangent, strain_fixed), &
-                                  matmul(tangent, strain_load), state)
     r_plastic = this%plastic_strain_fraction(stress, state, strain_fixed, strain_load, r_yield, limit)
   end subroutine material_point_events
 

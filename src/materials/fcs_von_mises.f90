@@ -21,7 +21,7 @@
 !> Internal variables (13): alpha, the plastic strain (6, engineering shear) and beta (6).
 module fcs_von_mises
   use fcs_kinds, only: dp
-  use fcs_material, only: material_t, YIELD_TOLERANCE
+  use fcs_material, only: material_t, YIELD_TOLERANCE, UNLOADING_COSINE
   use fcs_hardening_table, only: hardening_table_t, solve_flow_equation
   use fcs_voigt, only: deviator, stress_norm, stress_dot, deviatoric_projector, outer, &
                        rotate_stress_like, rotate_strain_like
@@ -50,6 +50,7 @@ module fcs_von_mises
     procedure :: back_stress => von_mises_back_stress
     procedure :: is_plastic => von_mises_is_plastic
     procedure :: unloads => von_mises_unloads
+    procedure :: on_surface => von_mises_on_surface
   end type von_mises_t
 
 contains
@@ -63,11 +64,10 @@ contains
     class(von_mises_t), intent(in) :: this
     real(dp), intent(in) :: stress(6), state(:)
     real(dp) :: c(6, 6)
-    real(dp) :: xi(6), radius, g, hardening
+    real(dp) :: xi(6), g, hardening
     c = this%elastic_matrix()
+    if (.not. this%on_surface(stress, state)) return
     xi = deviator(stress) - state(BACK_STRESS:BACK_STRESS + 5)
-    radius = this%radius%value(state(PEEQ))
-    if (sqrt(1.5_dp) * stress_norm(xi) < radius * (1.0_dp - YIELD_TOLERANCE)) return
     g = this%shear_modulus()
     hardening = this%radius%slope(state(PEEQ)) + this%kinematic%slope(state(PEEQ))
     xi = xi / stress_norm(xi)
@@ -121,9 +121,10 @@ contains
   !> First yield along sigma + r dsigma (R-minimum yield event): the root in r > 0 of
   !>     3/2 |xi + r ds|^2 = R(alpha)^2,   ds = dev(dsigma)                                (V8)
   !> a quadratic a r^2 + b r + c with c < 0 for a point inside the surface (one positive root,
-  !> taken in the cancellation-free form). A point on the surface that keeps loading
-  !> (b >= 0) is plastic already and reports none; one that unloads (b < 0) crosses the
-  !> surface again at the far root -b/a + O(c) (reverse yield within the increment).
+  !> taken in the cancellation-free form). A point on the surface that keeps loading is
+  !> plastic already and reports none; one that unloads (the increment's cosine with xi below
+  !> -UNLOADING_COSINE: b < -2 UNLOADING_COSINE sqrt(a 3/2 xi : xi)) crosses the surface
+  !> again at the far root -b/a + O(c) (reverse yield within the increment).
   pure real(dp) function von_mises_event_fraction(this, stress, stress_increment, state) result(r)
     class(von_mises_t), intent(in) :: this
     real(dp), intent(in) :: stress(6), stress_increment(6), state(:)
@@ -136,7 +137,8 @@ contains
     b = 3.0_dp * stress_dot(xi, ds)
     c = min(0.0_dp, 1.5_dp * stress_dot(xi, xi) - radius**2)
     if (.not. (a > 0.0_dp)) return
-    if (sqrt(1.5_dp) * stress_norm(xi) >= radius * (1.0_dp - YIELD_TOLERANCE) .and. b >= 0.0_dp) return
+    if (this%on_surface(stress, state) .and. &
+        b >= -2.0_dp * UNLOADING_COSINE * sqrt(a * 1.5_dp * stress_dot(xi, xi))) return
     root = sqrt(max(0.0_dp, b**2 - 4.0_dp * a * c))
     if (b >= 0.0_dp) then
       r = -2.0_dp * c / (b + root)
@@ -145,15 +147,25 @@ contains
     end if
   end function von_mises_event_fraction
 
-  !> Elastic unloading from the surface: xi : dev(C de) < 0 for a point on it.
+  !> On the surface: q(xi) >= R(alpha) (1 - YIELD_TOLERANCE).
+  pure logical function von_mises_on_surface(this, stress, state) result(on)
+    class(von_mises_t), intent(in) :: this
+    real(dp), intent(in) :: stress(6), state(:)
+    on = sqrt(1.5_dp) * stress_norm(deviator(stress) - state(BACK_STRESS:BACK_STRESS + 5)) >= &
+         this%radius%value(state(PEEQ)) * (1.0_dp - YIELD_TOLERANCE)
+  end function von_mises_on_surface
+
+  !> Elastic unloading from the surface: xi : ds < -UNLOADING_COSINE |xi| |ds| for the
+  !> deviator ds of the elastic trial C de of a point on it.
   pure logical function von_mises_unloads(this, stress, state, strain_increment) result(unloads)
     class(von_mises_t), intent(in) :: this
     real(dp), intent(in) :: stress(6), state(:), strain_increment(6)
-    real(dp) :: xi(6)
+    real(dp) :: xi(6), rate(6)
+    unloads = this%on_surface(stress, state)
+    if (.not. unloads) return
     xi = deviator(stress) - state(BACK_STRESS:BACK_STRESS + 5)
-    unloads = sqrt(1.5_dp) * stress_norm(xi) >= this%radius%value(state(PEEQ)) * &
-              (1.0_dp - YIELD_TOLERANCE)
-    if (unloads) unloads = stress_dot(xi, deviator(matmul(this%elastic_matrix(), strain_increment))) < 0.0_dp
+    rate = deviator(matmul(this%elastic_matrix(), strain_increment))
+    unloads = stress_dot(xi, rate) < -UNLOADING_COSINE * stress_norm(xi) * stress_norm(rate)
   end function von_mises_unloads
 
   !> Rotate the plastic strain and the back stress with the stress.
