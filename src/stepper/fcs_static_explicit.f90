@@ -638,26 +638,30 @@ contains
   !>   stress it returns lies on the yield surface; the midpoint split would move the returned
   !>   stress off the surface by the rotation of half an increment (second order).
   !> Without NLGEOM there is no rotation: sigma + the material's increment.
-  pure subroutine update_point(material, nlgeom, strain_increment, spin, stress, strain, state)
+  !> With `tangent`, also the material's consistent tangent d(sigma)/d(strain_increment) of
+  !> this update (in the rotated frame), for equilibrium iterations.
+  pure subroutine update_point(material, nlgeom, strain_increment, spin, stress, strain, state, &
+                               tangent)
     class(material_t), intent(in) :: material
     logical, intent(in) :: nlgeom
     real(dp), intent(in) :: strain_increment(6), spin(3, 3)
     real(dp), intent(inout) :: stress(6), strain(6), state(:)
+    real(dp), intent(out), optional :: tangent(6, 6)
     real(dp) :: updated(6), increment(6), q(3, 3)
     if (nlgeom .and. material%n_state() > 0) then
       q = spin_rotation(spin)
       stress = rotate_stress_like(stress, q)
       call material%rotate_state(state, q)
-      call material%update(stress, strain_increment, state)
+      call material%update(stress, strain_increment, state, tangent)
       strain = rotate_strain_like(strain, q) + strain_increment
     else if (nlgeom) then
       updated = stress
-      call material%update(updated, strain_increment, state)
+      call material%update(updated, strain_increment, state, tangent)
       increment = updated - stress
       stress = hex8_rotate_stress(stress + 0.5_dp * increment, spin) + 0.5_dp * increment
       strain = rotate_strain(strain + 0.5_dp * strain_increment, spin) + 0.5_dp * strain_increment
     else
-      call material%update(stress, strain_increment, state)
+      call material%update(stress, strain_increment, state, tangent)
       strain = strain + strain_increment
     end if
   end subroutine update_point

@@ -83,7 +83,7 @@ def mesh(nx, nz):
     return xyz, elements, sets
 
 
-def write_deck(path, nx, nz):
+def write_deck(path, nx, nz, rmin=''):
     xyz, elements, sets = mesh(nx, nz)
     lines = ['*HEADING', 'Prandtl strip footing, mesh %dx%d (plasticity_footing.py)' % (nx, nz),
              '*NODE, NSET=ALL_NODES']
@@ -95,17 +95,17 @@ def write_deck(path, nx, nz):
         lines += [', '.join(map(str, members[i:i + 12])) for i in range(0, len(members), 12)]
     lines += pc.von_mises_cards(YOUNG, POISSON, [(YIELD, 0.0)], bbar=True)
     lines += ['*BOUNDARY', 'ALL, 2, 2', 'X0, 1, 1', 'XW, 1, 1', 'BASE, 1, 3',
-              '*STEP', '*STATIC', '0.02, 1., 1e-6, 0.02', '*BOUNDARY',
-              'FOOT, 3, 3, %r' % -SETTLEMENT,
+              '*STEP', '*STATIC', '0.02, 1., 1e-6, 0.02'] + ([rmin] if rmin else []) + \
+             ['*BOUNDARY', 'FOOT, 3, 3, %r' % -SETTLEMENT,
               '*NODE PRINT, NSET=FOOT, TOTALS=ONLY, FREQUENCY=1', 'RF', '*END STEP']
     with open(path, 'w') as f:
         f.write('\n'.join(lines) + '\n')
     return len(elements)
 
 
-def run_mesh(fcs3d, work, nx, nz):
+def run_mesh(fcs3d, work, nx, nz, rmin=''):
     job = os.path.join(work, 'footing_%dx%d' % (nx, nz))
-    n_elements = write_deck(job + '.inp', nx, nz)
+    n_elements = write_deck(job + '.inp', nx, nz, rmin)
     t0 = time.monotonic()
     result = subprocess.run([fcs3d, '-q', job + '.inp'], capture_output=True, text=True)
     wall = time.monotonic() - t0
@@ -117,12 +117,14 @@ def run_mesh(fcs3d, work, nx, nz):
     curve = np.array(curve)
     increments = sum(1 for line in open(job + '.log') if line.startswith('inc '))
     limit = curve[:, 1].max()
+    # The mean pressure at a quarter of the settlement (on the rising part of the curve).
+    quarter = np.interp(0.25 * SETTLEMENT, curve[:, 0], curve[:, 1])
     # How flat the end of the curve is: the rise over the last quarter of the settlement.
     last = curve[curve[:, 0] >= 0.75 * SETTLEMENT * (1 - 1e-9)]
     rise = (last[-1, 1] - last[0, 1]) / last[-1, 1]
     return dict(mesh='%dx%d' % (nx, nz), elements=n_elements, increments=increments, wall=wall,
                 status=result.returncode, limit=limit, error=(limit - Q_PRANDTL) / Q_PRANDTL,
-                rise=rise, stderr=result.stderr.strip())
+                rise=rise, quarter=quarter, stderr=result.stderr.strip())
 
 
 def table(rows):
@@ -141,17 +143,19 @@ def main():
     parser.add_argument('--work', required=True)
     parser.add_argument('--meshes', default='12x8,24x16,48x32')
     parser.add_argument('--markdown')
+    parser.add_argument('--rmin', default='')
     parser.add_argument('--assert-limit', type=float)
     args = parser.parse_args()
     os.makedirs(args.work, exist_ok=True)
     rows = []
     for spec in args.meshes.split(','):
         nx, nz = (int(v) for v in spec.split('x'))
-        row = run_mesh(args.fcs3d, args.work, nx, nz)
+        row = run_mesh(args.fcs3d, args.work, nx, nz, args.rmin)
         rows.append(row)
-        print('mesh %s: %d elements, %d increments, %.0f s, limit %.4f (2 + pi) k (%+.2f %%)%s'
+        print('mesh %s: %d elements, %d increments, %.0f s, limit %.4f (2 + pi) k (%+.2f %%), '
+              'mean pressure at a quarter of the settlement %.5g%s'
               % (row['mesh'], row['elements'], row['increments'], row['wall'],
-                 row['limit'] / Q_PRANDTL, 100 * row['error'],
+                 row['limit'] / Q_PRANDTL, 100 * row['error'], row['quarter'],
                  '' if row['status'] == 0 else '; run failed: ' + row['stderr']), flush=True)
     text = table(rows)
     print(text)
