@@ -17,10 +17,15 @@ from the clamp (yield events, the plastic strain limit); step 2 unloads and reve
    checkpoint to the end: every dataset and attribute of job.h5 (PEEQ, PE and ALPHA of every
    frame included), job.dat (S and PEEQ tables) byte for byte, and the frames of job.xdmf,
    equal the one-go run's; so does the final checkpoint's material state.
+3. The plastic fields are visible in ParaView: the one-go run's job.xdmf lists PEEQ (nodes and
+   cells), PE and ALPHA (nodes), and VTK's vtkXdmfReader (ParaView's Xdmf reader) returns every
+   array of every frame equal to the HDF5 data (post/check_xdmf_vtk.py; skipped without
+   python3-paraview).
 """
 import os
 import shutil
 import signal
+import subprocess
 import sys
 import time
 
@@ -111,6 +116,20 @@ def main():
           'checkpoint\'s state (material state included)')
     if not ('yield' in kinds and 'plastic-strain-limit' in kinds):
         print('the run should have yield events and plastic strain limits')
+        return 1
+    xdmf = os.path.join(reference, JOB + '.xdmf')
+    text = open(xdmf).read()
+    for name, centre in (('PEEQ', 'Node'), ('PEEQ', 'Cell'), ('PE', 'Node'), ('ALPHA', 'Node')):
+        if 'Name="%s" AttributeType' % name not in text or \
+                'Attribute Name="%s" AttributeType="%s" Center="%s"' % (
+                    name, 'Scalar' if name == 'PEEQ' else 'Tensor6', centre) not in text:
+            print('job.xdmf does not list %s at the %ss' % (name, centre.lower()))
+            return 1
+    check = subprocess.run([sys.executable, os.path.join(HERE, '..', '..', '..', 'post',
+                                                         'check_xdmf_vtk.py'), xdmf],
+                           stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    print('ParaView\'s reader: ' + check.stdout.strip().splitlines()[-1])
+    if check.returncode not in (0, 77):
         return 1
     return 0
 
