@@ -11,7 +11,7 @@ module fcs_contact_areas
   use fcs_strings, only: str
   implicit none
   private
-  public :: slave_node_areas
+  public :: slave_node_areas, surface_face_nodes
 
 contains
 
@@ -24,14 +24,7 @@ contains
     real(dp), allocatable :: nodal(:)
     integer, allocatable :: face_nodes(:, :)
     integer :: i, f
-    if (mesh%surfaces(k)%kind == SURFACE_FACES) then
-      allocate (face_nodes(4, size(mesh%surfaces(k)%element)))
-      do f = 1, size(face_nodes, 2)
-        face_nodes(:, f) = hex8_face_nodes(mesh, mesh%surfaces(k)%element(f), mesh%surfaces(k)%face(f))
-      end do
-    else
-      call exterior_faces_of_nodes(mesh, mesh%surfaces(k)%nodes, face_nodes)
-    end if
+    call surface_face_nodes(mesh, k, face_nodes)
     allocate (nodal(mesh%n_nodes))
     nodal = 0.0_dp
     do f = 1, size(face_nodes, 2)
@@ -48,6 +41,23 @@ contains
   end subroutine slave_node_areas
 
   !> Add the integrals of N_a dA of one face to its nodes.
+  !> The faces of surface k (4 node indices each, outward): its element faces, or for a
+  !> node-based surface the exterior faces of the mesh whose four nodes all belong to it.
+  subroutine surface_face_nodes(mesh, k, face_nodes)
+    type(mesh_t), intent(in) :: mesh
+    integer, intent(in) :: k
+    integer, allocatable, intent(out) :: face_nodes(:, :)
+    integer :: f
+    if (mesh%surfaces(k)%kind == SURFACE_FACES) then
+      allocate (face_nodes(4, size(mesh%surfaces(k)%element)))
+      do f = 1, size(face_nodes, 2)
+        face_nodes(:, f) = hex8_face_nodes(mesh, mesh%surfaces(k)%element(f), mesh%surfaces(k)%face(f))
+      end do
+    else
+      call exterior_faces_of_nodes(mesh, mesh%surfaces(k)%nodes, face_nodes)
+    end if
+  end subroutine surface_face_nodes
+
   subroutine add_face(xf, nodes, nodal)
     real(dp), intent(in) :: xf(3, 4)
     integer, intent(in) :: nodes(4)

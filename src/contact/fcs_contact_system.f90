@@ -22,7 +22,8 @@ module fcs_contact_system
                                  contact_update_t, contact_node_t, contact_params_t, CONTACT_OPEN, &
                                  CONTACT_STICK, CONTACT_SLIP, CONTACT_TIED
   use fcs_contact_state, only: contact_state_t
-  use fcs_contact_areas, only: slave_node_areas
+  use fcs_contact_areas, only: slave_node_areas, surface_face_nodes
+  use fcs_contact_ties, only: tie_set_t
   use fcs_friction_law, only: friction_law_t, friction_derivatives_t
   use fcs_friction_factory, only: create_friction_law, friction_def_t
   use fcs_sparse, only: sparse_matrix_t
@@ -119,6 +120,11 @@ module fcs_contact_system
     real(dp), allocatable :: start_xi(:, :)
     !> The next entry of the same node in another pair (0: none; see find_twins).
     integer, allocatable :: twin(:)
+    !> Tied pairs, as segment-to-segment penalty ties (their slave nodes' entries, status
+    !> TIED, only report the tie forces), and the reference coordinates their displacements
+    !> are measured from.
+    type(tie_set_t) :: ties
+    real(dp), allocatable :: reference(:, :)
     !> Largest changes over the last increment at nodes slipping before and after it: of
     !> ln V, of mu and of ln(state), and the node where each happened.
     real(dp) :: change(3) = 0.0_dp
@@ -158,7 +164,7 @@ contains
     type(contact_state_t), intent(inout) :: cstate
     type(error_t), allocatable, intent(out) :: err
     integer :: k, n_total
-    integer, allocatable :: slaves(:)
+    integer, allocatable :: slaves(:), slave_faces(:, :)
     real(dp), allocatable :: areas(:)
     logical, allocatable :: tied(:)
     allocate (this%pairs(size(model%contact_pairs)), this%slave_node(0), this%slave_pair(0), &
@@ -168,6 +174,13 @@ contains
       if (allocated(err)) return
     end do
     call tied_nodes(this, model, x, tied)
+    this%reference = model%mesh%x
+    do k = 1, size(model%contact_pairs)
+      if (.not. this%pairs(k)%tied) cycle
+      call surface_face_nodes(model%mesh, model%contact_pairs(k)%slave_surface, slave_faces)
+      call this%ties%add(slave_faces, this%pairs(k)%face_nodes, x, this%pairs(k)%normal_stiffness, &
+                         this%pairs(k)%position_tolerance)
+    end do
     n_total = 0
     do k = 1, size(model%contact_pairs)
       call slave_nodes_of(model, model%contact_pairs(k), this%pairs(k), slaves)
@@ -500,8 +513,18 @@ contains
       clique_nodes = [clique_nodes, nodes]
       clique_ptr = [clique_ptr, clique_ptr(size(clique_ptr)) + size(nodes)]
     end do
+    if (owns_ties(owned)) call this%ties%cliques(clique_ptr, clique_nodes)
     if (.not. keep) this%pattern_dirty = .false.
   end subroutine system_cliques
+
+  !> The process that assembles the ties: the one that owns the first slave entry (rank 0),
+  !> or every caller that passes no ownership.
+  pure logical function owns_ties(owned)
+    logical, intent(in), optional :: owned(:)
+    owns_ties = .true.
+    if (.not. present(owned)) return
+    if (size(owned) > 0) owns_ties = owned(1)
+  end function owns_ties
 
   !> Linearisation of closed node s on coordinates x; dt is the trial time increment the
   !> rate term of the friction law refers to.
@@ -569,8 +592,15 @@ contains
     type(contact_linear_t) :: lin
     integer :: s, a, nodes(5)
     logical :: missing
+    if (owns_ties(owned)) then
+      call this%ties%assemble(x - this%reference, matrix, f_contact, missing)
+      if (missing) then
+        call fatal_error(err, 'internal error: a tied face pair is not in the sparse pattern')
+        return
+      end if
+    end if
     do s = 1, size(this%slave_node)
-      if (cstate%status(s) == CONTACT_OPEN) cycle
+      if (cstate%status(s) == CONTACT_OPEN .or. cstate%status(s) == CONTACT_TIED) cycle
       if (present(owned)) then
         if (.not. owned(s)) cycle
       end if
@@ -779,6 +809,7 @@ contains
     real(dp), intent(in) :: x(:, :), dt, r
     type(contact_state_t), intent(inout) :: cstate
     integer :: k, s, kind
+    real(dp), allocatable :: tie_force(:)
     real(dp) :: old_rate, old_mu, old_state
     logical :: was_slipping
     do k = 1, size(this%pairs)
@@ -791,6 +822,9 @@ contains
     ! same state): the equilibrium iterations linearise about the slip since then.
     this%start_face = cstate%face
     this%start_xi = cstate%xi
+    allocate (tie_force(size(x)))
+    tie_force = 0.0_dp
+    call this%ties%forces(x - this%reference, tie_force)
     do s = 1, size(this%slave_node)
       was_slipping = cstate%status(s) == CONTACT_SLIP .and. cstate%slip_rate(s) > 0.0_dp
       old_rate = cstate%slip_rate(s)
@@ -800,7 +834,7 @@ contains
       if (this%event_r(s) <= r * (1.0_dp + 1.0e-9_dp)) kind = this%event_kind(s)
       select case (cstate%status(s))
       case (CONTACT_TIED)
-        call update_tied(this, s, x, cstate)
+        call update_tied(this, s, x, cstate, tie_force)
       case (CONTACT_STICK, CONTACT_SLIP)
         call update_closed(this, s, x, cstate, dt, kind)
       case default
@@ -937,27 +971,28 @@ contains
     end associate
   end function in_pattern
 
-  subroutine update_tied(this, s, x, cstate)
+  !> A tied node: where it is on its master face, and the force the tie puts on it
+  !> (`tie_force`, 3 * n_nodes: the segment-to-segment tie's nodal forces), split into the
+  !> normal force and the tangential components in the face's frame, for the outputs.
+  subroutine update_tied(this, s, x, cstate, tie_force)
     type(contact_system_t), intent(in) :: this
     integer, intent(in) :: s
-    real(dp), intent(in) :: x(:, :)
+    real(dp), intent(in) :: x(:, :), tie_force(:)
     type(contact_state_t), intent(inout) :: cstate
     type(segment_point_t) :: p, p_old
-    type(contact_update_t) :: u
-    real(dp) :: xm(3, 4), gap
+    real(dp) :: xm(3, 4), gap, f(3)
     logical :: converged
-    associate (pair => this%pairs(this%slave_pair(s)))
+    associate (pair => this%pairs(this%slave_pair(s)), node => this%slave_node(s))
       xm = x(:, pair%face_nodes(:, cstate%face(s)))
-      call project_to_segment(xm, x(:, this%slave_node(s)), cstate%xi(:, s), p, gap, converged)
+      call project_to_segment(xm, x(:, node), cstate%xi(:, s), p, gap, converged)
       if (.not. converged) p = segment_point(xm, cstate%xi(:, s))
       p_old = segment_point(xm, cstate%xi(:, s))
-      u = contact_update(p, gap, p_old, node_of(cstate, s, CONTACT_TIED), params_of(this, s), &
-                         pair%law, 0.0_dp)
+      f = tie_force(3 * node - 2:3 * node)
       cstate%xi(:, s) = p%xi
       cstate%gap(s) = gap
-      cstate%normal_force(s) = u%normal_force
-      cstate%friction(:, s) = u%friction
-      cstate%tangential_displacement(:, s) = cstate%tangential_displacement(:, s) + u%slip_vector
+      cstate%normal_force(s) = dot_product(f, p%normal)
+      cstate%friction(:, s) = matmul(f - cstate%normal_force(s) * p%normal, p%e)
+      cstate%tangential_displacement(:, s) = cstate%tangential_displacement(:, s) + p%x - p_old%x
     end associate
   end subroutine update_tied
 
@@ -1317,8 +1352,10 @@ contains
     real(dp) :: normal(3), pressure, shear(3), f(3)
     type(segment_point_t) :: p
     integer :: s, a, nodes(5)
+    call this%ties%forces(x - this%reference, f_contact)
     do s = 1, size(this%slave_node)
-      if (cstate%status(s) == CONTACT_OPEN .or. cstate%face(s) == 0) cycle
+      if (cstate%status(s) == CONTACT_OPEN .or. cstate%status(s) == CONTACT_TIED .or. &
+          cstate%face(s) == 0) cycle
       call this%traction(s, x, cstate, normal, pressure, shear)
       f = (pressure * normal + shear) * this%area(s)
       nodes = element_nodes(this, s, cstate)

@@ -12,13 +12,16 @@ module fcs_rmin_events
   public :: EVENT_YIELD, EVENT_CONTACT_CLOSE, EVENT_CONTACT_OPEN, EVENT_STICK_TO_SLIP
   public :: EVENT_SLIP_TO_STICK, EVENT_SEGMENT_CHANGE, EVENT_SLIP_RATE_CHANGE
   public :: EVENT_FRICTION_CHANGE, EVENT_STATE_CHANGE, EVENT_PENETRATION_LIMIT
+  public :: EVENT_PLASTIC_STRAIN_LIMIT
 
-  !> Event kinds. FULL_INCREMENT: nothing limited the trial increment.
+  !> Event kinds. FULL_INCREMENT: nothing limited the trial increment. STRAIN_LIMIT,
+  !> ROTATION_LIMIT and PLASTIC_STRAIN_LIMIT are limits (never widened to near-simultaneous
+  !> events), the others discrete state changes.
   integer, parameter :: EVENT_NONE = 0, EVENT_FULL_INCREMENT = 1, EVENT_STRAIN_LIMIT = 2, &
     EVENT_ROTATION_LIMIT = 3, EVENT_YIELD = 4, EVENT_CONTACT_CLOSE = 5, EVENT_CONTACT_OPEN = 6, &
     EVENT_STICK_TO_SLIP = 7, EVENT_SLIP_TO_STICK = 8, EVENT_SEGMENT_CHANGE = 9, &
     EVENT_SLIP_RATE_CHANGE = 10, EVENT_FRICTION_CHANGE = 11, EVENT_STATE_CHANGE = 12, &
-    EVENT_PENETRATION_LIMIT = 13
+    EVENT_PENETRATION_LIMIT = 13, EVENT_PLASTIC_STRAIN_LIMIT = 14
 
   !> One event: its fraction r of the trial increment, kind, and the entity (element or node
   !> index) with a detail (integration point, contact pair).
@@ -131,7 +134,8 @@ contains
 
   pure logical function is_limit(kind)
     integer, intent(in) :: kind
-    is_limit = kind == EVENT_STRAIN_LIMIT .or. kind == EVENT_ROTATION_LIMIT
+    is_limit = kind == EVENT_STRAIN_LIMIT .or. kind == EVENT_ROTATION_LIMIT .or. &
+               kind == EVENT_PLASTIC_STRAIN_LIMIT
   end function is_limit
 
   !> Name of an event kind, for the log.
@@ -165,6 +169,8 @@ contains
       name = 'state-change'
     case (EVENT_PENETRATION_LIMIT)
       name = 'penetration-limit'
+    case (EVENT_PLASTIC_STRAIN_LIMIT)
+      name = 'plastic-strain-limit'
     case default
       name = 'none'
     end select

@@ -36,7 +36,7 @@ contains
                                              param_value(card, 'NSET') // '" is not defined')
     case ('EL PRINT')
       request%kind = OUTPUT_EL_PRINT
-      allowed = [string_t('S'), string_t('E')]
+      allowed = [string_t('S'), string_t('E'), string_t('PEEQ'), string_t('PE')]
       request%set = model%mesh%find_element_set(param_upper(card, 'ELSET'))
       if (request%set == 0) call diag%report(card%loc, '*EL PRINT: element set "' // &
                                              param_value(card, 'ELSET') // '" is not defined')
@@ -48,7 +48,7 @@ contains
       allowed = [string_t('CDIS'), string_t('CSTR'), string_t('CDISP'), string_t('CSTRESS')]
     case default
       request%kind = OUTPUT_EL_FILE
-      allowed = [string_t('S'), string_t('E')]
+      allowed = [string_t('S'), string_t('E'), string_t('PEEQ'), string_t('PE')]
     end select
     call read_variables(card, allowed, diag, request%variables)
     call parse_int(param_value(card, 'FREQUENCY'), request%frequency, ok)

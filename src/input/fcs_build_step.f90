@@ -133,7 +133,7 @@ contains
     type(card_t), intent(in) :: card
     type(builder_t), intent(inout) :: state
     type(diagnostics_t), intent(inout) :: diag
-    real(dp) :: strain, rotation, tolerance, rate_change, mu_change, state_change, balance
+    real(dp) :: strain, rotation, tolerance, rate_change, mu_change, state_change, balance, plastic
     logical :: ok
     integer :: n_before, iterations
     if (state%step%has_rmin) then
@@ -145,6 +145,7 @@ contains
     call parse_real(param_value(card, 'MAX STRAIN INCREMENT'), strain, ok)
     call parse_real(param_value(card, 'MAX ROTATION INCREMENT'), rotation, ok)
     call parse_real(param_value(card, 'EVENT TOLERANCE'), tolerance, ok)
+    call parse_real(param_value(card, 'MAX PLASTIC STRAIN INCREMENT'), plastic, ok)
     call parse_real(param_value(card, 'MAX LOG RATE CHANGE'), rate_change, ok)
     call parse_real(param_value(card, 'MAX FRICTION CHANGE'), mu_change, ok)
     call parse_real(param_value(card, 'MAX STATE CHANGE'), state_change, ok)
@@ -156,6 +157,8 @@ contains
       call diag%report(card%loc, '*RMIN: MAX ROTATION INCREMENT must lie in (0, 10] degrees')
     if (tolerance < 0.0_dp .or. tolerance > 0.5_dp) &
       call diag%report(card%loc, '*RMIN: EVENT TOLERANCE must lie in [0, 0.5]')
+    if (plastic <= 0.0_dp .or. plastic > 1.0_dp) &
+      call diag%report(card%loc, '*RMIN: MAX PLASTIC STRAIN INCREMENT must lie in (0, 1]')
     if (rate_change <= 0.0_dp) call diag%report(card%loc, '*RMIN: MAX LOG RATE CHANGE must be positive')
     if (mu_change <= 0.0_dp) call diag%report(card%loc, '*RMIN: MAX FRICTION CHANGE must be positive')
     if (state_change <= 0.0_dp) call diag%report(card%loc, '*RMIN: MAX STATE CHANGE must be positive')
@@ -173,6 +176,7 @@ contains
     state%step%rmin%max_strain_increment = strain
     state%step%rmin%max_rotation_increment = rotation * acos(-1.0_dp) / 180.0_dp
     state%step%rmin%event_tolerance = tolerance
+    state%step%rmin%max_plastic_strain_increment = plastic
   end subroutine handle_rmin
 
   !> *END STEP: close the step with the complete condition lists.

@@ -52,7 +52,8 @@ contains
     call put('do not edit by hand (`make doc` regenerates it). Keywords, parameter names and set,')
     call put('surface and material names are case-insensitive. Units are the deck''s own: any')
     call put('consistent set (the fault-bend model uses mm, s, MPa, N).')
-    call put('"CalculiX" keywords keep their CalculiX/Abaqus meaning; "fcs3d" marks our extensions.')
+    call put('"CalculiX" keywords keep their CalculiX/Abaqus meaning, "Abaqus" keywords their Abaqus ' // &
+             'meaning; "fcs3d" marks our extensions.')
     call put('')
     call put('| keyword | origin | where | summary |')
     call put('|---|---|---|---|')

@@ -3,7 +3,8 @@
 !> it, `fcs3d --list-keywords` prints it and `doc/deck_reference.md` is generated from it.
 !>
 !> Keywords marked "CalculiX" keep the meaning they have in CalculiX 2.20 (ccx manual §6) and
-!> Abaqus; keywords marked "fcs3d" are our extensions in the same syntax.
+!> Abaqus; "Abaqus" marks Abaqus keywords that CalculiX lacks (with Abaqus's meaning);
+!> keywords marked "fcs3d" are our extensions in the same syntax.
 module fcs_keywords
   use fcs_strings, only: string_t, to_upper
   use fcs_friction_factory, only: friction_parameter_t, friction_parameters, friction_laws
@@ -37,7 +38,7 @@ module fcs_keywords
   type :: keyword_spec_t
     character(len=:), allocatable :: name
     integer :: context = CONTEXT_MODEL
-    !> "CalculiX" (standard meaning) or "fcs3d" (our extension).
+    !> "CalculiX" (standard meaning), "Abaqus" (Abaqus's meaning) or "fcs3d" (our extension).
     character(len=:), allocatable :: origin
     character(len=:), allocatable :: summary
     !> What the data lines hold ('' = the keyword takes no data lines).
@@ -119,7 +120,8 @@ contains
     type(keyword_spec_t), allocatable :: t(:)
     t = [ &
       kw('MATERIAL', CONTEXT_MODEL, 'CalculiX', 'Start a material definition; the ' // &
-         'following *ELASTIC and *DENSITY lines belong to it.', '', &
+         'following *ELASTIC, *DENSITY, *PLASTIC, *CYCLIC HARDENING, *DRUCKER PRAGER and ' // &
+         '*DRUCKER PRAGER HARDENING lines belong to it.', '', &
          [p('NAME', PARAM_NAME, required=.true., description='Name of the material.')]), &
       kw('ELASTIC', CONTEXT_MODEL, 'CalculiX', 'Isotropic (hypo)elastic constants of the ' // &
          'current material.', 'Young''s modulus [stress], Poisson''s ratio [-].', &
@@ -128,6 +130,46 @@ contains
       kw('DENSITY', CONTEXT_MODEL, 'CalculiX', 'Mass density of the current material ' // &
          '(recorded in the results; the static analysis does not use it).', &
          'density [mass/length^3].', [p_none()], data_required=.true.), &
+      kw('PLASTIC', CONTEXT_MODEL, 'CalculiX', 'von Mises plasticity of the current material ' // &
+         '(radial return in the rotated frame; doc/theory.md section 2.2). The curve is read as ' // &
+         'CalculiX reads it: ISOTROPIC, the yield stress; KINEMATIC, the yield surface keeps ' // &
+         'the first stress as its radius and its centre (back stress) moves so that uniaxial ' // &
+         'loading follows the curve; COMBINED, as KINEMATIC with the radius from *CYCLIC ' // &
+         'HARDENING.', 'von Mises stress [stress], equivalent plastic strain [-]: one point ' // &
+         'per line, the first at plastic strain 0, plastic strains strictly increasing, ' // &
+         'stresses positive; linear between the points, constant beyond the last. A third ' // &
+         'field (temperature) is refused: temperature-dependent curves come with the thermal ' // &
+         'issue.', &
+         [p('HARDENING', PARAM_CHOICE, default='ISOTROPIC', &
+            choices=[s('ISOTROPIC'), s('KINEMATIC'), s('COMBINED')], &
+            description='Isotropic, kinematic (linear in the curve''s slope, Prager-Ziegler ' // &
+            'type, as CalculiX) or combined hardening (needs *CYCLIC HARDENING).')], &
+         data_required=.true.), &
+      kw('CYCLIC HARDENING', CONTEXT_MODEL, 'CalculiX', 'The isotropic part (yield surface ' // &
+         'radius against equivalent plastic strain) of *PLASTIC, HARDENING=COMBINED.', &
+         'von Mises stress [stress], equivalent plastic strain [-], as for *PLASTIC.', &
+         [p_none()], data_required=.true.), &
+      kw('DRUCKER PRAGER', CONTEXT_MODEL, 'Abaqus', 'Linear Drucker-Prager plasticity of the ' // &
+         'current material (Abaqus''s extended Drucker-Prager model, linear criterion): ' // &
+         'F = q - p tan(beta) - d, flow potential q - p tan(psi) (doc/theory.md section 2.3). ' // &
+         'Needs *DRUCKER PRAGER HARDENING.', 'friction angle beta [degree] in [0, 71.565) ' // &
+         '(tan(beta) < 3) for TYPE=COMPRESSION hardening, [0, 90) otherwise; flow stress ' // &
+         'ratio K (empty or 1: other values are refused); dilation angle psi [degree] in the ' // &
+         'same range (psi = beta: associated flow; psi /= beta: non-associated, unsymmetric ' // &
+         'tangent). A temperature (fourth field) is refused.', &
+         [p('SHEAR CRITERION', PARAM_CHOICE, default='LINEAR', choices=[s('LINEAR')], &
+            description='Only the linear criterion is available.')], data_required=.true.), &
+      kw('DRUCKER PRAGER HARDENING', CONTEXT_MODEL, 'Abaqus', 'Hardening curve of the ' // &
+         'current *DRUCKER PRAGER material.', 'yield stress [stress], absolute value of the ' // &
+         'plastic strain [-] of the test TYPE names: one point per line, the first at plastic ' // &
+         'strain 0, plastic strains strictly increasing, stresses positive; constant beyond ' // &
+         'the last. Further fields (rate, temperature) are refused.', &
+         [p('TYPE', PARAM_CHOICE, default='COMPRESSION', &
+            choices=[s('COMPRESSION'), s('TENSION'), s('SHEAR')], &
+            description='The test the curve comes from: uniaxial compression (d = (1 - ' // &
+            'tan(beta)/3) sigma_c), uniaxial tension (d = (1 + tan(beta)/3) sigma_t) or pure ' // &
+            'shear (d = sqrt(3) tau), as Abaqus defines them for K = 1.')], &
+         data_required=.true.), &
       kw('SOLID SECTION', CONTEXT_MODEL, 'CalculiX', 'Assign a material to an element set.', &
          'optional, ignored for solids (CalculiX allows an empty line here).', &
          [p('ELSET', PARAM_NAME, required=.true., description='Element set.'), &
@@ -170,8 +212,9 @@ contains
           p('NAME', PARAM_NAME, description='Name of the pair in the log and results ' // &
             '(default: slave-master) (fcs3d extension).')], data_required=.true.), &
       kw('TIE', CONTEXT_MODEL, 'CalculiX', 'Tie a slave surface to a master surface: no ' // &
-         'relative motion ever (penalty tie with E_n = E_t = 10 E / h). Slave nodes of a ' // &
-         'contact pair that a tie holds are left to the tie (a note in the log).', &
+         'relative motion ever (segment-to-segment penalty tie, penalty E_n = 10 E / h, ' // &
+         'passing the patch test on non-matching meshes; doc/theory.md 4.7). Slave nodes of ' // &
+         'a contact pair that a tie holds are left to the tie (a note in the log).', &
          'slave surface, master surface.', &
          [p('NAME', PARAM_NAME, required=.true., description='Name of the tie.'), &
           p('POSITION TOLERANCE', PARAM_REAL, unit='length', description='Slave nodes ' // &
@@ -241,6 +284,12 @@ contains
             description='Largest rotation increment of any integration point (NLGEOM steps). ' // &
             'The Hughes-Winget update is exact for rotations; the limit keeps the midpoint ' // &
             'configuration, the tangent and the contact linearisation accurate.'), &
+          p('MAX PLASTIC STRAIN INCREMENT', PARAM_REAL, default='1e-3', unit='-', &
+            description='Largest growth of the equivalent plastic strain (PEEQ) at any ' // &
+            'integration point in one increment (every step, NLGEOM or not). The increment ' // &
+            'uses the tangent of its start: the default, about the yield strain of steel and ' // &
+            'rock, keeps the change of the flow direction within an increment small ' // &
+            '(doc/theory.md section 6.7 gives the measurements).'), &
           p('EVENT TOLERANCE', PARAM_REAL, default='1e-3', unit='-', &
             description='Events (contact, stick/slip, yield) whose fractions r lie within this ' // &
             'relative tolerance of the smallest are taken together in one increment.'), &
@@ -260,12 +309,13 @@ contains
           p('MAX ITERATIONS', PARAM_INTEGER, default='12', description='Equilibrium ' // &
             'iterations allowed in one increment before it is cut in four.'), &
           p('NO EQUILIBRIUM', PARAM_CHOICE, default='STOP', choices=[s('STOP'), s('CARRY')], &
-            description='What an increment at the minimum size whose equilibrium iterations ' // &
-            'do not converge does: STOP the run, naming the node and direction of the largest ' // &
-            'out-of-balance force; or CARRY it: the increment is taken without iterations and ' // &
-            'its out-of-balance force carried into the next one (the static-explicit scheme ' // &
-            'of the paper), with a warning in the log. A velocity-weakening slip event has no ' // &
-            'quasi-static equilibrium: without radiation damping only CARRY runs through it.')]), &
+            description='What an increment whose equilibrium iterations do not converge ' // &
+            'does: STOP: it is cut, down to the minimum increment, where the run stops naming ' // &
+            'the node and direction of the largest out-of-balance force; CARRY: it is taken ' // &
+            'without iterations and its out-of-balance force carried into the next one (the ' // &
+            'static-explicit scheme of the paper), marked (carried) in the log. A ' // &
+            'velocity-weakening slip event has no quasi-static equilibrium: without radiation ' // &
+            'damping only CARRY runs through it.')]), &
       kw('BOUNDARY', CONTEXT_ANY, 'CalculiX', 'Prescribed displacements (fixed or ' // &
          'given values) or velocities on nodes or node sets.', &
          'node or node set, first dof, last dof (default: first), value (default 0); ' // &
@@ -316,7 +366,8 @@ contains
             description='Also (YES) or only (ONLY) print the sum over the set.')], &
          data_required=.true.), &
       kw('EL PRINT', CONTEXT_STEP, 'CalculiX', 'Print integration-point results to ' // &
-         '<job>.dat in CalculiX''s layout.', 'S (Cauchy stress), E (strain).', &
+         '<job>.dat in CalculiX''s layout.', 'S (Cauchy stress), E (strain), PEEQ or PE ' // &
+         '(equivalent plastic strain: CalculiX prints both as one column, "pe").', &
          [p('ELSET', PARAM_NAME, required=.true., description='Element set to print.'), &
           p('FREQUENCY', PARAM_INTEGER, default='0', description='Also print every N ' // &
             'increments (0: only at the end of the step and at the time points).'), &
@@ -358,8 +409,9 @@ contains
          'the variables listed are checked, not used to select.', 'U, RF, ...', &
          [p('FREQUENCY', PARAM_INTEGER, default='0', description='Also write every N increments.'), &
           p('TIME POINTS', PARAM_NAME, description='Write at these times.')]), &
-      kw('EL FILE', CONTEXT_STEP, 'CalculiX', 'As *NODE FILE, for element variables.', &
-         'S, E, ...', &
+      kw('EL FILE', CONTEXT_STEP, 'CalculiX', 'As *NODE FILE, for element variables ' // &
+         '(with a plastic material, every frame also holds PEEQ, PE and the back stress ALPHA).', &
+         'S, E, PEEQ, PE, ...', &
          [p('FREQUENCY', PARAM_INTEGER, default='0', description='Also write every N increments.'), &
           p('TIME POINTS', PARAM_NAME, description='Write at these times.')]) &
       ]

@@ -7,6 +7,7 @@ module fcs_model
   use fcs_diagnostics, only: source_loc_t
   use fcs_strings, only: string_t
   use fcs_friction_factory, only: friction_def_t
+  use fcs_material_factory, only: plastic_def_t
   implicit none
   private
   public :: model_t, material_def_t, section_t, amplitude_t, time_points_t, dof_condition_t
@@ -43,6 +44,10 @@ module fcs_model
     logical :: has_density = .false.
     real(dp) :: density = 0.0_dp
     type(source_loc_t) :: loc
+    !> Plasticity (*PLASTIC, *CYCLIC HARDENING, *DRUCKER PRAGER, *DRUCKER PRAGER HARDENING),
+    !> with the cards that gave it (line 0: not given), for the checks of the whole material.
+    type(plastic_def_t) :: plastic
+    type(source_loc_t) :: plastic_loc, cyclic_loc, drucker_prager_loc, dp_hardening_loc
   end type material_def_t
 
   !> *SOLID SECTION: a material and a formulation for an element set.
@@ -102,6 +107,9 @@ module fcs_model
     real(dp) :: max_strain_increment = 2.0e-3_dp
     !> Largest rotation increment in one increment [rad] (0.5 degree).
     real(dp) :: max_rotation_increment = 8.726646259971648e-3_dp
+    !> Largest growth of the equivalent plastic strain at any integration point in one
+    !> increment [-].
+    real(dp) :: max_plastic_strain_increment = 1.0e-3_dp
     !> Events whose fractions are within this relative tolerance of the smallest are taken
     !> together in one increment [-].
     real(dp) :: event_tolerance = 1.0e-3_dp

@@ -14,6 +14,8 @@ module fcs_model_builder
                             handle_surface, handle_mesh
   use fcs_build_material, only: handle_material, handle_elastic, handle_density, &
                                 handle_solid_section, handle_solver, handle_restart
+  use fcs_build_plasticity, only: handle_plastic, handle_cyclic_hardening, handle_drucker_prager, &
+                                  handle_drucker_prager_hardening
   use fcs_build_step, only: handle_step, handle_static, handle_end_step, handle_boundary, &
                             handle_cload, handle_dsload, handle_amplitude, handle_time_points, &
                             handle_rmin
@@ -141,6 +143,14 @@ contains
       call handle_elastic(card, model, state, diag)
     case ('DENSITY')
       call handle_density(card, model, state, diag)
+    case ('PLASTIC')
+      call handle_plastic(card, model, state, diag)
+    case ('CYCLIC HARDENING')
+      call handle_cyclic_hardening(card, model, state, diag)
+    case ('DRUCKER PRAGER')
+      call handle_drucker_prager(card, model, state, diag)
+    case ('DRUCKER PRAGER HARDENING')
+      call handle_drucker_prager_hardening(card, model, state, diag)
     case ('SOLID SECTION')
       call handle_solid_section(card, model, diag)
     case ('SURFACE INTERACTION')
@@ -181,8 +191,12 @@ contains
       call diag%report(card%loc, '*' // card%keyword // ': internal error: no handler ' // &
                        '(the keyword table and the builder disagree)')
     end select
-    if (card%keyword /= 'MATERIAL' .and. card%keyword /= 'ELASTIC' .and. &
-        card%keyword /= 'DENSITY') state%material = 0
+    select case (card%keyword)
+    case ('MATERIAL', 'ELASTIC', 'DENSITY', 'PLASTIC', 'CYCLIC HARDENING', 'DRUCKER PRAGER', &
+          'DRUCKER PRAGER HARDENING')
+    case default
+      state%material = 0
+    end select
     if (card%keyword /= 'SURFACE INTERACTION' .and. card%keyword /= 'SURFACE BEHAVIOR' .and. &
         card%keyword /= 'FRICTION') state%interaction = 0
   end subroutine dispatch
@@ -361,8 +375,10 @@ contains
     case ('EQUATION', 'MPC', 'RIGID BODY', 'COUPLING', 'DISTRIBUTING', 'KINEMATIC', 'TRANSFORM')
       reason = 'constraints other than *BOUNDARY are not available yet'
     case ('ORIENTATION', 'EXPANSION', 'CONDUCTIVITY', 'SPECIFIC HEAT', 'HYPERELASTIC', &
-          'HYPERFOAM', 'CREEP', 'USER MATERIAL', 'DEFORMATION PLASTICITY', 'CYCLIC HARDENING')
-      reason = 'materials are isotropic hypoelastic (*ELASTIC) only'
+          'HYPERFOAM', 'CREEP', 'USER MATERIAL', 'DEFORMATION PLASTICITY', 'RATE DEPENDENT', &
+          'CAP PLASTICITY', 'MOHR COULOMB', 'DRUCKER PRAGER CREEP')
+      reason = 'materials are isotropic hypoelastic (*ELASTIC), with von Mises (*PLASTIC) or ' // &
+               'linear Drucker-Prager (*DRUCKER PRAGER) plasticity'
     case ('INITIAL CONDITIONS', 'TEMPERATURE', 'DLOAD', 'CFLUX', 'DFLUX', 'FILM', 'RADIATE')
       reason = 'this load or initial condition is not available yet'
     case ('NODE OUTPUT', 'ELEMENT OUTPUT', 'OUTPUT', 'CONTACT OUTPUT', 'SECTION PRINT', &

@@ -7,6 +7,7 @@ module fcs_model_checks
   use fcs_hex8_shape, only: hex8_min_jacobian_ratio
   use fcs_model, only: model_t
   use fcs_model_supports, only: check_supports
+  use fcs_build_plasticity, only: check_plasticity
   use fcs_strings, only: str
   implicit none
   private
@@ -78,12 +79,15 @@ contains
   subroutine check_materials(model, diag)
     type(model_t), intent(in) :: model
     type(diagnostics_t), intent(inout) :: diag
-    integer :: s
+    integer :: s, k
     do s = 1, size(model%sections)
       associate (m => model%materials(model%sections(s)%material))
         if (.not. m%has_elastic) call diag%report(m%loc, '*MATERIAL: material ' // m%name // &
                                                    ' is used by a section but has no *ELASTIC')
       end associate
+    end do
+    do k = 1, size(model%materials)
+      call check_plasticity(model%materials(k), diag)
     end do
   end subroutine check_materials
 

@@ -38,13 +38,19 @@ contains
     logical, intent(in), optional :: append
     integer :: stat
     character(len=256) :: msg
-    character(len=8) :: position
-    position = 'rewind'
-    if (present(append)) then
-      if (append) position = 'append'
+    logical :: appending
+    appending = .false.
+    if (present(append)) appending = append
+    ! A new run replaces an earlier run's file at once: opened without status='replace', the
+    ! old contents would stay until the first table is written, and a checkpoint written
+    ! before that would record their size as this run's (a restart then kept them).
+    if (appending) then
+      open (newunit=this%unit, file=path, action='write', position='append', iostat=stat, &
+            iomsg=msg)
+    else
+      open (newunit=this%unit, file=path, action='write', status='replace', iostat=stat, &
+            iomsg=msg)
     end if
-    open (newunit=this%unit, file=path, action='write', position=trim(position), iostat=stat, &
-          iomsg=msg)
     if (stat /= 0) call fatal_error(err, 'opening ' // path // ': ' // trim(msg))
   end subroutine dat_open
 
@@ -97,12 +103,15 @@ contains
     end if
   end subroutine node_block
 
-  !> *EL PRINT: S and/or E at the integration points of the request's element set.
-  subroutine dat_el_print(this, model, request, time, stress, strain)
+  !> *EL PRINT: S, E and/or PEEQ (PE) at the integration points of the request's element set;
+  !> peeq(q, e) is the equivalent plastic strain. CalculiX prints PE and PEEQ alike, as one
+  !> column under the header "equivalent plastic strain (elem, integ.pnt.,pe)for set ..."
+  !> (without a blank before "for", as ccx 2.20 writes it).
+  subroutine dat_el_print(this, model, request, time, stress, strain, peeq)
     class(dat_file_t), intent(inout) :: this
     type(model_t), intent(in) :: model
     type(output_request_t), intent(in) :: request
-    real(dp), intent(in) :: time, stress(:, :, :), strain(:, :, :)
+    real(dp), intent(in) :: time, stress(:, :, :), strain(:, :, :), peeq(:, :)
     integer :: v, i, q, e
     integer, allocatable :: elements(:)
     real(dp) :: tensor_strain(6)
@@ -128,6 +137,17 @@ contains
               tensor_strain = strain(:, q, e)
               tensor_strain(4:6) = 0.5_dp * tensor_strain(4:6)
               write (this%unit, '(i10,i4,6es14.6)') model%mesh%element_id(e), q, tensor_strain
+            end do
+          end do
+        case ('PEEQ', 'PE')
+          write (this%unit, '(a)') ''
+          write (this%unit, '(a,e14.7)') ' equivalent plastic strain (elem, integ.pnt.,pe)for set ' // &
+            set%name // ' and time ', time
+          write (this%unit, '(a)') ''
+          do i = 1, size(elements)
+            e = elements(i)
+            do q = 1, N_GAUSS_HEX8
+              write (this%unit, '(i10,i4,es14.6)') model%mesh%element_id(e), q, peeq(q, e)
             end do
           end do
         end select

@@ -25,13 +25,15 @@ contains
     c = this%elastic_matrix()
   end function hypoelastic_tangent
 
-  !> sigma <- sigma + C : delta_epsilon.
-  pure subroutine hypoelastic_update(this, stress, strain_increment, state)
+  !> sigma <- sigma + C : delta_epsilon (eq. M1); the consistent tangent is C.
+  pure subroutine hypoelastic_update(this, stress, strain_increment, state, consistent_tangent)
     class(hypoelastic_t), intent(in) :: this
     real(dp), intent(inout) :: stress(6)
     real(dp), intent(in) :: strain_increment(6)
     real(dp), intent(inout) :: state(:)
+    real(dp), intent(out), optional :: consistent_tangent(6, 6)
     stress = stress + matmul(this%elastic_matrix(), strain_increment)
+    if (present(consistent_tangent)) consistent_tangent = this%elastic_matrix()
   end subroutine hypoelastic_update
 
   !> No discrete states: never limits the increment.

@@ -1,16 +1,47 @@
 !> The abstract material: the constitutive part of the rate formulation, sigma^J = C : D
-!> (Xing, Mora & Makinouchi 2003, eq. 1), for one integration point.
+!> (Xing, Mora & Makinouchi 2003, eq. 1), for one integration point. Nothing here knows the
+!> element kind: every element kind calls the same procedures at each of its points.
 !>
 !> Stresses and strains are in Voigt order (11, 22, 33, 12, 13, 23) with engineering shear
-!> strains (gamma_12 = 2 eps_12), the order CalculiX prints them in. The element rotates the
-!> stress objectively (Hughes & Winget 1980) before calling `update`, which adds the
-!> constitutive part for the strain increment. Each material may keep internal variables per
-!> integration point (`n_state` of them) and may report R-minimum events (yield).
+!> strains (gamma_12 = 2 eps_12), the order CalculiX prints them in. The caller rotates the
+!> stress objectively (Hughes & Winget 1980) and, for a material with internal variables, the
+!> tensor-valued ones too (`rotate_state`), before `update` adds the constitutive part for the
+!> strain increment. `update` is a pure function of its inputs: called again with the same
+!> start stress, state and increment it gives the same result (equilibrium iterations may
+!> recompute an increment from the saved start of the increment).
+!>
+!> Each material may keep internal variables per integration point (`n_state` of them; their
+!> layout is the material's own: others ask for the equivalent plastic strain, the plastic
+!> strain and the back stress through the accessors) and may report R-minimum events (first
+!> yield, `event_fraction`).
 module fcs_material
   use fcs_kinds, only: dp
   implicit none
   private
-  public :: material_t, isotropic_elastic_matrix
+  public :: material_t, isotropic_elastic_matrix, YIELD_TOLERANCE, UNLOADING_COSINE
+
+  !> A point whose yield function f lies within YIELD_TOLERANCE times the current yield
+  !> stress of the surface counts as on it: its tangent is elastoplastic (unless the increment
+  !> unloads it) and it reports no yield event. Radial return leaves f at round-off (1e-15
+  !> relative) and an R-minimum yield event lands within about 1e-12 without NLGEOM. Under
+  !> NLGEOM the event is predicted with the strain increment on the start configuration while
+  !> the update takes it on the mid-increment one, so a point lands short by about half its
+  !> strain increment, relative: up to 1e-3 with the default MAX STRAIN INCREMENT of 2e-3.
+  !> Counted as on the surface, such a point takes the elastoplastic tangent in the next
+  !> increment, instead of a second yield event a hair away, which the minimum increment
+  !> would overshoot with the elastic tangent (measured: 3e-4 of the yield stress of
+  !> out-of-balance in uniaxial stress, against 1e-5 with this tolerance).
+  real(dp), parameter :: YIELD_TOLERANCE = 1.0e-3_dp
+
+  !> A point on its yield surface unloads when the elastic trial of the increment points into
+  !> the elastic domain by more than this cosine (with the normal of the surface): more than
+  !> about 6 degrees inwards. Flowing points (contained plastic flow, perfect plasticity) have
+  !> trials close to the tangent plane on either side; counted as unloading they would report
+  !> a re-crossing of the surface a hair into every increment (the far root of the yield
+  !> event, at a fraction proportional to the cosine) and stall the stepper. Between 0 and
+  !> this cosine the point keeps the elastoplastic tangent; the return mapping decides the
+  !> update in every case.
+  real(dp), parameter :: UNLOADING_COSINE = 0.1_dp
 
   type, abstract :: material_t
     real(dp) :: youngs_modulus = 0.0_dp
@@ -22,10 +53,24 @@ module fcs_material
     procedure(n_state_interface), deferred :: n_state
     procedure(name_interface), deferred :: name
     procedure :: elastic_matrix => material_elastic_matrix
+    procedure :: shear_modulus => material_shear_modulus
+    procedure :: bulk_modulus => material_bulk_modulus
+    procedure :: rotate_state => material_rotate_state
+    procedure :: equivalent_plastic_strain => material_equivalent_plastic_strain
+    procedure :: plastic_strain => material_plastic_strain
+    procedure :: back_stress => material_back_stress
+    procedure :: is_plastic => material_is_plastic
+    procedure :: plastic_strain_fraction => material_plastic_strain_fraction
+    procedure :: point_events => material_point_events
+    procedure :: unloads => material_unloads
+    procedure :: on_surface => material_on_surface
   end type material_t
 
   abstract interface
-    !> Tangent modulus C (6x6) for the current state of one integration point.
+    !> Tangent modulus C (6x6, engineering strain to stress) for the current state of one
+    !> integration point, at the start of an increment: the elastoplastic tangent of
+    !> continued loading for a point on its yield surface (the consistent tangent of a
+    !> vanishing increment), the elastic one otherwise.
     pure function tangent_interface(this, stress, state) result(c)
       import :: material_t, dp
       class(material_t), intent(in) :: this
@@ -34,17 +79,20 @@ module fcs_material
     end function tangent_interface
 
     !> Add the constitutive stress change for `strain_increment` to `stress` (already rotated
-    !> to the end of the increment) and update internal variables.
-    pure subroutine update_interface(this, stress, strain_increment, state)
+    !> to the end of the increment) and update the internal variables. With
+    !> `consistent_tangent`, also d(stress)/d(strain_increment) of this update (the
+    !> algorithmic tangent, for equilibrium iterations).
+    pure subroutine update_interface(this, stress, strain_increment, state, consistent_tangent)
       import :: material_t, dp
       class(material_t), intent(in) :: this
       real(dp), intent(inout) :: stress(6)
       real(dp), intent(in) :: strain_increment(6)
       real(dp), intent(inout) :: state(:)
+      real(dp), intent(out), optional :: consistent_tangent(6, 6)
     end subroutine update_interface
 
-    !> Fraction r of a trial stress increment at which the state changes (e.g. first yield),
-    !> or a value > 1 if it does not within the increment.
+    !> Fraction r of a trial stress increment at which the state changes (first yield: the
+    !> stress reaches the yield surface), or a value > 1 if it does not within the increment.
     pure real(dp) function event_interface(this, stress, stress_increment, state)
       import :: material_t, dp
       class(material_t), intent(in) :: this
@@ -72,6 +120,138 @@ contains
     real(dp) :: c(6, 6)
     c = isotropic_elastic_matrix(this%youngs_modulus, this%poisson_ratio)
   end function material_elastic_matrix
+
+  !> G = E / (2 (1 + nu)).
+  pure real(dp) function material_shear_modulus(this) result(g)
+    class(material_t), intent(in) :: this
+    g = 0.5_dp * this%youngs_modulus / (1.0_dp + this%poisson_ratio)
+  end function material_shear_modulus
+
+  !> K = E / (3 (1 - 2 nu)).
+  pure real(dp) function material_bulk_modulus(this) result(k)
+    class(material_t), intent(in) :: this
+    k = this%youngs_modulus / (3.0_dp * (1.0_dp - 2.0_dp * this%poisson_ratio))
+  end function material_bulk_modulus
+
+  !> Rotate the tensor-valued internal variables objectively by the increment's rotation q
+  !> (Hughes & Winget 1980). Materials without such variables keep the default (nothing).
+  pure subroutine material_rotate_state(this, state, q)
+    class(material_t), intent(in) :: this
+    real(dp), intent(inout) :: state(:)
+    real(dp), intent(in) :: q(3, 3)
+  end subroutine material_rotate_state
+
+  !> Equivalent plastic strain (PEEQ) of a state; 0 for a material without plasticity.
+  pure real(dp) function material_equivalent_plastic_strain(this, state) result(peeq)
+    class(material_t), intent(in) :: this
+    real(dp), intent(in) :: state(:)
+    peeq = 0.0_dp
+  end function material_equivalent_plastic_strain
+
+  !> Plastic strain tensor (Voigt, engineering shear) of a state; 0 without plasticity.
+  pure function material_plastic_strain(this, state) result(strain)
+    class(material_t), intent(in) :: this
+    real(dp), intent(in) :: state(:)
+    real(dp) :: strain(6)
+    strain = 0.0_dp
+  end function material_plastic_strain
+
+  !> Back stress (centre of the yield surface, Voigt) of a state; 0 without kinematic
+  !> hardening.
+  pure function material_back_stress(this, state) result(alpha)
+    class(material_t), intent(in) :: this
+    real(dp), intent(in) :: state(:)
+    real(dp) :: alpha(6)
+    alpha = 0.0_dp
+  end function material_back_stress
+
+  !> Whether the material can yield (keeps a plastic state).
+  pure logical function material_is_plastic(this)
+    class(material_t), intent(in) :: this
+    material_is_plastic = .false.
+  end function material_is_plastic
+
+  !> The fraction r of a trial increment at which the equivalent plastic strain of this
+  !> point grows by `limit` (the R-minimum limit MAX PLASTIC STRAIN INCREMENT), or a value
+  !> > 1 if it grows less over the whole trial increment. The increment taken applies
+  !> `strain_fixed` (the out-of-balance correction) in full and r times `strain_load`, from
+  !> `stress` and `state`; `r_yield` is the point's yield fraction (> 1 if it does not yield
+  !> or is plastic already). The growth is computed by the material's own update for r = 0
+  !> and 1 and taken linear in r beyond the yield fraction, which is exact for proportional
+  !> loading on one segment of a hardening curve and an estimate otherwise (the limit is a
+  !> step control, not a tolerance).
+  pure real(dp) function material_plastic_strain_fraction(this, stress, state, strain_fixed, &
+                                                           strain_load, r_yield, limit) result(r)
+    class(material_t), intent(in) :: this
+    real(dp), intent(in) :: stress(6), state(:), strain_fixed(6), strain_load(6), r_yield, limit
+    real(dp) :: trial_stress(6), trial_state(size(state)), start, growth_full, growth_fixed
+    r = huge(1.0_dp)
+    if (.not. this%is_plastic() .or. .not. (limit > 0.0_dp)) return
+    start = this%equivalent_plastic_strain(state)
+    trial_stress = stress
+    trial_state = state
+    call this%update(trial_stress, strain_fixed + strain_load, trial_state)
+    growth_full = this%equivalent_plastic_strain(trial_state) - start
+    if (growth_full <= limit) return
+    if (r_yield >= 0.0_dp .and. r_yield < 1.0_dp) then
+      r = r_yield + (1.0_dp - r_yield) * limit / growth_full
+      return
+    end if
+    trial_stress = stress
+    trial_state = state
+    call this%update(trial_stress, strain_fixed, trial_state)
+    growth_fixed = this%equivalent_plastic_strain(trial_state) - start
+    ! The correction alone already exceeds the limit: scaling the load cannot help.
+    if (growth_fixed >= limit) return
+    r = (limit - growth_fixed) / (growth_full - growth_fixed)
+  end function material_plastic_strain_fraction
+
+  !> Whether a point on its yield surface leaves it inwards under the elastic trial of
+  !> `strain_increment` (the trial's cosine with the normal of the surface below
+  !> -UNLOADING_COSINE): elastic unloading, whose
+  !> tangent is the elastic one (Yamada, Yoshimura & Sakurai 1968). False for a point inside
+  !> the surface and for a material without plasticity (the default).
+  pure logical function material_unloads(this, stress, state, strain_increment) result(unloads)
+    class(material_t), intent(in) :: this
+    real(dp), intent(in) :: stress(6), state(:), strain_increment(6)
+    unloads = .false.
+  end function material_unloads
+
+  !> Whether the point lies on its yield surface (within YIELD_TOLERANCE): false for a
+  !> material without plasticity (the default).
+  pure logical function material_on_surface(this, stress, state) result(on)
+    class(material_t), intent(in) :: this
+    real(dp), intent(in) :: stress(6), state(:)
+    on = .false.
+  end function material_on_surface
+
+  !> The R-minimum fractions of one integration point for a trial increment that applies
+  !> `strain_fixed` (the out-of-balance correction) in full and r times `strain_load`, both
+  !> linearised at the start of the increment with its tangent (the elastic one for a point
+  !> that the increment unloads): `r_yield`, where the stress
+  !> reaches the yield surface (event_fraction), and `r_plastic`, where the equivalent plastic
+  !> strain has grown by `limit` (plastic_strain_fraction); values > 1 when they do not happen.
+  pure subroutine material_point_events(this, stress, state, strain_fixed, strain_load, limit, &
+                                        r_yield, r_plastic)
+    class(material_t), intent(in) :: this
+    real(dp), intent(in) :: stress(6), state(:), strain_fixed(6), strain_load(6), limit
+    real(dp), intent(out) :: r_yield, r_plastic
+    real(dp) :: tangent(6, 6)
+    if (this%unloads(stress, state, strain_fixed + strain_load)) then
+      ! Elastic unloading: where the elastic path reaches the surface again (reverse yield).
+      tangent = this%elastic_matrix()
+      r_yield = this%event_fraction(stress + matmul(tangent, strain_fixed), &
+                                    matmul(tangent, strain_load), state)
+    else if (this%on_surface(stress, state)) then
+      ! Plastic loading: no event (the elastoplastic stress path stays on the surface).
+      r_yield = huge(1.0_dp)
+    else
+      tangent = this%tangent(stress, state)
+      r_yield = this%event_fraction(stress + matmul(tangent, strain_fixed), &
+                                    matmul(tangent, strain_load), state)
+    end if
+    r_plastic = this%plastic_strain_fraction(stress, state, strain_fixed, strain_load, r_yield, limit)
+  end subroutine material_point_events
 
   !> Isotropic elasticity matrix in Voigt order (11,22,33,12,13,23), engineering shear.
   pure function isotropic_elastic_matrix(e, nu) result(c)

@@ -1,33 +1,170 @@
-!> Creates material objects by name.
+!> Creates material objects from their definitions: hypoelastic (`*ELASTIC` alone), von Mises
+!> plasticity (`*PLASTIC`, `*CYCLIC HARDENING`) and Drucker-Prager plasticity (`*DRUCKER
+!> PRAGER`, `*DRUCKER PRAGER HARDENING`). The definition is plain data, checked by the model
+!> builder (which reports problems with the deck's file and line); the factory checks it
+!> again and refuses what it cannot build, naming the valid choices.
 module fcs_material_factory
   use fcs_kinds, only: dp
   use fcs_error, only: error_t, input_error
   use fcs_material, only: material_t
   use fcs_hypoelastic, only: hypoelastic_t
+  use fcs_von_mises, only: von_mises_t
+  use fcs_drucker_prager, only: drucker_prager_t
+  use fcs_hardening_table, only: hardening_table_t, constant_table
+  use fcs_strings, only: to_lower
   implicit none
   private
-  public :: create_material, MATERIAL_NAMES
+  public :: create_material, plastic_def_t, MATERIAL_NAMES, HARDENING_NAMES, DP_HARDENING_TYPES
+  public :: PLASTICITY_NONE, PLASTICITY_MISES, PLASTICITY_DRUCKER_PRAGER, max_friction_angle
 
   !> Valid material model names.
-  character(len=*), parameter :: MATERIAL_NAMES = 'HYPOELASTIC'
+  character(len=*), parameter :: MATERIAL_NAMES = 'HYPOELASTIC, VON MISES, DRUCKER PRAGER'
+  !> *PLASTIC, HARDENING= and *DRUCKER PRAGER HARDENING, TYPE= choices.
+  character(len=*), parameter :: HARDENING_NAMES = 'ISOTROPIC, KINEMATIC, COMBINED'
+  character(len=*), parameter :: DP_HARDENING_TYPES = 'COMPRESSION, TENSION, SHEAR'
+  !> Which plasticity a material has.
+  integer, parameter :: PLASTICITY_NONE = 0, PLASTICITY_MISES = 1, PLASTICITY_DRUCKER_PRAGER = 2
+
+  !> The plastic part of a material definition. Curves are (plastic strain, stress) points,
+  !> strains strictly increasing from 0, stresses positive; angles in degrees.
+  type :: plastic_def_t
+    integer :: model = PLASTICITY_NONE
+    !> von Mises: HARDENING= of *PLASTIC, its curve, and the *CYCLIC HARDENING curve.
+    character(len=:), allocatable :: hardening
+    type(hardening_table_t) :: curve
+    type(hardening_table_t) :: cyclic_curve
+    !> Drucker-Prager: friction angle beta, flow stress ratio K, dilation angle psi, and the
+    !> TYPE= of *DRUCKER PRAGER HARDENING (its curve is `curve`).
+    real(dp) :: friction_angle = 0.0_dp
+    real(dp) :: flow_stress_ratio = 1.0_dp
+    real(dp) :: dilation_angle = 0.0_dp
+    character(len=:), allocatable :: hardening_type
+  end type plastic_def_t
 
 contains
 
-  !> A material model `name` with Young's modulus `e` and Poisson's ratio `nu`.
-  subroutine create_material(name, e, nu, material, err)
-    character(len=*), intent(in) :: name
+  !> Largest friction (or dilation) angle [degree] of a Drucker-Prager material whose curve
+  !> is given as `hardening_type`: in COMPRESSION, d = (1 - tan(beta)/3) sigma_c and
+  !> c = 1 - tan(psi)/3 must stay positive (tan < 3); otherwise below 90 degrees.
+  pure real(dp) function max_friction_angle(hardening_type) result(angle)
+    character(len=*), intent(in) :: hardening_type
+    if (hardening_type == 'COMPRESSION') then
+      angle = atan(3.0_dp) * 180.0_dp / acos(-1.0_dp)
+    else
+      angle = 90.0_dp
+    end if
+  end function max_friction_angle
+
+  !> A material with Young's modulus `e`, Poisson's ratio `nu` and the plastic part `plastic`.
+  subroutine create_material(e, nu, plastic, material, err)
     real(dp), intent(in) :: e, nu
+    type(plastic_def_t), intent(in) :: plastic
     class(material_t), allocatable, intent(out) :: material
     type(error_t), allocatable, intent(out) :: err
-    select case (name)
-    case ('HYPOELASTIC')
+    select case (plastic%model)
+    case (PLASTICITY_NONE)
       allocate (hypoelastic_t :: material)
+    case (PLASTICITY_MISES)
+      call create_von_mises(plastic, material, err)
+    case (PLASTICITY_DRUCKER_PRAGER)
+      call create_drucker_prager(plastic, material, err)
     case default
-      call input_error(err, 'unknown material model "' // name // '"; expected one of ' // MATERIAL_NAMES)
-      return
+      call input_error(err, 'unknown material model; expected one of ' // MATERIAL_NAMES)
     end select
+    if (allocated(err)) return
     material%youngs_modulus = e
     material%poisson_ratio = nu
   end subroutine create_material
+
+  !> R and B of fcs_von_mises from HARDENING= (the CalculiX reading of the curves).
+  subroutine create_von_mises(plastic, material, err)
+    type(plastic_def_t), intent(in) :: plastic
+    class(material_t), allocatable, intent(out) :: material
+    type(error_t), allocatable, intent(out) :: err
+    type(von_mises_t) :: law
+    if (.not. valid_curve(plastic%curve)) then
+      call input_error(err, '*PLASTIC: the hardening curve is not valid')
+      return
+    end if
+    law%hardening = plastic%hardening
+    select case (plastic%hardening)
+    case ('ISOTROPIC')
+      law%radius = plastic%curve
+      law%kinematic = constant_table(0.0_dp)
+    case ('KINEMATIC')
+      law%radius = constant_table(plastic%curve%stress(1))
+      law%kinematic = plastic%curve
+    case ('COMBINED')
+      if (.not. valid_curve(plastic%cyclic_curve)) then
+        call input_error(err, '*PLASTIC, HARDENING=COMBINED needs a *CYCLIC HARDENING curve')
+        return
+      end if
+      law%radius = plastic%cyclic_curve
+      law%kinematic = plastic%curve
+    case default
+      call input_error(err, '*PLASTIC: unknown HARDENING=' // plastic%hardening // &
+                       '; expected one of ' // HARDENING_NAMES)
+      return
+    end select
+    allocate (material, source=law)
+  end subroutine create_von_mises
+
+  !> Cohesion and rate factors of fcs_drucker_prager from TYPE= (K = 1).
+  subroutine create_drucker_prager(plastic, material, err)
+    type(plastic_def_t), intent(in) :: plastic
+    class(material_t), allocatable, intent(out) :: material
+    type(error_t), allocatable, intent(out) :: err
+    type(drucker_prager_t) :: law
+    real(dp), parameter :: degree = acos(-1.0_dp) / 180.0_dp
+    if (.not. valid_curve(plastic%curve)) then
+      call input_error(err, '*DRUCKER PRAGER HARDENING: the hardening curve is not valid')
+      return
+    end if
+    if (plastic%flow_stress_ratio /= 1.0_dp) then
+      call input_error(err, '*DRUCKER PRAGER: only the flow stress ratio K = 1 is available')
+      return
+    end if
+    if (plastic%friction_angle < 0.0_dp .or. &
+        plastic%friction_angle >= max_friction_angle(plastic%hardening_type) .or. &
+        plastic%dilation_angle < 0.0_dp .or. &
+        plastic%dilation_angle >= max_friction_angle(plastic%hardening_type)) then
+      call input_error(err, '*DRUCKER PRAGER: friction or dilation angle out of range')
+      return
+    end if
+    law%tan_friction = tan(plastic%friction_angle * degree)
+    law%tan_dilation = tan(plastic%dilation_angle * degree)
+    law%hardening = plastic%curve
+    law%hardening_type = to_lower(plastic%hardening_type)
+    select case (plastic%hardening_type)
+    case ('COMPRESSION')
+      law%cohesion_factor = 1.0_dp - law%tan_friction / 3.0_dp
+      law%rate_factor = 1.0_dp - law%tan_dilation / 3.0_dp
+    case ('TENSION')
+      law%cohesion_factor = 1.0_dp + law%tan_friction / 3.0_dp
+      law%rate_factor = 1.0_dp + law%tan_dilation / 3.0_dp
+    case ('SHEAR')
+      law%cohesion_factor = sqrt(3.0_dp)
+      law%rate_factor = 1.0_dp
+    case default
+      call input_error(err, '*DRUCKER PRAGER HARDENING: unknown TYPE=' // plastic%hardening_type // &
+                       '; expected one of ' // DP_HARDENING_TYPES)
+      return
+    end select
+    allocate (material, source=law)
+  end subroutine create_drucker_prager
+
+  !> At least one point, strains strictly increasing from 0, stresses positive.
+  pure logical function valid_curve(curve)
+    type(hardening_table_t), intent(in) :: curve
+    integer :: i
+    valid_curve = .false.
+    if (curve%n_points() < 1) return
+    if (size(curve%stress) /= size(curve%strain)) return
+    if (curve%strain(1) /= 0.0_dp .or. any(curve%stress <= 0.0_dp)) return
+    do i = 2, size(curve%strain)
+      if (curve%strain(i) <= curve%strain(i - 1)) return
+    end do
+    valid_curve = .true.
+  end function valid_curve
 
 end module fcs_material_factory

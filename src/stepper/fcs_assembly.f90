@@ -18,7 +18,7 @@ module fcs_assembly
   implicit none
   private
   public :: material_slot_t, make_materials, assemble_elements, assemble_pressures
-  public :: element_cliques, element_configuration, inverted_element_error
+  public :: element_cliques, element_configuration, inverted_element_error, plastic_fields
 
   !> One material object per *MATERIAL.
   type :: material_slot_t
@@ -38,12 +38,34 @@ contains
     allocate (slots(size(model%materials)))
     n_state = 0
     do k = 1, size(model%materials)
-      call create_material('HYPOELASTIC', model%materials(k)%youngs_modulus, &
-                           model%materials(k)%poisson_ratio, slots(k)%m, err)
+      call create_material(model%materials(k)%youngs_modulus, model%materials(k)%poisson_ratio, &
+                           model%materials(k)%plastic, slots(k)%m, err)
       if (allocated(err)) return
       n_state = max(n_state, slots(k)%m%n_state())
     end do
   end subroutine make_materials
+
+  !> The plastic state of every integration point, as each element's material reports it:
+  !> equivalent plastic strain peeq(q, e), plastic strain(6, q, e) (Voigt, engineering shear)
+  !> and back stress(6, q, e); zeros for materials without plasticity.
+  subroutine plastic_fields(model, state, slots, peeq, plastic_strain, back_stress)
+    type(model_t), intent(in) :: model
+    type(state_t), intent(in) :: state
+    type(material_slot_t), intent(in) :: slots(:)
+    real(dp), allocatable, intent(out) :: peeq(:, :), plastic_strain(:, :, :), back_stress(:, :, :)
+    integer :: e, q
+    allocate (peeq(N_GAUSS_HEX8, state%n_elements), plastic_strain(6, N_GAUSS_HEX8, state%n_elements), &
+              back_stress(6, N_GAUSS_HEX8, state%n_elements))
+    do e = 1, state%n_elements
+      associate (material => slots(model%sections(model%element_section(e))%material)%m)
+        do q = 1, N_GAUSS_HEX8
+          peeq(q, e) = material%equivalent_plastic_strain(state%material_state(:, q, e))
+          plastic_strain(:, q, e) = material%plastic_strain(state%material_state(:, q, e))
+          back_stress(:, q, e) = material%back_stress(state%material_state(:, q, e))
+        end do
+      end associate
+    end do
+  end subroutine plastic_fields
 
   !> Node lists of the given elements as cliques for the sparse pattern.
   subroutine element_cliques(model, elements, clique_ptr, clique_nodes)
@@ -86,11 +108,13 @@ contains
   end subroutine inverted_element_error
 
   !> Internal forces f_int (3*n_nodes) of the given elements and, when `matrix` is present,
-  !> their tangent K added into it (values only: the caller zeroes it). With `flux`
-  !> (n_nodes), the sum over the elements of a node of the magnitudes of their nodal forces:
-  !> the force the node passes on, the scale its out-of-balance force is measured against
-  !> (f_int itself vanishes at a free node in equilibrium).
-  subroutine assemble_elements(model, state, slots, nlgeom, elements, f_int, err, matrix, flux)
+  !> their tangent K added into it (values only: the caller zeroes it). Points marked in
+  !> `elastic(q, e)` (elastic unloading) take the elastic tangent. With `flux` (n_nodes), the
+  !> sum over the elements of a node of the magnitudes of their nodal forces: the force the
+  !> node passes on, the scale its out-of-balance force is measured against (f_int itself
+  !> vanishes at a free node in equilibrium).
+  subroutine assemble_elements(model, state, slots, nlgeom, elements, f_int, err, matrix, elastic, &
+                               flux)
     type(model_t), intent(in) :: model
     type(state_t), intent(in) :: state
     type(material_slot_t), intent(in) :: slots(:)
@@ -99,6 +123,7 @@ contains
     real(dp), intent(out) :: f_int(:)
     type(error_t), allocatable, intent(out) :: err
     type(sparse_matrix_t), intent(inout), optional :: matrix
+    logical, intent(in), optional :: elastic(:, :)
     real(dp), intent(out), optional :: flux(:)
     type(hex8_geometry_t) :: geo
     real(dp) :: k(24, 24), f(24), c(6, 6, N_GAUSS_HEX8)
@@ -131,6 +156,11 @@ contains
         do q = 1, N_GAUSS_HEX8
           c(:, :, q) = material%tangent(state%stress(:, q, e), state%material_state(:, q, e))
         end do
+        if (present(elastic)) then
+          do q = 1, N_GAUSS_HEX8
+            if (elastic(q, e)) c(:, :, q) = material%elastic_matrix()
+          end do
+        end if
       end associate
       call hex8_tangent(geo, state%stress(:, :, e), c, bbar, nlgeom, k)
       call matrix%add_matrix(model%mesh%connectivity(:, e), k, missing)

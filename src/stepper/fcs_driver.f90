@@ -11,7 +11,7 @@ module fcs_driver
   use fcs_run_options, only: run_options_t
   use fcs_state, only: state_t
   use fcs_loading, only: build_step_loading
-  use fcs_assembly, only: make_materials
+  use fcs_assembly, only: make_materials, plastic_fields
   use fcs_static_explicit, only: analysis_t, take_increment, increment_record_t, build_pattern, &
                                  contact_positions, current_reactions, gather_element_fields
   use fcs_comm, only: comm_t
@@ -26,7 +26,7 @@ module fcs_driver
   use fcs_log, only: logger_t, format_duration
   use fcs_timer, only: wall_time, peak_memory_mib
   use fcs_rmin_events, only: event_kind_name, EVENT_FULL_INCREMENT, EVENT_STRAIN_LIMIT, &
-                             EVENT_ROTATION_LIMIT, EVENT_YIELD
+                             EVENT_ROTATION_LIMIT, EVENT_YIELD, EVENT_PLASTIC_STRAIN_LIMIT
   use fcs_hex8_element, only: mises_stress, hex8_extrapolate
   use fcs_hex8_shape, only: N_GAUSS_HEX8
   use fcs_strings, only: str, to_upper, to_lower, join_strings
@@ -567,7 +567,7 @@ contains
     associate (state => run%analysis%state)
       entity = ''
       select case (record%limiting%kind)
-      case (EVENT_STRAIN_LIMIT, EVENT_ROTATION_LIMIT, EVENT_YIELD)
+      case (EVENT_STRAIN_LIMIT, EVENT_ROTATION_LIMIT, EVENT_YIELD, EVENT_PLASTIC_STRAIN_LIMIT)
         entity = ' element ' // str(model%mesh%element_id(record%limiting%entity)) // ' ip ' // &
                  str(record%limiting%detail)
       case (EVENT_FULL_INCREMENT)
@@ -607,6 +607,7 @@ contains
     type(error_t), allocatable, intent(out) :: err
     logical :: need_frame, need_print
     integer :: i
+    real(dp), allocatable :: peeq(:, :), plastic_strain(:, :, :), back_stress(:, :, :)
     associate (step => model%steps(run%analysis%state%step), state => run%analysis%state)
       ! Output due on the last increment of a step is written once, by the end-of-step call.
       if (.not. end_of_step .and. state%step_time >= step%period * (1.0_dp - 1.0e-12_dp)) return
@@ -633,7 +634,8 @@ contains
         case (OUTPUT_NODE_PRINT)
           call run%dat%node_print(model, step%outputs(i), state%time, state%u, state%reaction)
         case (OUTPUT_EL_PRINT)
-          call run%dat%el_print(model, step%outputs(i), state%time, state%stress, state%strain)
+          call plastic_fields(model, state, run%analysis%materials, peeq, plastic_strain, back_stress)
+          call run%dat%el_print(model, step%outputs(i), state%time, state%stress, state%strain, peeq)
         case (OUTPUT_CONTACT_PRINT)
           call run%dat%contact_print(model, step%outputs(i), state%time, run%analysis%contact, &
                                      state%contact, run%analysis%x_contact)
@@ -764,12 +766,41 @@ contains
       if (.not. allocated(err)) call run%results%write_cell('mises', cell_mises, err)
       if (.not. allocated(err)) call run%results%write_integration_points('stress', state%stress, err)
       if (.not. allocated(err)) call run%results%write_integration_points('strain', state%strain, err)
+      if (.not. allocated(err) .and. run%analysis%materials_have_states) &
+        call write_plastic_fields(run, model, err)
       if (.not. allocated(err)) call write_contact_fields(run, err)
       if (.not. allocated(err)) call run%results%end_frame(err)
       if (.not. allocated(err)) call write_tables(run, err)
       call log_contact_totals(run, .true.)
     end associate
   end subroutine write_frame
+
+  !> The plastic state in a frame, named as CalculiX (PEEQ, PE) and Abaqus (ALPHA, the back
+  !> stress) name it: PEEQ at the integration points, averaged at the nodes and per element
+  !> (cells); the plastic strain PE (tensor components) and ALPHA at the integration points
+  !> and the nodes.
+  subroutine write_plastic_fields(run, model, err)
+    type(run_t), intent(inout) :: run
+    type(model_t), intent(in) :: model
+    type(error_t), allocatable, intent(out) :: err
+    real(dp), allocatable :: peeq(:, :), plastic_strain(:, :, :), back_stress(:, :, :), cell(:, :)
+    integer :: e
+    call plastic_fields(model, run%analysis%state, run%analysis%materials, peeq, plastic_strain, &
+                        back_stress)
+    plastic_strain(4:6, :, :) = 0.5_dp * plastic_strain(4:6, :, :)
+    allocate (cell(1, size(peeq, 2)))
+    do e = 1, size(peeq, 2)
+      cell(1, e) = sum(peeq(:, e)) / size(peeq, 1)
+    end do
+    call run%results%write_integration_points('PEEQ', reshape(peeq, [1, shape(peeq)]), err)
+    if (.not. allocated(err)) call run%results%write_integration_points('PE', plastic_strain, err)
+    if (.not. allocated(err)) call run%results%write_integration_points('ALPHA', back_stress, err)
+    if (.not. allocated(err)) call run%results%write_nodal('PEEQ', &
+      nodal_average(model, reshape(peeq, [1, shape(peeq)])), err)
+    if (.not. allocated(err)) call run%results%write_cell('PEEQ', cell, err)
+    if (.not. allocated(err)) call run%results%write_nodal('PE', nodal_average(model, plastic_strain), err)
+    if (.not. allocated(err)) call run%results%write_nodal('ALPHA', nodal_average(model, back_stress), err)
+  end subroutine write_plastic_fields
 
   pure real(dp) function element_mean_mises(stress) result(m)
     real(dp), intent(in) :: stress(:, :)

@@ -6,6 +6,7 @@ module fcs_monitors
   use fcs_model, only: model_t, history_request_t, HISTORY_NSET_U, HISTORY_NSET_RF, &
                        HISTORY_CONTACT, HISTORY_ENERGY
   use fcs_static_explicit, only: analysis_t, current_reactions
+  use fcs_assembly, only: plastic_fields
   use fcs_history, only: history_table_t
   use fcs_event_catalog, only: event_catalog_t
   use fcs_contact_system, only: pair_totals_t
@@ -183,7 +184,7 @@ contains
     case (HISTORY_CONTACT)
       values = contact_values(a, target)
     case default
-      values = [strain_energy(this, a), sum(a%state%contact%work)]
+      values = [strain_energy(this, model, a), sum(a%state%contact%work)]
     end select
   end function item_values
 
@@ -214,12 +215,21 @@ contains
               sum_pressure / max(1, n_closed), sum_shear / max(1, n_closed)]
   end function contact_values
 
-  !> 1/2 sum sigma:eps dV over the integration points (reference volumes; the elastic strain
-  !> energy of a hypoelastic body at small strains).
-  real(dp) function strain_energy(this, a)
+  !> 1/2 sum sigma:eps_e dV over the integration points (reference volumes; the elastic strain
+  !> energy at small strains), eps_e = eps - eps_p the elastic part of the strain when a
+  !> material is plastic.
+  real(dp) function strain_energy(this, model, a)
     type(monitors_t), intent(in) :: this
+    type(model_t), intent(in) :: model
     type(analysis_t), intent(in) :: a
-    strain_energy = 0.5_dp * sum(sum(a%state%stress * a%state%strain, dim=1) * this%volume)
+    real(dp), allocatable :: peeq(:, :), plastic_strain(:, :, :), back_stress(:, :, :)
+    if (a%materials_have_states) then
+      call plastic_fields(model, a%state, a%materials, peeq, plastic_strain, back_stress)
+      strain_energy = 0.5_dp * sum(sum(a%state%stress * (a%state%strain - plastic_strain), dim=1) * &
+                                   this%volume)
+    else
+      strain_energy = 0.5_dp * sum(sum(a%state%stress * a%state%strain, dim=1) * this%volume)
+    end if
   end function strain_energy
 
   !> Feed the event catalog after an increment that started at t_start; log ended events.

@@ -28,7 +28,9 @@ module fcs_static_explicit
   use fcs_rmin_events, only: rmin_collector_t, rmin_event_t, EVENT_STRAIN_LIMIT, &
                              EVENT_ROTATION_LIMIT, EVENT_YIELD, event_kind_name, EVENT_NONE, &
                              EVENT_FULL_INCREMENT, EVENT_SLIP_RATE_CHANGE, EVENT_FRICTION_CHANGE, &
-                             EVENT_STATE_CHANGE
+                             EVENT_STATE_CHANGE, EVENT_PLASTIC_STRAIN_LIMIT
+  use fcs_material, only: material_t
+  use fcs_voigt, only: spin_rotation, rotate_stress_like, rotate_strain_like
   use fcs_timer, only: phase_timer_t
   use fcs_contact_system, only: contact_system_t
   use fcs_assembly, only: element_cliques
@@ -71,6 +73,9 @@ module fcs_static_explicit
   real(dp), parameter :: CUT_FACTOR = 0.25_dp
   !> Largest number of trial step lengths (1, 1/2, 1/4, ...) of one equilibrium iteration.
   integer, parameter :: MAX_LINE_SEARCH = 4
+  !> Under NO EQUILIBRIUM=CARRY, equilibrium iterations stop when two of them reduce |R| by
+  !> less than this factor.
+  real(dp), parameter :: STAGNATION = 0.5_dp
 
   !> Working storage of the analysis, allocated once and reused every increment.
   type :: analysis_t
@@ -107,6 +112,9 @@ module fcs_static_explicit
     integer, allocatable :: pressure_cliques(:, :)
     !> A distributed run's pattern changed: the solver needs the whole model's ordering.
     logical :: ordering_due = .false.
+    !> Integration points on their yield surface that the trial increment unloads (q, e):
+    !> assembled with the elastic tangent for the rest of the increment.
+    logical, allocatable :: unloading(:, :)
   end type analysis_t
 
 contains
@@ -155,13 +163,13 @@ contains
           a%state = start
           return
         end if
-        ! Iterations that do not converge cut the increment.
+        ! Iterations that do not converge cut the increment (NO EQUILIBRIUM=STOP), or the
+        ! increment is taken as the static-explicit scheme takes it, without iterations, its
+        ! out-of-balance force carried into the next (NO EQUILIBRIUM=CARRY: an unstable slip
+        ! event has no equilibrium to cut towards).
         if (converged) exit
-        call cut_increment(a, model, step, start, dt, record, r, err)
-        if (allocated(err) .and. step%rmin%carry_unbalanced) then
-          ! NO EQUILIBRIUM=CARRY: the minimum increment as the static-explicit scheme takes
-          ! it, without iterations; its out-of-balance force goes into the next increment.
-          deallocate (err)
+        if (step%rmin%carry_unbalanced) then
+          a%state = start
           a%du = a%du_residual + r * a%du_load
           call apply_increment(a, model, step, t0, dt, r, err, .true.)
           if (.not. allocated(err)) call out_of_balance(a, model, step, record, err)
@@ -172,6 +180,7 @@ contains
           record%carried = .true.
           exit
         end if
+        call cut_increment(a, model, step, start, dt, record, r, err)
         if (allocated(err)) return
       end do
       record%r = r
@@ -230,6 +239,7 @@ contains
     type(increment_record_t), intent(inout) :: record
     type(error_t), allocatable, intent(out) :: err
     integer :: pass, n_switched
+    if (a%materials_have_states) call reset_unloading(a)
     do pass = 1, MAX_STATE_PASSES
       call a%timers%start('assembly')
       call assemble_system(a, model, step, t0, dt, err)
@@ -240,9 +250,12 @@ contains
       call solve_system(a, model%mesh%node_id, err)
       call a%comm%agree_error(err)
       if (allocated(err)) return
-      if (a%contact%n_slaves() == 0) exit
+      if (a%contact%n_slaves() == 0 .and. .not. a%materials_have_states) exit
       a%du = a%du_residual + a%du_load
-      call a%contact%switch_states(a%x_contact, a%state%contact, a%du, n_switched)
+      n_switched = 0
+      if (a%contact%n_slaves() > 0) &
+        call a%contact%switch_states(a%x_contact, a%state%contact, a%du, n_switched)
+      if (a%materials_have_states) call switch_unloading(a, model, step%nlgeom, n_switched)
       record%n_switches = record%n_switches + n_switched
       if (n_switched == 0) exit
     end do
@@ -342,10 +355,11 @@ contains
     logical, intent(out) :: converged
     type(error_t), allocatable, intent(out) :: err
     real(dp), allocatable :: base(:)
-    real(dp) :: norm, trial_norm, step_length
+    real(dp) :: norm, trial_norm, step_length, previous(2)
     integer :: iteration, search, n_growing, n_changed
     converged = .false.
     n_growing = 0
+    previous = huge(1.0_dp)
     call out_of_balance(a, model, step, record, err)
     if (allocated(err)) return
     norm = norm2(a%rhs_residual)
@@ -364,6 +378,7 @@ contains
         if (allocated(err)) return
         norm = norm2(a%rhs_residual)
         n_growing = 0
+        previous = huge(1.0_dp)
       end if
       if (iteration > step%rmin%max_iterations) return
       ! A correction that cannot be solved (the iterate lost the contact that supported a
@@ -393,6 +408,12 @@ contains
         n_growing = n_growing + 1
         if (n_growing >= 2) return
       end if
+      ! Under NO EQUILIBRIUM=CARRY, stagnation ends the iterations: less than a halving of
+      ! |R| over two iterations (a slip event on a weakening interface has no equilibrium to
+      ! converge to, and the increment will be carried anyway).
+      previous(1) = previous(2)
+      previous(2) = norm
+      if (step%rmin%carry_unbalanced .and. trial_norm > STAGNATION * previous(1)) return
       norm = trial_norm
     end do
   end subroutine equilibrate
@@ -496,8 +517,9 @@ contains
         '), the out-of-balance force is still ' // str(record%residual_ratio) // ' of the force ' // &
         'scale (tolerance ' // str(step%rmin%equilibrium_tolerance) // '), largest at node ' // &
         str(model%mesh%node_id(max(record%residual_node, 1))) // ' in ' // &
-        AXIS(max(record%residual_direction, 1)) // '; check the loading and the supports, or ' // &
-        'raise EQUILIBRIUM TOLERANCE or MAX ITERATIONS on *RMIN')
+        AXIS(max(record%residual_direction, 1)) // distortion_note(a, model, step%nlgeom) // &
+        '; check the loading and the supports, or raise EQUILIBRIUM TOLERANCE or MAX ' // &
+        'ITERATIONS on *RMIN')
       return
     end if
     record%cuts = record%cuts + 1
@@ -543,8 +565,13 @@ contains
     type(error_t), allocatable, intent(out) :: err
     real(dp), allocatable :: scratch(:)
     call a%matrix%zero()
-    call assemble_elements(model, a%state, a%materials, step%nlgeom, a%my_elements, a%f_int, err, &
-                           a%matrix)
+    if (a%materials_have_states) then
+      call assemble_elements(model, a%state, a%materials, step%nlgeom, a%my_elements, a%f_int, err, &
+                             a%matrix, a%unloading)
+    else
+      call assemble_elements(model, a%state, a%materials, step%nlgeom, a%my_elements, a%f_int, err, &
+                             a%matrix)
+    end if
     call a%comm%agree_error(err)
     if (allocated(err)) return
     if (step%nlgeom .and. a%comm%is_root()) then
@@ -580,9 +607,22 @@ contains
     if (a%contact%n_slaves() > 0) call a%contact%forces(a%x_contact, a%state%contact, a%f_contact)
     a%f_ext_end = 0.0_dp
     if (allocated(a%loading%bc_dof)) call external_force_at(a, model, nlgeom, a%state%step_time, a%f_ext_end)
-    where (.not. a%constrained) a%f_ext_end = 0.0_dp
+    where (.not. supported_dofs(a, model)) a%f_ext_end = 0.0_dp
     reaction = reshape(a%f_int - a%f_contact - a%f_ext_end, shape(reaction))
   end subroutine current_reactions
+
+  !> The degrees of freedom the current step prescribes (and those of nodes in no element).
+  function supported_dofs(a, model) result(supported)
+    type(analysis_t), intent(in) :: a
+    type(model_t), intent(in) :: model
+    logical :: supported(3 * model%mesh%n_nodes)
+    integer :: node
+    supported = .false.
+    do node = 1, model%mesh%n_nodes
+      if (model%free_node(node)) supported(3 * node - 2:3 * node) = .true.
+    end do
+    if (allocated(a%loading%bc_dof)) supported(a%loading%bc_dof) = .true.
+  end function supported_dofs
 
   !> Internal forces of the current state (all elements, summed over the processes).
   subroutine internal_forces(a, model, nlgeom, f_int, err)
@@ -827,8 +867,8 @@ contains
     type(error_t), allocatable, intent(out) :: err
     type(hex8_geometry_t) :: geo
     real(dp) :: strain(6, N_GAUSS_HEX8), spin(3, 3, N_GAUSS_HEX8), equivalent(N_GAUSS_HEX8)
-    real(dp) :: angle(N_GAUSS_HEX8), du(3, 8), stress_increment(6), strain_fixed(6, N_GAUSS_HEX8)
-    real(dp) :: tangent(6, 6), stress_start(6)
+    real(dp) :: angle(N_GAUSS_HEX8), du(3, 8), strain_fixed(6, N_GAUSS_HEX8)
+    real(dp) :: r_yield, r_plastic
     integer :: e, q, s, i
     logical :: ok, bbar
     call a%collector%reset()
@@ -857,15 +897,60 @@ contains
       call hex8_strain_increments(geo, du, bbar, strain_fixed, spin, equivalent, angle)
       associate (material => a%materials(model%sections(s)%material)%m)
         do q = 1, N_GAUSS_HEX8
-          tangent = material%tangent(a%state%stress(:, q, e), a%state%material_state(:, q, e))
-          stress_start = a%state%stress(:, q, e) + matmul(tangent, strain_fixed(:, q))
-          stress_increment = matmul(tangent, strain(:, q))
-          call a%collector%offer(material%event_fraction(stress_start, stress_increment, &
-                                 a%state%material_state(:, q, e)), EVENT_YIELD, e, q)
+          call material%point_events(a%state%stress(:, q, e), a%state%material_state(:, q, e), &
+                                     strain_fixed(:, q), strain(:, q), &
+                                     step%rmin%max_plastic_strain_increment, r_yield, r_plastic)
+          call a%collector%offer(r_yield, EVENT_YIELD, e, q)
+          call a%collector%offer(r_plastic, EVENT_PLASTIC_STRAIN_LIMIT, e, q)
         end do
       end associate
     end do
   end subroutine collect_events
+
+  !> No point unloads at the start of an increment.
+  subroutine reset_unloading(a)
+    type(analysis_t), intent(inout) :: a
+    if (.not. allocated(a%unloading)) allocate (a%unloading(N_GAUSS_HEX8, a%state%n_elements))
+    a%unloading = .false.
+  end subroutine reset_unloading
+
+  !> Elastic unloading as a state switch (doc/theory.md 6.3; Yamada, Yoshimura & Sakurai
+  !> 1968): every point on its yield surface that the trial increment a%du moves inwards
+  !> (material%unloads, strain increment on the start configuration) takes the elastic tangent
+  !> for the rest of the increment; `n_switched` grows by the number of new such points over
+  !> all processes (the increment is then solved again).
+  subroutine switch_unloading(a, model, nlgeom, n_switched)
+    type(analysis_t), intent(inout) :: a
+    type(model_t), intent(in) :: model
+    logical, intent(in) :: nlgeom
+    integer, intent(inout) :: n_switched
+    type(hex8_geometry_t) :: geo
+    real(dp) :: strain(6, N_GAUSS_HEX8), spin(3, 3, N_GAUSS_HEX8), equivalent(N_GAUSS_HEX8)
+    real(dp) :: angle(N_GAUSS_HEX8), count(1)
+    integer :: e, q, s, i
+    logical :: ok
+    count = 0.0_dp
+    do i = 1, size(a%my_elements)
+      e = a%my_elements(i)
+      s = model%element_section(e)
+      call hex8_geometry(element_configuration(model, a%state, e, nlgeom), geo, ok)
+      if (.not. ok) cycle
+      call hex8_strain_increments(geo, element_increment(a%du, model%mesh%connectivity(:, e)), &
+                                  model%sections(s)%formulation == FORMULATION_BBAR, strain, spin, &
+                                  equivalent, angle)
+      associate (material => a%materials(model%sections(s)%material)%m)
+        do q = 1, N_GAUSS_HEX8
+          if (a%unloading(q, e)) cycle
+          if (.not. material%unloads(a%state%stress(:, q, e), a%state%material_state(:, q, e), &
+                                     strain(:, q))) cycle
+          a%unloading(q, e) = .true.
+          count = count + 1.0_dp
+        end do
+      end associate
+    end do
+    call a%comm%sum_real(count)
+    n_switched = n_switched + nint(count(1))
+  end subroutine switch_unloading
 
   !> Nodal displacement increments of one element.
   pure function element_increment(du, nodes) result(du_e)
@@ -887,7 +972,7 @@ contains
     type(error_t), allocatable, intent(out) :: err
     type(hex8_geometry_t) :: geo
     real(dp) :: strain(6, N_GAUSS_HEX8), spin(3, 3, N_GAUSS_HEX8), equivalent(N_GAUSS_HEX8)
-    real(dp) :: angle(N_GAUSS_HEX8), du(3, 8), x(3, 8), updated(6), increment(6)
+    real(dp) :: angle(N_GAUSS_HEX8), du(3, 8), x(3, 8)
     integer :: e, q, s, i
     logical :: ok, bbar, nlgeom
     nlgeom = step%nlgeom
@@ -906,25 +991,54 @@ contains
       call hex8_strain_increments(geo, du, bbar, strain, spin, equivalent, angle)
       associate (material => a%materials(model%sections(s)%material)%m)
         do q = 1, N_GAUSS_HEX8
-          updated = a%state%stress(:, q, e)
-          call material%update(updated, strain(:, q), a%state%material_state(:, q, e))
-          if (nlgeom) then
-            ! Half of the constitutive increment before the rotation, half after: the
-            ! midpoint form of the Hughes-Winget update, second order in the increment and
-            ! still exact under rigid rotation (the increment is zero then).
-            increment = updated - a%state%stress(:, q, e)
-            a%state%stress(:, q, e) = hex8_rotate_stress(a%state%stress(:, q, e) + 0.5_dp * increment, &
-                                                         spin(:, :, q)) + 0.5_dp * increment
-            a%state%strain(:, q, e) = rotate_strain(a%state%strain(:, q, e) + 0.5_dp * strain(:, q), &
-                                                    spin(:, :, q)) + 0.5_dp * strain(:, q)
-          else
-            a%state%stress(:, q, e) = updated
-            a%state%strain(:, q, e) = a%state%strain(:, q, e) + strain(:, q)
-          end if
+          call update_point(material, nlgeom, strain(:, q), spin(:, :, q), a%state%stress(:, q, e), &
+                            a%state%strain(:, q, e), a%state%material_state(:, q, e))
         end do
       end associate
     end do
   end subroutine update_elements
+
+  !> The objective update of one integration point (doc/theory.md, 1.4): strain increment
+  !> and spin increment on the mid-increment configuration; `stress`, `strain` (accumulated,
+  !> output only) and the material's `state` go from the start to the end of the increment and
+  !> depend on nothing else, so an increment recomputed from its saved start gives the same
+  !> result.
+  !> * A material without internal variables: the midpoint Hughes-Winget update (1f), half of
+  !>   the constitutive increment before the rotation and half after, second order in the
+  !>   increment and exact under rigid rotation.
+  !> * A material with internal variables (a yield surface): the stress and the tensor-valued
+  !>   variables are rotated first, Q sigma Q^T, and the material's update (return mapping)
+  !>   then works in the rotated frame (1g; Simo & Hughes 1998, section 8.3), so that the
+  !>   stress it returns lies on the yield surface; the midpoint split would move the returned
+  !>   stress off the surface by the rotation of half an increment (second order).
+  !> Without NLGEOM there is no rotation: sigma + the material's increment.
+  !> With `tangent`, also the material's consistent tangent d(sigma)/d(strain_increment) of
+  !> this update (in the rotated frame), for equilibrium iterations.
+  pure subroutine update_point(material, nlgeom, strain_increment, spin, stress, strain, state, &
+                               tangent)
+    class(material_t), intent(in) :: material
+    logical, intent(in) :: nlgeom
+    real(dp), intent(in) :: strain_increment(6), spin(3, 3)
+    real(dp), intent(inout) :: stress(6), strain(6), state(:)
+    real(dp), intent(out), optional :: tangent(6, 6)
+    real(dp) :: updated(6), increment(6), q(3, 3)
+    if (nlgeom .and. material%n_state() > 0) then
+      q = spin_rotation(spin)
+      stress = rotate_stress_like(stress, q)
+      call material%rotate_state(state, q)
+      call material%update(stress, strain_increment, state, tangent)
+      strain = rotate_strain_like(strain, q) + strain_increment
+    else if (nlgeom) then
+      updated = stress
+      call material%update(updated, strain_increment, state, tangent)
+      increment = updated - stress
+      stress = hex8_rotate_stress(stress + 0.5_dp * increment, spin) + 0.5_dp * increment
+      strain = rotate_strain(strain + 0.5_dp * strain_increment, spin) + 0.5_dp * strain_increment
+    else
+      call material%update(stress, strain_increment, state, tangent)
+      strain = strain + strain_increment
+    end if
+  end subroutine update_point
 
   !> Every element must keep a positive Jacobian on the mid-increment and the end
   !> configurations of the increment about to be applied.
@@ -960,6 +1074,38 @@ contains
     rotated(4:6) = 2.0_dp * rotated(4:6)
   end function rotate_strain
 
+  !> For the message of an increment without equilibrium: the most distorted element of
+  !> the current configuration when it is nearly inverted (its Jacobian determinant varies by
+  !> more than a factor 20 over its integration points), else nothing.
+  function distortion_note(a, model, nlgeom) result(note)
+    type(analysis_t), intent(in) :: a
+    type(model_t), intent(in) :: model
+    logical, intent(in) :: nlgeom
+    character(len=:), allocatable :: note
+    type(hex8_geometry_t) :: geo
+    real(dp) :: ratio, worst
+    integer :: i, e, worst_element
+    logical :: ok
+    note = ''
+    if (.not. nlgeom) return
+    worst = huge(1.0_dp)
+    worst_element = 0
+    do i = 1, size(a%my_elements)
+      e = a%my_elements(i)
+      call hex8_geometry(element_configuration(model, a%state, e, .true.), geo, ok)
+      ratio = 0.0_dp
+      if (ok) ratio = minval(geo%dv) / maxval(geo%dv)
+      if (ratio < worst) then
+        worst = ratio
+        worst_element = e
+      end if
+    end do
+    if (worst_element == 0 .or. worst >= 0.05_dp) return
+    note = '; element ' // str(model%mesh%element_id(worst_element)) // ' is nearly inverted ' // &
+      '(its Jacobian determinant varies by a factor ' // str(1.0_dp / max(worst, tiny(1.0_dp))) // &
+      ' over its integration points): the mesh cannot follow the deformation there'
+  end function distortion_note
+
   !> How many discrete events fall within the increment taken (near-simultaneous ones).
   integer function count_taken(a, r) result(n)
     type(analysis_t), intent(in) :: a
@@ -968,7 +1114,8 @@ contains
     n = 0
     do i = 1, a%collector%n_events
       if (a%collector%events(i)%kind == EVENT_STRAIN_LIMIT .or. &
-          a%collector%events(i)%kind == EVENT_ROTATION_LIMIT) cycle
+          a%collector%events(i)%kind == EVENT_ROTATION_LIMIT .or. &
+          a%collector%events(i)%kind == EVENT_PLASTIC_STRAIN_LIMIT) cycle
       if (a%collector%events(i)%r <= r) n = n + 1
     end do
   end function count_taken

@@ -13,7 +13,9 @@ import re
 
 import numpy as np
 
-HEADER = re.compile(r"^\s*(?P<title>.+?) for set (?P<set>\S+) and time\s+(?P<time>\S+)\s*$")
+# CalculiX writes the header of PE/PEEQ blocks without a blank before "for"
+# ("equivalent plastic strain (elem, integ.pnt.,pe)for set ...").
+HEADER = re.compile(r"^\s*(?P<title>.+?) ?for set (?P<set>\S+) and time\s+(?P<time>\S+)\s*$")
 # Fortran drops the "E" of three-digit exponents ("1.234567-100").
 FORTRAN_NO_E = re.compile(r"^([+-]?\d*\.?\d+)([+-]\d{3})$")
 

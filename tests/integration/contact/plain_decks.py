@@ -5,6 +5,7 @@ non-matching meshes, default increments and penalties, against closed forms (iss
     plain_decks.py check CASE JOB [--law LAW] [--tolerance T]
     plain_decks.py run CASE [CASE ...] [--penalty E] [--law LAW] [--tolerance T]
                                         (writes, runs and checks each, in the current directory)
+    plain_decks.py tie [--tolerance T]  (the tie patch tests: see make_tie_deck)
 
 Units mm, N, MPa. E = 1000, nu = 0.3 for every body. The slider is pressed by p = 1 on its top
 (N = p A = 1: the pressure resultant, A = 1) in step 1, its top nodes (TOP) held in x and y;
@@ -70,6 +71,8 @@ PAIR = 'PAIR'
 HISTORY = 'H'
 LAWS = ('COULOMB', 'SLIP WEAKENING', 'RATE STATE AGEING', 'RATE STATE SLIP')
 EQUILIBRIUM_TOLERANCE = 1.0e-3
+TIE_PENALTY = 1.0e5
+SHEAR_STRAIN = 1.0e-3
 
 
 def law_card(law, rate):
@@ -296,6 +299,80 @@ def check(case, job, tolerance, law='COULOMB'):
     checker.finish()
 
 
+def make_tie_deck(path, load):
+    """Two blocks 1 x 1 x 0.5 stacked (lower 3x3x2, upper 4x4x2 hexahedra: the interface meshes
+    do not match), the upper one's bottom tied to the lower one's top (*TIE, default penalty).
+    load 'normal': pressure -1 (tension) on the top, rollers on x = 0, y = 0, z = 0: uniaxial
+    stress s_zz = 1 across the tie; 'inplane': pressure -1 on the faces x = 1 of both blocks,
+    the same rollers: s_xx = 1 along the tie; 'shear': every exterior node moved by
+    u = (0.001 z, 0, 0), plus the uniform offset t / k the tie needs to carry the shear
+    traction t (a tied pair with penalty k = TIE_PENALTY) on the upper block: uniform shear
+    stress across the tie."""
+    lower = cc.Box(np.linspace(0, 1, 4), np.linspace(0, 1, 4), np.linspace(0, 0.5, 3))
+    upper = cc.Box(np.linspace(0, 1, 5), np.linspace(0, 1, 5), np.linspace(0.5, 1.0, 3),
+                   first_node=1001, first_element=1001)
+    lines = ['*HEADING', 'Tie patch test, %s load (tests/integration/contact/plain_decks.py)' % load]
+    lines += lower.mesh_cards('LOWER') + upper.mesh_cards('UPPER')
+    lines += ['*ELSET, ELSET=BODIES', 'LOWER, UPPER']
+    lines += cc.material_cards('MAT', 'BODIES', YOUNG, POISSON)
+    lines += cc.face_surface_cards('LOWERTOP', lower, 2, 1)
+    lines += cc.face_surface_cards('UPPERBOTTOM', upper, 2, 0)
+    boxes = (lower, upper)
+    if load == 'shear':
+        # A tied pair with a given penalty k: the tie carries the shear traction t by a
+        # uniform relative displacement t / k, which the upper block's prescribed boundary
+        # takes on top of the linear field.
+        lines += ['*SURFACE INTERACTION, NAME=GLUE', '*SURFACE BEHAVIOR, '
+                  'PRESSURE-OVERCLOSURE=TIED', '%g' % TIE_PENALTY,
+                  '*CONTACT PAIR, INTERACTION=GLUE, NAME=GLUE', 'UPPERBOTTOM, LOWERTOP']
+        shear = YOUNG / (2 * (1 + POISSON)) * SHEAR_STRAIN
+        outer = sorted({n for b in boxes for axis in range(2) for side in (0, 1)
+                        for n in b.face_nodes(axis, side)} |
+                       set(lower.face_nodes(2, 0)) | set(upper.face_nodes(2, 1)))
+        bcs = []
+        for n in outer:
+            b = lower if n < 1001 else upper
+            x = b.coordinates(n)
+            offset = shear / TIE_PENALTY if n >= 1001 else 0.0
+            bcs += ['%d, 1, 1, %.12g' % (n, SHEAR_STRAIN * x[2] + offset), '%d, 2, 3, 0.' % n]
+        lines += ['*STEP', '*STATIC', '*BOUNDARY'] + bcs
+    else:
+        lines += ['*TIE, NAME=GLUE', 'UPPERBOTTOM, LOWERTOP']
+    if load != 'shear':
+        lines += cc.nset_cards('X0', sorted(n for b in boxes for n in b.face_nodes(0, 0)))
+        lines += cc.nset_cards('Y0', sorted(n for b in boxes for n in b.face_nodes(1, 0)))
+        lines += cc.nset_cards('Z0', lower.face_nodes(2, 0))
+        lines += ['*BOUNDARY', 'X0, 1, 1', 'Y0, 2, 2', 'Z0, 3, 3']
+        if load == 'normal':
+            lines += cc.face_surface_cards('PULLED', upper, 2, 1)
+        else:
+            lines += cc.face_surface_cards('PULLEDA', lower, 0, 1)
+            lines += cc.face_surface_cards('PULLEDB', upper, 0, 1)
+            lines += ['*SURFACE, NAME=PULLED, TYPE=ELEMENT', 'PULLEDA_EL, S4', 'PULLEDB_EL, S4']
+        lines += ['*STEP', '*STATIC', '*DSLOAD', 'PULLED, P, -1.']
+    lines += ['*EL PRINT, ELSET=BODIES', 'S', '*END STEP']
+    cc.write_deck(path, lines)
+
+
+def check_tie(job, load, tolerance):
+    """Every integration point's stress equals the uniform closed form within tolerance of
+    its largest component."""
+    checker = cc.Checker()
+    blocks = [b for b in cc.read_dat(job + '.dat') if b['title'].startswith('stresses')]
+    stress = np.array([values for keys, values in blocks[-1]['rows']])
+    if load == 'shear':
+        g = YOUNG / (2 * (1 + POISSON))
+        expected = np.array([0, 0, 0, 0, g * SHEAR_STRAIN, 0])
+    else:
+        expected = np.zeros(6)
+        expected[2 if load == 'normal' else 0] = 1.0
+    error = np.abs(stress - expected).max() / np.abs(expected).max()
+    checker.check(error <= tolerance, 'tie patch test (%s, %d integration points): largest '
+                  'deviation from the uniform stress %.2e of it (tolerance %g)'
+                  % (load, len(stress), error, tolerance))
+    checker.finish()
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split('\n')[0])
     sub = parser.add_subparsers(dest='command', required=True)
@@ -312,13 +389,34 @@ def main():
         p.add_argument('--max-increment', type=float)
     for p in (d, c, r):
         p.add_argument('--law', default='COULOMB', choices=LAWS)
-    for p in (c, r):
+    t = sub.add_parser('tie')
+    ct = sub.add_parser('check-tie')
+    ct.add_argument('load')
+    ct.add_argument('job')
+    for p in (c, r, t, ct):
         p.add_argument('--tolerance', type=float, default=5e-3)
     args = parser.parse_args()
     if args.command == 'deck':
         make_deck(args.path, args.case, args.penalty, args.max_increment, args.law)
     elif args.command == 'check':
         check(args.case, args.job, args.tolerance, args.law)
+    elif args.command == 'tie':
+        failed = 0
+        for load in ('normal', 'inplane', 'shear'):
+            job = 'tie_' + load
+            make_tie_deck(job + '.inp', load)
+            print('== %s' % job)
+            code = os.system('"%s" -q %s.inp' % (os.environ.get('FCS3D', 'fcs3d'), job))
+            if code != 0:
+                print('FAIL fcs3d failed on %s.inp' % job)
+                failed += 1
+                continue
+            code = os.system('"%s" "%s" check-tie %s %s --tolerance %g'
+                             % (sys.executable, os.path.abspath(__file__), load, job, args.tolerance))
+            failed += code != 0
+        sys.exit(1 if failed else 0)
+    elif args.command == 'check-tie':
+        check_tie(args.job, args.load, args.tolerance)
     else:
         failed = 0
         for case in args.cases:

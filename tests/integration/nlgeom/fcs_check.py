@@ -100,7 +100,9 @@ def run_fcs3d(deck, *options):
     return result
 
 
-HEADER = re.compile(r'^ (.*) for set (\S+) and time\s+(\S+)\s*$')
+# CalculiX writes the header of PE/PEEQ blocks without a blank before "for"
+# ("equivalent plastic strain (elem, integ.pnt.,pe)for set ..."); fcs3d does the same.
+HEADER = re.compile(r'^ (.*?) ?for set (\S+) and time\s+(\S+)\s*$')
 
 
 def read_dat(path):
@@ -168,7 +170,9 @@ def stress_blocks(blocks, set_name='ALL_ELEMENTS'):
 
 LIMIT_NAMES = ('full', 'strain-limit', 'rotation-limit', 'yield', 'close', 'open',
                'stick->slip', 'slip->stick', 'segment-change', 'slip-rate-change',
-               'friction-change', 'state-change', 'penetration-limit')
+               'friction-change', 'state-change', 'penetration-limit', 'plastic-strain-limit')
+#: Limits that name an element and integration point in the log.
+ELEMENT_LIMITS = ('strain-limit', 'rotation-limit', 'yield', 'plastic-strain-limit')
 NUMBER = r'[-+0-9.Ee]+'
 INCREMENT_LINE = re.compile(
     r'^inc (\d+) step (\d+) time (%s) dt (%s) r (%s) limit (\S+)( element \d+ ip \d+| node \d+)?'
@@ -180,7 +184,8 @@ def read_increments(path):
     """The increment lines of <job>.log, checked against the format fcs_driver writes: every line
     names its limiting criterion, and an element-level limit names its element and point.
 
-    Returns a list of dicts (inc, step, time, dt, r, limit, entity) and the number of
+    Returns a list of dicts (inc, step, time, dt, r, limit, entity, floored, residual: the
+    out-of-balance ratio left by the increment) and the number of
     increments the summary line reports; fails the test on any malformed line."""
     records = []
     done = None
@@ -197,13 +202,15 @@ def read_increments(path):
             limit = match.group(6)
             if limit not in LIMIT_NAMES:
                 fail('%s: unknown limiting criterion "%s" in:\n  %s' % (path, limit, line))
-            if limit in ('strain-limit', 'rotation-limit', 'yield') and \
+            if limit in ELEMENT_LIMITS and \
                     not (match.group(7) or '').startswith(' element'):
                 fail('%s: limit %s without its element and point:\n  %s' % (path, limit, line))
             records.append(dict(inc=int(match.group(1)), step=int(match.group(2)),
                                 time=float(match.group(3)), dt=float(match.group(4)),
                                 r=float(match.group(5)), limit=limit,
-                                entity=(match.group(7) or '').strip()))
+                                entity=(match.group(7) or '').strip(),
+                                floored=bool(match.group(8)),
+                                residual=float(match.group(13))))
     if done is None:
         fail('%s: no "done: N increment(s)" summary line' % path)
     if len(records) != done or [r['inc'] for r in records] != list(range(1, done + 1)):
