@@ -104,7 +104,7 @@ contains
       str(run%analysis%comm%size) // ' processes (elements partitioned by METIS, solver MUMPS)')
     if (options%check_only) then
       call run%log%info('check: the deck and the model are valid (echo in ' // options%job // '.echo)')
-      call run%log%close()
+      call run%log%close(err)
       return
     end if
     run%started = t_start
@@ -128,7 +128,7 @@ contains
     else if (err%exit_code == EXIT_INTERRUPTED) then
       call summary(run, model, 'stopped')
     end if
-    call close_outputs(run)
+    call close_outputs(run, err)
   end subroutine run_job_on_ranks
 
   subroutine describe_model(log, model, options)
@@ -446,6 +446,7 @@ contains
         state%step_time = model%steps(k)%period
         call sample_histories(run, model, .true., err)
         if (.not. allocated(err)) call increment_outputs(run, model, .true., err)
+        call run%analysis%comm%agree_error(err)
         if (allocated(err)) return
         call run%log%info('end of step ' // str(k) // ' ("' // model%steps(k)%name // '") at time ' // &
                           str(state%time) // ' after ' // str(state%step_increment) // ' increment(s)')
@@ -485,6 +486,8 @@ contains
         if (.not. allocated(err)) call run%monitors%watch_events(model, a, state%time - &
                                                                  state%last_increment, run%log, err)
         if (.not. allocated(err)) call sample_histories(run, model, .false., err)
+        if (.not. allocated(err)) call run%log%check(err)
+        call run%analysis%comm%agree_error(err)
         if (allocated(err)) exit
         if (any_rank(run, signal_received() /= 0)) then
           call stop_on_signal(run, model, err)
@@ -620,13 +623,14 @@ contains
         if (.not. is_due(model, step, step%outputs(i), state, end_of_step)) cycle
         select case (step%outputs(i)%kind)
         case (OUTPUT_NODE_PRINT)
-          call run%dat%node_print(model, step%outputs(i), state%time, state%u, state%reaction)
+          call run%dat%node_print(model, step%outputs(i), state%time, state%u, state%reaction, err)
         case (OUTPUT_EL_PRINT)
-          call run%dat%el_print(model, step%outputs(i), state%time, state%stress, state%strain)
+          call run%dat%el_print(model, step%outputs(i), state%time, state%stress, state%strain, err)
         case (OUTPUT_CONTACT_PRINT)
           call run%dat%contact_print(model, step%outputs(i), state%time, run%analysis%contact, &
-                                     state%contact, run%analysis%x_contact)
+                                     state%contact, run%analysis%x_contact, err)
         end select
+        if (allocated(err)) return
       end do
       if (need_frame) call write_frame(run, model, err)
       call run%analysis%timers%stop('output')
@@ -842,13 +846,18 @@ contains
     call run%log%info(line)
   end subroutine log_solver_stats
 
-  subroutine close_outputs(run)
+  !> Close the output files; a failed close becomes the run's error if it has none.
+  subroutine close_outputs(run, err)
     type(run_t), intent(inout) :: run
-    type(error_t), allocatable :: err
-    call run%dat%close()
-    if (run%results%is_open()) call run%results%close(err)
+    type(error_t), allocatable, intent(inout) :: err
+    type(error_t), allocatable :: dat_err, results_err, log_err
+    call run%dat%close(dat_err)
+    if (run%results%is_open()) call run%results%close(results_err)
     if (allocated(run%analysis%solver)) call run%analysis%solver%free()
-    call run%log%close()
+    if (.not. allocated(err) .and. allocated(dat_err)) call move_alloc(dat_err, err)
+    if (.not. allocated(err) .and. allocated(results_err)) call move_alloc(results_err, err)
+    call run%log%close(log_err)
+    if (.not. allocated(err) .and. allocated(log_err)) call move_alloc(log_err, err)
   end subroutine close_outputs
 
 end module fcs_driver
