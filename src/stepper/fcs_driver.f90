@@ -2,7 +2,7 @@
 !> outputs, runs every step increment by increment, and writes results at the output times.
 module fcs_driver
   use fcs_kinds, only: dp, i8
-  use fcs_error, only: error_t, fatal_error, input_error, add_context, EXIT_INTERRUPTED
+  use fcs_error, only: error_t, fatal_error, input_error, add_context, EXIT_INTERRUPTED, EXIT_INPUT
   use fcs_mesh, only: hex8_face_nodes
   use fcs_deck_lexer, only: deck_t
   use fcs_model, only: model_t, step_t, output_request_t, OUTPUT_NODE_PRINT, OUTPUT_EL_PRINT, &
@@ -38,6 +38,7 @@ module fcs_driver
   use fcs_monitors, only: monitors_t
   use fcs_event_catalog, only: EVENT_COLUMNS
   use fcs_version, only: FCS3D_IDENTITY
+  use fcs_job_lock, only: job_lock_t
   implicit none
   private
   public :: run_job
@@ -56,6 +57,8 @@ module fcs_driver
     type(monitors_t) :: monitors
     !> Rank 0 of a parallel run writes every file and the terminal output.
     logical :: writer = .true.
+    !> The job's lock (rank 0), held from before the first file is written to the end.
+    type(job_lock_t) :: lock
   end type run_t
 
 contains
@@ -78,8 +81,50 @@ contains
     call run%analysis%comm%agree_error(err)
     ! Every rank of a parallel run returns the same error; rank 0 reports it.
     if (allocated(err) .and. .not. run%writer) err%silent = .true.
+    call end_log(run, err)
+    call run%lock%release()
     call run%analysis%comm%finalize()
   end subroutine run_job
+
+  !> Take the job's lock, then open the log (appended to on a restart): both before anything
+  !> is read or written, so that the log records input errors too and a second run of the job
+  !> is refused before it touches a file.
+  subroutine start_log(options, run, err)
+    type(run_options_t), intent(in) :: options
+    type(run_t), intent(inout) :: run
+    type(error_t), allocatable, intent(out) :: err
+    if (run%writer) call run%lock%acquire(options%job, err)
+    call run%analysis%comm%agree_error(err)
+    if (allocated(err)) return
+    if (run%writer) then
+      call run%log%open(options%job // '.log', options%quiet, err, append=len(options%restart_file) > 0)
+    else
+      run%log%terminal = .false.
+    end if
+    call run%analysis%comm%agree_error(err)
+    if (allocated(err)) return
+    call run%log%detail(FCS3D_IDENTITY)
+    if (len(run%lock%previous_holder) > 0) call run%log%detail('note: ' // options%job // &
+      '.lock was left by a run that ended without removing it (' // run%lock%previous_holder // &
+      '); taken over')
+  end subroutine start_log
+
+  !> The run's outcome into the log (an error message and the exit status), then close it; a
+  !> failed write to the log becomes the run's error if it has none.
+  subroutine end_log(run, err)
+    type(run_t), intent(inout) :: run
+    type(error_t), allocatable, intent(inout) :: err
+    type(error_t), allocatable :: log_err
+    if (allocated(err)) then
+      if (err%exit_code /= EXIT_INTERRUPTED) then
+        call run%log%detail('fcs3d: ' // err%message)
+        call run%log%detail('exit status ' // str(err%exit_code) // ' (' // &
+          trim(merge('bad input  ', 'run failure', err%exit_code == EXIT_INPUT)) // ')')
+      end if
+    end if
+    call run%log%close(log_err)
+    if (.not. allocated(err) .and. allocated(log_err)) call move_alloc(log_err, err)
+  end subroutine end_log
 
   subroutine run_job_on_ranks(options, run, model, deck, t_start, err)
     type(run_options_t), intent(in) :: options
@@ -88,23 +133,19 @@ contains
     type(deck_t), intent(out) :: deck
     real(dp), intent(in) :: t_start
     type(error_t), allocatable, intent(out) :: err
+    call start_log(options, run, err)
+    if (allocated(err)) return
     call build_model(options%deck_path, model, deck, err)
     if (allocated(err)) return
     if (len(options%solver) > 0) model%solver_name = to_upper(options%solver)
     if (run%writer) call write_echo(options%job // '.echo', deck, model, err)
+    call run%analysis%comm%agree_error(err)
     if (allocated(err)) return
-    if (run%writer) then
-      call run%log%open(options%job // '.log', options%quiet, err, append=len(options%restart_file) > 0)
-      if (allocated(err)) return
-    else
-      run%log%terminal = .false.
-    end if
     call describe_model(run%log, model, options)
     if (run%analysis%comm%size > 1) call run%log%info('parallel run on ' // &
       str(run%analysis%comm%size) // ' processes (elements partitioned by METIS, solver MUMPS)')
     if (options%check_only) then
       call run%log%info('check: the deck and the model are valid (echo in ' // options%job // '.echo)')
-      call run%log%close(err)
       return
     end if
     run%started = t_start
@@ -135,7 +176,6 @@ contains
     type(logger_t), intent(inout) :: log
     type(model_t), intent(in) :: model
     type(run_options_t), intent(in) :: options
-    call log%detail(FCS3D_IDENTITY)
     if (len(model%title) > 0) then
       call log%info('fcs3d: ' // options%deck_path // ': ' // model%title)
     else
@@ -850,14 +890,12 @@ contains
   subroutine close_outputs(run, err)
     type(run_t), intent(inout) :: run
     type(error_t), allocatable, intent(inout) :: err
-    type(error_t), allocatable :: dat_err, results_err, log_err
+    type(error_t), allocatable :: dat_err, results_err
     call run%dat%close(dat_err)
     if (run%results%is_open()) call run%results%close(results_err)
     if (allocated(run%analysis%solver)) call run%analysis%solver%free()
     if (.not. allocated(err) .and. allocated(dat_err)) call move_alloc(dat_err, err)
     if (.not. allocated(err) .and. allocated(results_err)) call move_alloc(results_err, err)
-    call run%log%close(log_err)
-    if (.not. allocated(err) .and. allocated(log_err)) call move_alloc(log_err, err)
   end subroutine close_outputs
 
 end module fcs_driver
