@@ -32,6 +32,7 @@ module fcs_driver
   use fcs_strings, only: str, to_upper, to_lower, join_strings
   use fcs_signals, only: install_signal_handlers, signal_received
   use fcs_heap_policy, only: keep_freed_memory
+  use fcs_memory, only: prepare_memory, ensure_memory, set_activity, set_failure_log
   use fcs_run_checkpoint, only: save_checkpoint, restore_checkpoint
   use fcs_checkpoint, only: checkpoint_info_t
   use fcs_files, only: truncate_file, file_size
@@ -71,13 +72,15 @@ contains
     type(deck_t) :: deck
     type(run_t) :: run
     real(dp) :: t_start
+    character(len=:), allocatable :: memory_note
     t_start = wall_time()
     call keep_freed_memory(err)
+    if (.not. allocated(err)) call prepare_memory(memory_note, err)
     if (allocated(err)) return
     call run%analysis%comm%init(err)
     if (allocated(err)) return
     run%writer = run%analysis%comm%is_root()
-    call run_job_on_ranks(options, run, model, deck, t_start, err)
+    call run_job_on_ranks(options, run, model, deck, t_start, memory_note, err)
     call run%analysis%comm%agree_error(err)
     ! Every rank of a parallel run returns the same error; rank 0 reports it.
     if (allocated(err) .and. .not. run%writer) err%silent = .true.
@@ -89,9 +92,10 @@ contains
   !> Take the job's lock, then open the log (appended to on a restart): both before anything
   !> is read or written, so that the log records input errors too and a second run of the job
   !> is refused before it touches a file.
-  subroutine start_log(options, run, err)
+  subroutine start_log(options, run, memory_note, err)
     type(run_options_t), intent(in) :: options
     type(run_t), intent(inout) :: run
+    character(len=*), intent(in) :: memory_note
     type(error_t), allocatable, intent(out) :: err
     if (run%writer) call run%lock%acquire(options%job, err)
     call run%analysis%comm%agree_error(err)
@@ -103,7 +107,9 @@ contains
     end if
     call run%analysis%comm%agree_error(err)
     if (allocated(err)) return
+    if (run%writer) call set_failure_log(options%job // '.log')
     call run%log%detail(FCS3D_IDENTITY)
+    if (len(memory_note) > 0) call run%log%detail('note: ' // memory_note)
     if (len(run%lock%previous_holder) > 0) call run%log%detail('note: ' // options%job // &
       '.lock was left by a run that ended without removing it (' // run%lock%previous_holder // &
       '); taken over')
@@ -126,15 +132,17 @@ contains
     if (.not. allocated(err) .and. allocated(log_err)) call move_alloc(log_err, err)
   end subroutine end_log
 
-  subroutine run_job_on_ranks(options, run, model, deck, t_start, err)
+  subroutine run_job_on_ranks(options, run, model, deck, t_start, memory_note, err)
     type(run_options_t), intent(in) :: options
     type(run_t), intent(inout) :: run
     type(model_t), intent(out) :: model
     type(deck_t), intent(out) :: deck
     real(dp), intent(in) :: t_start
+    character(len=*), intent(in) :: memory_note
     type(error_t), allocatable, intent(out) :: err
-    call start_log(options, run, err)
+    call start_log(options, run, memory_note, err)
     if (allocated(err)) return
+    call set_activity('reading the deck ' // options%deck_path)
     call build_model(options%deck_path, model, deck, err)
     if (allocated(err)) return
     if (len(options%solver) > 0) model%solver_name = to_upper(options%solver)
@@ -199,6 +207,9 @@ contains
     associate (a => run%analysis)
       call make_materials(model, a%materials, n_state, err)
       if (allocated(err)) return
+      call set_activity('setting up the analysis', setup_bytes(model, n_state))
+      call ensure_memory(setup_bytes(model, n_state), 'setting up the analysis', err)
+      if (allocated(err)) return
       a%materials_have_states = n_state > 0
       call a%state%init(model%mesh%x, model%mesh%n_elements, n_state)
       call contact_positions(a, model)
@@ -231,6 +242,19 @@ contains
     end associate
     run%total_time = sum(model%steps(:)%period)
   end subroutine setup
+
+  !> About the memory the set-up allocates [bytes]: state and force vectors, integration-point
+  !> arrays, element cliques, and the sparse pattern (about 27 neighbours per node of a
+  !> hexahedral mesh, 3 x 3 entries of 12 bytes each).
+  pure integer(i8) function setup_bytes(model, n_state) result(bytes)
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: n_state
+    integer(i8) :: nodes, elements
+    nodes = int(model%mesh%n_nodes, i8)
+    elements = int(model%mesh%n_elements, i8)
+    bytes = 8_i8 * 3_i8 * nodes * 15_i8 + 8_i8 * int(N_GAUSS_HEX8, i8) * elements * &
+      (12_i8 + int(n_state, i8)) + 4_i8 * 8_i8 * elements + 9_i8 * 27_i8 * 12_i8 * nodes
+  end function setup_bytes
 
   !> This process's share of the work: its elements (METIS partition), its contact slaves
   !> (equal consecutive blocks), and the pressure faces whose load stiffness rank 0 adds.
@@ -332,6 +356,7 @@ contains
     type(run_t), intent(inout) :: run
     type(model_t), intent(in) :: model
     type(error_t), allocatable, intent(out) :: err
+    call set_activity('writing the checkpoint ' // run%job // '.rst.h5')
     call gather_element_fields(run%analysis)
     if (run%writer) call save_checkpoint(run%job, run%analysis, run%monitors, model, &
                                          run%results%n_frames(), err)
@@ -516,6 +541,8 @@ contains
             'on *STEP or the R-minimum limits')
           exit
         end if
+        call set_activity('computing increment ' // str(state%increment + 1) // ' (step ' // &
+                          str(k) // ', time ' // str(state%time) // ')')
         call take_increment(a, model, record, err)
         if (allocated(err)) then
           call save_last_good(run, model, err)
@@ -775,8 +802,15 @@ contains
     type(error_t), allocatable, intent(out) :: err
     real(dp), allocatable :: nodal(:, :), cell_mises(:, :), nodal_mises(:, :)
     integer :: q
+    integer(i8) :: bytes
     call gather_element_fields(run%analysis)
     if (.not. run%writer) return
+    ! Nodal averages, Mises values and the reordered copy of an integration-point field.
+    bytes = 8_i8 * (8_i8 * int(model%mesh%n_nodes, i8) + int(model%mesh%n_elements, i8) * &
+      (1_i8 + 6_i8 * int(N_GAUSS_HEX8, i8)))
+    call set_activity('writing a results frame to ' // run%job // '.h5', bytes)
+    call ensure_memory(bytes, 'writing a results frame to ' // run%job // '.h5', err)
+    if (allocated(err)) return
     associate (state => run%analysis%state)
       call run%results%begin_frame(state%time, state%step, state%increment, err)
       if (allocated(err)) return
