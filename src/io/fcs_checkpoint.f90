@@ -93,10 +93,12 @@ contains
     if (.not. allocated(err)) call seal(archive, info, err)
     if (allocated(err)) then
       if (archive%h5%is_open()) call close_quietly(archive)
+      call discard(archive%path)
       call add_context(err, 'writing checkpoint ' // final_path)
       return
     end if
     call archive%h5%close(err)
+    if (allocated(err)) call discard(archive%path)
     if (.not. allocated(err)) call sync_file(archive%path, err)
     do g = generations - 1, 1, -1
       if (allocated(err)) exit
@@ -107,6 +109,13 @@ contains
     if (.not. allocated(err)) call sync_file(dirname(final_path), err)
     if (allocated(err)) call add_context(err, 'writing checkpoint ' // final_path)
   end subroutine write_checkpoint
+
+  !> Remove a temporary checkpoint that could not be written whole (it would only take space).
+  subroutine discard(path)
+    character(len=*), intent(in) :: path
+    type(error_t), allocatable :: ignored
+    call remove_file(path, ignored)
+  end subroutine discard
 
   subroutine close_quietly(archive)
     type(archive_t), intent(inout) :: archive
