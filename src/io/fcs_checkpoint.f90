@@ -12,7 +12,8 @@ module fcs_checkpoint
   use fcs_kinds, only: dp, i8
   use fcs_error, only: error_t, fatal_error, input_error, add_context, EXIT_INPUT
   use fcs_hdf5, only: h5_file_t, h5_library_open
-  use fcs_files, only: rename_file, remove_file, sync_file
+  use fcs_files, only: rename_file, remove_file, sync_file, file_kind, file_kind_name, &
+    is_readable, file_size, FILE_MISSING, FILE_REGULAR
   use fcs_checksum, only: checksum_t, checksum_text
   use fcs_state, only: state_t
   use fcs_contact_system, only: contact_system_t
@@ -282,10 +283,20 @@ contains
     character(len=*), intent(in) :: path
     type(error_t), allocatable, intent(out) :: err
     character(len=:), allocatable :: format
-    integer :: version
+    integer :: version, kind
     archive%path = path
-    if (.not. file_exists(path)) then
+    kind = file_kind(path)
+    if (kind == FILE_MISSING) then
       call input_error(err, 'the file does not exist')
+      return
+    else if (kind /= FILE_REGULAR) then
+      call input_error(err, 'it is ' // file_kind_name(kind) // ', not a checkpoint file')
+      return
+    else if (.not. is_readable(path)) then
+      call input_error(err, 'the file cannot be read (no read permission)')
+      return
+    else if (file_size(path) == 0) then
+      call input_error(err, 'the file is empty (0 bytes): not a checkpoint')
       return
     end if
     call h5_library_open(err)

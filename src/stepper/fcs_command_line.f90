@@ -59,6 +59,11 @@ contains
           return
         end if
         i = i + 1
+        if (len(argument(i)) == 0) then
+          call input_error(err, 'option ' // arg // ' needs a value, got an empty string (' // &
+            trim(option_value_text(arg)) // ')')
+          return
+        end if
         select case (arg)
         case ('--solver')
           options%solver = to_upper(argument(i))
@@ -103,6 +108,20 @@ contains
       options%job = join_path(output_dir, path_stem(basename(options%deck_path)))
     end if
   end subroutine parse_command_line
+
+  !> What option `name` expects, for the message about an empty value.
+  function option_value_text(name) result(text)
+    character(len=*), intent(in) :: name
+    character(len=:), allocatable :: text
+    select case (name)
+    case ('--solver')
+      text = 'UMFPACK, SKYLINE or MUMPS'
+    case ('--restart')
+      text = 'the checkpoint to continue from, e.g. job.rst.h5; without --restart the run starts afresh'
+    case default
+      text = 'an existing directory for the output files; without -o they go next to the deck'
+    end select
+  end function option_value_text
 
   subroutine print_keywords(markdown)
     use fcs_keyword_docs, only: print_keyword_list, print_keyword_reference
