@@ -330,21 +330,38 @@ contains
     call run%analysis%comm%agree_error(err)
   end subroutine resume_outputs
 
-  !> Cut the text and results files back to the checkpoint and reopen them.
+  !> Cut the text and results files back to the checkpoint and reopen them. Outputs that hold
+  !> less than they held at the checkpoint (deleted, emptied, cut) are kept as they are and
+  !> continued, with a warning: what they lack is lost (doc/restart.md).
   subroutine reopen_outputs(run, model, info, err)
     type(run_t), intent(inout) :: run
     type(model_t), intent(in) :: model
     type(checkpoint_info_t), intent(in) :: info
     type(error_t), allocatable, intent(out) :: err
+    integer(i8) :: dat_size
     call run%monitors%write_files(err)
     if (allocated(err)) return
-    if (file_size(run%job // '.dat') >= 0) call truncate_file(run%job // '.dat', info%dat_size, err)
-    if (allocated(err)) return
-    call run%dat%open(run%job // '.dat', err, append=.true.)
+    dat_size = file_size(run%job // '.dat')
+    if (dat_size >= info%dat_size) then
+      call truncate_file(run%job // '.dat', info%dat_size, err)
+    else if (info%dat_size > 0) then
+      call run%log%warn(run%job // '.dat holds ' // str(max(dat_size, 0_i8)) // ' bytes, ' // &
+        'fewer than the ' // str(info%dat_size) // ' it held at the checkpoint (deleted or ' // &
+        'cut since?): the tables printed before the checkpoint are incomplete; the restart ' // &
+        'appends its tables to what is there')
+    end if
+    if (.not. allocated(err)) call run%dat%open(run%job // '.dat', err, append=.true.)
     if (allocated(err)) return
     if (file_size(run%job // '.h5') >= 0) then
       call run%results%open_append(run%job, err, keep_frames=info%n_frames)
+      if (.not. allocated(err) .and. run%results%n_frames() < info%n_frames) call run%log%warn( &
+        run%job // '.h5 holds ' // str(run%results%n_frames()) // ' complete frame(s), fewer ' // &
+        'than the ' // str(info%n_frames) // ' it held at the checkpoint: the missing frames ' // &
+        'are lost; the restart adds its frames after the ones there')
     else
+      if (info%n_frames > 0) call run%log%warn(run%job // '.h5 is missing: the ' // &
+        str(info%n_frames) // ' frame(s) written before the checkpoint are lost; a new ' // &
+        run%job // '.h5 holds the frames written from the checkpoint on')
       call run%results%create(run%job, model%mesh%node_id, model%mesh%x, model%mesh%element_id, &
                               model%mesh%connectivity, err)
     end if
