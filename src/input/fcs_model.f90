@@ -208,6 +208,8 @@ module fcs_model
     type(time_points_t), allocatable :: time_points(:)
     type(step_t), allocatable :: steps(:)
     character(len=:), allocatable :: solver_name
+    !> True when the deck chose the solver (*SOLVER); otherwise a parallel run takes MUMPS.
+    logical :: solver_chosen = .false.
     type(interaction_def_t), allocatable :: interactions(:)
     type(contact_pair_def_t), allocatable :: contact_pairs(:)
     !> Checksums of the model definition (its cards and the mesh) and of each step's cards,

@@ -146,12 +146,15 @@ contains
     call build_model(options%deck_path, model, deck, err)
     if (allocated(err)) return
     if (len(options%solver) > 0) model%solver_name = to_upper(options%solver)
+    if (run%analysis%comm%size > 1 .and. len(options%solver) == 0 .and. .not. model%solver_chosen) &
+      model%solver_name = 'MUMPS'
     if (run%writer) call write_echo(options%job // '.echo', deck, model, err)
     call run%analysis%comm%agree_error(err)
     if (allocated(err)) return
     call describe_model(run%log, model, options)
     if (run%analysis%comm%size > 1) call run%log%info('parallel run on ' // &
-      str(run%analysis%comm%size) // ' processes (elements partitioned by METIS, solver MUMPS)')
+      str(run%analysis%comm%size) // ' processes (elements partitioned by METIS, solver ' // &
+      model%solver_name // ')')
     if (options%check_only) then
       call run%log%info('check: the deck and the model are valid (echo in ' // options%job // '.echo)')
       return
