@@ -57,8 +57,10 @@ HDF5_LIB := /usr/lib/$(MULTIARCH)/hdf5/serial
 # -Wno-uninitialized: gfortran 12 reports false positives on every allocatable assignment
 # from a function result (array descriptors); DEBUG=1 builds trap uninitialised reals instead.
 # -Wno-unused-dummy-argument: implementations of abstract interfaces need not use every dummy.
+# -fcheck=mem: array temporaries and automatic reallocations are checked too, so that running
+# out of memory there ends in fcs3d's message (fcs_memory) instead of a segmentation fault.
 FFLAGS := -std=f2008 -Wall -Wextra -Wno-compare-reals -Wno-maybe-uninitialized -Wno-uninitialized \
-          -Wno-unused-dummy-argument -fimplicit-none \
+          -Wno-unused-dummy-argument -fimplicit-none -fcheck=mem \
           $(FFLAGS_OPT) -J $(BUILD) -I $(BUILD) -I $(HDF5_INC) $(MUMPS_INC)
 LDLIBS := -L$(HDF5_LIB) -lhdf5_fortran -lhdf5 -lumfpack -lamd -lsuitesparseconfig \
           $(MUMPS_LIBS) -llapack -lblas -lpthread

@@ -7,6 +7,7 @@ program fcs3d
   use fcs_run_options, only: run_options_t
   use fcs_command_line, only: parse_command_line, ACTION_RUN
   use fcs_driver, only: run_job
+  use fcs_memory, only: pin_blas_threads, mark_normal_exit
   implicit none
   interface
     !> libc exit(): ends the process with a status and no further message (Fortran 2008's
@@ -19,8 +20,10 @@ program fcs3d
   type(run_options_t) :: options
   type(error_t), allocatable :: err
   integer :: action
+  call pin_blas_threads()
   call parse_command_line(options, action, err)
   if (.not. allocated(err) .and. action == ACTION_RUN) call run_job(options, err)
+  call mark_normal_exit()
   if (allocated(err)) then
     flush (output_unit)
     if (.not. err%silent) write (error_unit, '(a)') 'fcs3d: ' // err%message

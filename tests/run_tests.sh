@@ -2,7 +2,8 @@
 # The fcs3d test suite (run by `make test`):
 #   1. unit tests: every program in $UNIT_DIR (built from tests/unit/test_*.f90);
 #   2. bad decks: every tests/decks/bad/*.inp must fail with exit status 2 and a message
-#      containing the text of its `** expect:` line (and a file:line: location);
+#      containing the text of its `** expect:` line and a file:line: location (with a line
+#      number: "deck.inp:12: ");
 #   3. integration tests: every tests/integration/*.sh (exit 0 pass, 77 skip, else fail).
 # Prints one line per test and ends with "N passed, N failed".
 # Environment: FCS3D (the binary), UNIT_DIR, PYTHON (/usr/bin/python3).
@@ -44,8 +45,8 @@ for deck in "$here"/decks/bad/*.inp; do
     record "deck/$name" 1 "the deck has no '** expect:' line"
   elif ! printf '%s' "$out" | grep -qF -- "$expect"; then
     record "deck/$name" 1 "message lacks \"$expect\"; got: $(printf '%s' "$out" | head -5)"
-  elif ! printf '%s' "$out" | grep -qE '[^ :]+:[0-9]+: |[^ :]+\.(inp|msh): '; then
-    record "deck/$name" 1 "no file:line: location in: $(printf '%s' "$out" | head -3)"
+  elif ! printf '%s' "$out" | sh "$here/tools/has_location.sh"; then
+    record "deck/$name" 1 "no file:line: location (a line number) in: $(printf '%s' "$out" | head -3)"
   else
     record "deck/$name" 0
   fi

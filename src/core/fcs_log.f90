@@ -1,19 +1,27 @@
 !> The run log: messages to the terminal and to `<job>.log`, and a rate-limited progress line
 !> with an estimate of the time left.
+!>
+!> Every line is written and flushed through a checked `text_file_t`. Messages are logged from
+!> everywhere, so a failed write does not travel back through each caller: the first failure
+!> is kept (the file stays complete up to its last whole line and is no longer written), and
+!> `check` returns it; the driver asks after each increment and at the end of the run.
 module fcs_log
   use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
   use fcs_kinds, only: dp
   use fcs_error, only: error_t, fatal_error
   use fcs_timer, only: wall_time
   use fcs_strings, only: str
+  use fcs_text_file, only: text_file_t
   implicit none
   private
   public :: logger_t, format_duration
 
   !> Where messages go. `quiet` silences the terminal except warnings and errors.
   type :: logger_t
-    !> Fortran unit of the log file; -1 when closed (NEWUNIT numbers are negative, never -1).
-    integer :: file_unit = -1
+    !> The log file (not open: terminal only).
+    type(text_file_t) :: file
+    !> The first failed write to the log file (then no more are tried), empty if none.
+    character(len=:), allocatable :: failure
     logical :: quiet = .false.
     logical :: terminal = .true.
     real(dp) :: last_progress = -1.0e30_dp
@@ -25,6 +33,8 @@ module fcs_log
     procedure :: detail => logger_detail
     procedure :: warn => logger_warn
     procedure :: progress => logger_progress
+    procedure :: check => logger_check
+    procedure :: is_open => logger_is_open
   end type logger_t
 
 contains
@@ -36,27 +46,37 @@ contains
     logical, intent(in) :: quiet
     type(error_t), allocatable, intent(out) :: err
     logical, intent(in), optional :: append
-    integer :: stat
-    character(len=256) :: msg
-    character(len=8) :: position
-    position = 'rewind'
-    if (present(append)) then
-      if (append) position = 'append'
-    end if
     this%quiet = quiet
-    open (newunit=this%file_unit, file=path, action='write', position=trim(position), &
-          iostat=stat, iomsg=msg)
-    if (stat /= 0) then
-      this%file_unit = -1
-      call fatal_error(err, 'opening log file ' // path // ': ' // trim(msg))
-    end if
+    this%failure = ''
+    call this%file%open(path, err, append=append)
+    if (allocated(err)) err%message = 'log file: ' // err%message
   end subroutine logger_open
 
-  subroutine logger_close(this)
+  !> Close the log file; `err` (if present) receives a failed write or close of the file.
+  subroutine logger_close(this, err)
     class(logger_t), intent(inout) :: this
-    if (this%file_unit /= -1) close (this%file_unit)
-    this%file_unit = -1
+    type(error_t), allocatable, intent(out), optional :: err
+    type(error_t), allocatable :: close_err
+    call this%file%close(close_err)
+    if (.not. allocated(this%failure)) this%failure = ''
+    if (allocated(close_err) .and. len(this%failure) == 0) this%failure = close_err%message
+    if (present(err)) call this%check(err)
   end subroutine logger_close
+
+  !> The first failed write to the log file as an error (none if every write succeeded).
+  subroutine logger_check(this, err)
+    class(logger_t), intent(in) :: this
+    type(error_t), allocatable, intent(out) :: err
+    if (allocated(this%failure)) then
+      if (len(this%failure) > 0) call fatal_error(err, this%failure)
+    end if
+  end subroutine logger_check
+
+  !> True while the log file is open.
+  pure logical function logger_is_open(this)
+    class(logger_t), intent(in) :: this
+    logger_is_open = this%file%is_open()
+  end function logger_is_open
 
   !> A message for the terminal (unless quiet) and the log file.
   subroutine logger_info(this, message)
@@ -74,10 +94,11 @@ contains
   subroutine logger_detail(this, message)
     class(logger_t), intent(inout) :: this
     character(len=*), intent(in) :: message
-    if (this%file_unit /= -1) then
-      write (this%file_unit, '(a)') message
-      flush (this%file_unit)
-    end if
+    type(error_t), allocatable :: err
+    if (.not. this%file%is_open()) return
+    call this%file%write(message, err)
+    if (.not. allocated(err)) call this%file%commit(err)
+    if (allocated(err)) this%failure = err%message
   end subroutine logger_detail
 
   !> A warning: always on standard error, and in the log file.

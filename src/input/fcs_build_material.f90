@@ -157,6 +157,7 @@ contains
     type(card_t), intent(in) :: card
     type(model_t), intent(inout) :: model
     model%solver_name = param_upper(card, 'TYPE')
+    model%solver_chosen = .true.
   end subroutine handle_solver
 
 end module fcs_build_material

@@ -7,7 +7,7 @@ module fcs_build_output
   use fcs_builder_state, only: builder_t
   use fcs_build_step, only: find_time_points
   use fcs_model, only: history_request_t, history_item_t, HISTORY_NSET_U, HISTORY_NSET_RF, &
-                       HISTORY_CONTACT, HISTORY_ENERGY
+                       HISTORY_CONTACT, HISTORY_ENERGY, HISTORY_RESIDUAL
   use fcs_model, only: model_t, output_request_t, OUTPUT_NODE_PRINT, OUTPUT_EL_PRINT, &
                        OUTPUT_NODE_FILE, OUTPUT_EL_FILE, OUTPUT_CONTACT_PRINT, OUTPUT_CONTACT_FILE, &
                        TOTALS_NO, TOTALS_YES, TOTALS_ONLY
@@ -163,9 +163,11 @@ contains
           end if
         case ('ENERGY')
           item%kind = HISTORY_ENERGY
+        case ('RESIDUAL')
+          item%kind = HISTORY_RESIDUAL
         case default
           call diag%report(line%loc, '*HISTORY: unknown quantity "' // line%fields(1)%s // &
-                           '"; expected NSET, CONTACT or ENERGY')
+                           '"; expected NSET, CONTACT, ENERGY or RESIDUAL')
           cycle
         end select
         history%items = [history%items, item]

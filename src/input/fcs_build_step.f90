@@ -61,9 +61,10 @@ contains
     type(builder_t), intent(inout) :: state
     type(diagnostics_t), intent(inout) :: diag
     real(dp) :: v(4)
-    logical :: ok
+    logical :: ok, given(4)
     integer :: i
     v = [1.0_dp, 1.0_dp, -1.0_dp, -1.0_dp]
+    given = .false.
     if (state%step%has_procedure) then
       call diag%report(card%loc, '*STATIC: the step already has a *STATIC (one per step)')
       return
@@ -85,11 +86,17 @@ contains
       do i = 1, 4
         if (.not. line_optional_real(card%lines(1), i, v(i), v(i), static_field(i), 'STATIC', diag)) &
           ok = .false.
+        if (i <= size(card%lines(1)%fields)) given(i) = len(card%lines(1)%fields(i)%s) > 0
+        if (given(i) .and. ok .and. v(i) <= 0.0_dp) then
+          call diag%report(card%lines(1)%loc, '*STATIC: the ' // static_field(i) // ' must be ' // &
+            'positive, not ' // card%lines(1)%fields(i)%s // ' (leave the field empty for the default)')
+          ok = .false.
+        end if
       end do
       if (.not. ok) return
     end if
-    if (v(3) < 0.0_dp) v(3) = 1.0e-5_dp * v(2)
-    if (v(4) < 0.0_dp) v(4) = v(2)
+    if (.not. given(3)) v(3) = 1.0e-5_dp * v(2)
+    if (.not. given(4)) v(4) = v(2)
     if (any(v <= 0.0_dp)) then
       call diag%report(static_loc(card), '*STATIC: the time increments and the period must be positive')
       return

@@ -6,13 +6,17 @@
 !> and (later, by the builder) set and material names are case-insensitive; a keyword or data
 !> line that ends with a comma continues on the next line; `*INCLUDE, INPUT=file` inserts a
 !> file, its path relative to the including file. Each card and data line keeps its source
-!> location so that every later error can say `file:line:`.
+!> location so that every later error can say `file:line:`. A tab counts as a blank (a keyword
+!> or comment may be indented with tabs); a UTF-8 byte-order mark at the start of a file is
+!> skipped. The deck and every included file must be regular files: a directory, a FIFO or a
+!> device is refused before it is opened (a FIFO without a writer would block for ever).
 module fcs_deck_lexer
   use fcs_kinds, only: dp
   use fcs_error, only: error_t
   use fcs_diagnostics, only: source_loc_t, diagnostics_t
   use fcs_strings, only: string_t, split_fields, to_upper, collapse_spaces, dirname, join_path, &
                          str
+  use fcs_files, only: file_kind, file_kind_name, FILE_REGULAR, FILE_MISSING
   implicit none
   private
   public :: deck_t, card_t, param_t, data_line_t, read_deck, MAX_INCLUDE_DEPTH
@@ -21,6 +25,8 @@ module fcs_deck_lexer
   integer, parameter :: MAX_INCLUDE_DEPTH = 32
   !> Longest line accepted, in characters.
   integer, parameter :: MAX_LINE_LENGTH = 100000
+  !> The UTF-8 byte-order mark, as byte values.
+  integer, parameter :: UTF8_BOM(3) = [239, 187, 191]
 
   !> One parameter of a keyword line: upper-case name, value as written (trimmed).
   type :: param_t
@@ -53,9 +59,11 @@ module fcs_deck_lexer
     type(string_t), allocatable :: files(:)
   end type deck_t
 
-  !> State while reading: the include stack (for cycle detection).
+  !> State while reading: the include stack (for cycle detection), and the number of the last
+  !> line of the top-level file read.
   type :: reader_t
     type(string_t), allocatable :: stack(:)
+    integer :: last_line = 0
   end type reader_t
 
 contains
@@ -72,8 +80,8 @@ contains
     call read_file(reader, path, nowhere, deck, diag)
     deck%cards = deck%cards(1:deck%n_cards)
     if (deck%n_cards == 0 .and. .not. diag%has_errors()) then
-      call diag%report_plain(path // ': the deck is empty: it holds no keyword lines ' // &
-                             '(a deck starts with a line such as *HEADING or *NODE)')
+      call diag%report(loc_of(path, max(1, reader%last_line), ''), 'the deck is empty: it ' // &
+        'holds no keyword lines (a deck starts with a line such as *HEADING or *NODE)')
     end if
   end subroutine read_deck
 
@@ -107,6 +115,7 @@ contains
                        ' levels deep')
       return
     end if
+    if (.not. is_regular(path, included_from, diag)) return
     open (newunit=unit, file=path, action='read', status='old', access='sequential', &
           form='formatted', iostat=stat, iomsg=msg)
     if (stat /= 0) then
@@ -125,6 +134,7 @@ contains
       call read_line(unit, line, eof, stat)
       if (eof) exit
       line_no = line_no + 1
+      if (line_no == 1 .and. stat == 0) call skip_byte_order_mark(line)
       if (stat /= 0) then
         call diag%report(loc_of(path, line_no, ''), 'cannot read this line (longer than ' // &
                          str(MAX_LINE_LENGTH) // ' characters, or not text)')
@@ -154,7 +164,38 @@ contains
     if (len(pending) > 0) call handle_line(reader, pending, pending_loc, deck, diag)
     close (unit)
     reader%stack = reader%stack(1:size(reader%stack) - 1)
+    if (size(reader%stack) == 0) reader%last_line = line_no
   end subroutine read_file
+
+  !> The deck or an included file must be a regular file (checked before it is opened: opening
+  !> a FIFO without a writer would block, a directory reads as an empty file).
+  logical function is_regular(path, included_from, diag) result(ok)
+    character(len=*), intent(in) :: path
+    type(source_loc_t), intent(in) :: included_from
+    type(diagnostics_t), intent(inout) :: diag
+    integer :: kind
+    character(len=:), allocatable :: what
+    kind = file_kind(path)
+    ok = kind == FILE_REGULAR .or. kind == FILE_MISSING
+    if (ok) return
+    what = '"' // path // '" is ' // file_kind_name(kind) // ', not a file'
+    if (allocated(included_from%file)) then
+      call diag%report(included_from, '*INCLUDE: ' // what // ' (INPUT= names a file to read)')
+    else
+      call diag%report_plain(path // ': cannot read the deck: ' // what)
+    end if
+  end function is_regular
+
+  !> Remove a UTF-8 byte-order mark from the start of a file's first line.
+  subroutine skip_byte_order_mark(line)
+    character(len=:), allocatable, intent(inout) :: line
+    integer :: i
+    if (len(line) < size(UTF8_BOM)) return
+    do i = 1, size(UTF8_BOM)
+      if (ichar(line(i:i)) /= UTF8_BOM(i)) return
+    end do
+    line = line(size(UTF8_BOM) + 1:)
+  end subroutine skip_byte_order_mark
 
   !> Dispatch one logical line: keyword line (or *INCLUDE), or data line of the current card.
   recursive subroutine handle_line(reader, line, loc, deck, diag)
@@ -313,14 +354,17 @@ contains
     end do
   end subroutine read_line
 
-  !> Strip a carriage return (DOS line ends) and trailing blanks.
+  !> Strip a carriage return (DOS line ends), turn tabs into blanks, strip trailing blanks.
   subroutine clean_line(line)
     character(len=:), allocatable, intent(inout) :: line
-    integer :: n
+    integer :: n, i
     n = len(line)
     if (n > 0) then
       if (line(n:n) == achar(13)) line = line(1:n - 1)
     end if
+    do i = 1, len(line)
+      if (line(i:i) == achar(9)) line(i:i) = ' '
+    end do
     line = trim(line)
   end subroutine clean_line
 

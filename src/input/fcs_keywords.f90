@@ -390,7 +390,8 @@ contains
          'column the time.', 'NSET, <set>, U (mean displacement, 3 columns) | NSET, <set>, RF ' // &
          '(total force, 3) | CONTACT, <pair> (normal force, tangential force 3, stick, slip, ' // &
          'open counts, mean and largest slip, largest slip rate, mean pressure and shear ' // &
-         'traction) | ENERGY (elastic strain energy, frictional work).', &
+         'traction) | ENERGY (elastic strain energy, frictional work) | RESIDUAL (the ' // &
+         'out-of-balance ratio the last increment left, as the log prints it).', &
          [p('NAME', PARAM_NAME, required=.true., description='Name of the history.'), &
           p('FREQUENCY', PARAM_INTEGER, default='1', description='Sample every N increments ' // &
             '(0: only at the time points and step ends).'), &

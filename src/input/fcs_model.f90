@@ -14,7 +14,7 @@ module fcs_model
   public :: face_load_t, output_request_t, step_t, rmin_settings_t
   public :: friction_def_t, interaction_def_t, contact_pair_def_t, checkpoint_settings_t
   public :: history_item_t, history_request_t, HISTORY_NSET_U, HISTORY_NSET_RF
-  public :: HISTORY_CONTACT, HISTORY_ENERGY
+  public :: HISTORY_CONTACT, HISTORY_ENERGY, HISTORY_RESIDUAL
   public :: BC_DISPLACEMENT, BC_VELOCITY, FORMULATION_FULL, FORMULATION_BBAR
   public :: OUTPUT_NODE_PRINT, OUTPUT_EL_PRINT, OUTPUT_NODE_FILE, OUTPUT_EL_FILE
   public :: OUTPUT_CONTACT_PRINT, OUTPUT_CONTACT_FILE
@@ -30,7 +30,7 @@ module fcs_model
   !> What a *HISTORY line asks for: the mean displacement or the total force of a node set,
   !> the totals of a contact pair, the energies.
   integer, parameter :: HISTORY_NSET_U = 1, HISTORY_NSET_RF = 2, HISTORY_CONTACT = 3, &
-                        HISTORY_ENERGY = 4
+                        HISTORY_ENERGY = 4, HISTORY_RESIDUAL = 5
 
   !> *NODE PRINT, TOTALS=.
   integer, parameter :: TOTALS_NO = 0, TOTALS_YES = 1, TOTALS_ONLY = 2
@@ -226,6 +226,8 @@ module fcs_model
     type(time_points_t), allocatable :: time_points(:)
     type(step_t), allocatable :: steps(:)
     character(len=:), allocatable :: solver_name
+    !> True when the deck chose the solver (*SOLVER); otherwise a parallel run takes MUMPS.
+    logical :: solver_chosen = .false.
     type(interaction_def_t), allocatable :: interactions(:)
     type(contact_pair_def_t), allocatable :: contact_pairs(:)
     !> Checksums of the model definition (its cards and the mesh) and of each step's cards,

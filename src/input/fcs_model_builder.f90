@@ -1,6 +1,12 @@
 !> The model builder: reads a deck, checks every card against the keyword table, hands each
 !> to its handler, and checks the finished model. All problems are collected and reported
 !> together (up to a limit); a deck with errors yields no model.
+!>
+!> The deck's shape: the model definition (model cards and cards allowed anywhere), then the
+!> steps (*STEP ... *END STEP). Between two steps only definitions that the following steps
+!> may use are allowed (*AMPLITUDE, *TIME POINTS, *RESTART); a model card there would change
+!> the model after steps ran on it, a *BOUNDARY there belongs to no step. Nothing may follow the
+!> last *END STEP: such a card would be read and never used.
 module fcs_model_builder
   use fcs_kinds, only: dp
   use fcs_error, only: error_t
@@ -41,7 +47,7 @@ contains
     type(diagnostics_t) :: diag
     type(builder_t) :: state
     type(keyword_spec_t), allocatable :: table(:)
-    integer :: i, k
+    integer :: i, k, last_step_end
     call read_deck(path, deck, diag)
     if (diag%has_errors()) then
       call diag%to_error(err)
@@ -53,7 +59,13 @@ contains
     call state%loads%clear()
     call state%pressures%clear()
     table = keyword_table()
+    last_step_end = end_of_last_step(deck)
     do i = 1, deck%n_cards
+      if (i > last_step_end) then
+        call report_after_last_step(deck%cards(i), deck%cards(last_step_end), diag)
+        if (diag%is_full()) exit
+        cycle
+      end if
       k = find_keyword(table, deck%cards(i)%keyword)
       if (.not. valid_card(deck%cards(i), table, k, state, diag)) then
         call keep_step_structure(deck%cards(i), state)
@@ -66,13 +78,61 @@ contains
       call diag%report(state%step%loc, '*STEP: the step is not closed (add *END STEP at the end)')
     end if
     model%steps = state%steps
-    if (.not. diag%has_errors()) call check_model(model, diag)
+    if (.not. diag%has_errors()) call check_model(model, diag, deck)
     if (diag%has_errors()) then
       call diag%to_error(err)
       return
     end if
     call hash_deck(deck, model)
   end subroutine build_model
+
+  !> Index of the last *END STEP card when no *STEP follows it; past the last card otherwise.
+  pure integer function end_of_last_step(deck) result(last)
+    type(deck_t), intent(in) :: deck
+    integer :: i
+    last = deck%n_cards + 1
+    do i = deck%n_cards, 1, -1
+      if (deck%cards(i)%keyword == 'STEP') return
+      if (deck%cards(i)%keyword == 'END STEP') then
+        last = i
+        return
+      end if
+    end do
+  end function end_of_last_step
+
+  !> A card after the last *END STEP.
+  subroutine report_after_last_step(card, end_step, diag)
+    type(card_t), intent(in) :: card, end_step
+    type(diagnostics_t), intent(inout) :: diag
+    call diag%report(card%loc, '*' // card%keyword // ' comes after the last *END STEP (' // &
+      end_step%loc%file // ':' // str(end_step%loc%line) // ') and would never be used: ' // &
+      'move it into a step, or before the first *STEP if it belongs to the model definition')
+  end subroutine report_after_last_step
+
+  !> A card between two steps that may not stand there (see the module header).
+  subroutine report_between_steps(card, spec, state, diag)
+    type(card_t), intent(in) :: card
+    type(keyword_spec_t), intent(in) :: spec
+    type(builder_t), intent(in) :: state
+    type(diagnostics_t), intent(inout) :: diag
+    character(len=:), allocatable :: first_step
+    first_step = state%steps(1)%loc%file // ':' // str(state%steps(1)%loc%line)
+    if (spec%context == CONTEXT_MODEL) then
+      call diag%report(card%loc, '*' // card%keyword // ' belongs to the model definition, ' // &
+        'which ends at the first *STEP (' // first_step // '); it cannot change the model ' // &
+        'between steps: move it before the first *STEP')
+    else
+      call diag%report(card%loc, '*' // card%keyword // ' between two steps belongs to ' // &
+        'neither: put it inside the step it is meant for (after that step''s *STEP line)')
+    end if
+  end subroutine report_between_steps
+
+  !> Cards that may stand between two steps: definitions the following steps may use.
+  pure logical function allowed_between_steps(keyword)
+    character(len=*), intent(in) :: keyword
+    allowed_between_steps = any(keyword == [character(len=11) :: 'STEP', 'AMPLITUDE', &
+      'TIME POINTS', 'RESTART'])
+  end function allowed_between_steps
 
   subroutine init_model(model, path)
     type(model_t), intent(inout) :: model
@@ -218,7 +278,10 @@ contains
       return
     end if
     associate (spec => table(k))
-      if (spec%context == CONTEXT_MODEL .and. state%in_step) then
+      if (.not. state%in_step .and. size(state%steps) > 0 .and. &
+          .not. allowed_between_steps(card%keyword)) then
+        call report_between_steps(card, spec, state, diag)
+      else if (spec%context == CONTEXT_MODEL .and. state%in_step) then
         if (card%keyword == 'STEP') then
           call diag%report(card%loc, '*STEP: the previous step "' // state%step%name // &
                            '" is not closed (add *END STEP before the next *STEP)')

@@ -3,12 +3,13 @@
 !> (fcs_model_supports).
 module fcs_model_checks
   use fcs_kinds, only: dp
-  use fcs_diagnostics, only: diagnostics_t
+  use fcs_diagnostics, only: diagnostics_t, source_loc_t
+  use fcs_deck_lexer, only: deck_t
   use fcs_hex8_shape, only: hex8_min_jacobian_ratio
   use fcs_model, only: model_t
   use fcs_model_supports, only: check_supports
   use fcs_build_plasticity, only: check_plasticity
-  use fcs_strings, only: str
+  use fcs_strings, only: str, parse_int
   implicit none
   private
   public :: check_model
@@ -20,29 +21,33 @@ module fcs_model_checks
 
 contains
 
-  subroutine check_model(model, diag)
+  !> Check the built model; `deck` gives the locations of the elements named in messages and
+  !> of the deck's end.
+  subroutine check_model(model, diag, deck)
     type(model_t), intent(inout) :: model
     type(diagnostics_t), intent(inout) :: diag
+    type(deck_t), intent(in) :: deck
     call model%mesh%compact()
     if (model%mesh%n_elements == 0) then
-      call diag%report_plain(model%deck_path // ': the model has no elements (*ELEMENT or *MESH)')
+      call diag%report(deck_end(deck), 'the model has no elements (*ELEMENT or *MESH)')
       return
     end if
-    call assign_sections(model, diag)
+    call assign_sections(model, diag, deck)
     call check_materials(model, diag)
-    call check_jacobians(model, diag)
+    call check_jacobians(model, diag, deck)
     call resolve_contact(model, diag)
     if (size(model%steps) == 0) then
-      call diag%report_plain(model%deck_path // ': the deck defines no step (*STEP ... *END STEP): ' // &
-                             'nothing to compute')
+      call diag%report(deck_end(deck), 'the deck ends here and defines no step (*STEP ... ' // &
+                       '*END STEP): nothing to compute')
     end if
     if (.not. diag%has_errors()) call check_supports(model, diag)
   end subroutine check_model
 
   !> element_section(e) from the *SOLID SECTIONs; an element in two sections or in none is an error.
-  subroutine assign_sections(model, diag)
+  subroutine assign_sections(model, diag, deck)
     type(model_t), intent(inout) :: model
     type(diagnostics_t), intent(inout) :: diag
+    type(deck_t), intent(in) :: deck
     integer :: s, j, e, n_missing
     character(len=:), allocatable :: names
     allocate (model%element_section(model%mesh%n_elements))
@@ -71,10 +76,62 @@ contains
       if (j > MAX_NAMED) exit
       names = names // merge(', ', '  ', j > 1) // str(model%mesh%element_id(e))
     end do
-    call diag%report_plain(model%deck_path // ': ' // str(n_missing) // ' element(s) have no ' // &
+    e = findloc(model%element_section, 0, 1)
+    call report_at_element(diag, deck, model, e, str(n_missing) // ' element(s) have no ' // &
                            '*SOLID SECTION (elements' // names(2:) // trim(merge(', ...', '     ', &
                            n_missing > MAX_NAMED)) // ')')
   end subroutine assign_sections
+
+  !> Report `message` at the line that defined element e (its *ELEMENT data line), or, for an
+  !> element of a mesh file, with the deck's name.
+  subroutine report_at_element(diag, deck, model, e, message)
+    type(diagnostics_t), intent(inout) :: diag
+    type(deck_t), intent(in) :: deck
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: e
+    character(len=*), intent(in) :: message
+    type(source_loc_t) :: loc
+    if (element_location(deck, model%mesh%element_id(e), loc)) then
+      call diag%report(loc, message)
+    else
+      call diag%report_plain(model%deck_path // ': ' // message)
+    end if
+  end subroutine report_at_element
+
+  !> The *ELEMENT data line that defines element `id`; false if there is none (the element
+  !> comes from a mesh file).
+  logical function element_location(deck, id, loc) result(found)
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: id
+    type(source_loc_t), intent(out) :: loc
+    integer :: i, j, value
+    logical :: ok
+    found = .false.
+    do i = 1, deck%n_cards
+      if (deck%cards(i)%keyword /= 'ELEMENT') cycle
+      do j = 1, deck%cards(i)%n_lines
+        associate (line => deck%cards(i)%lines(j))
+          if (size(line%fields) < 1) cycle
+          call parse_int(line%fields(1)%s, value, ok)
+          if (.not. ok .or. value /= id) cycle
+          loc = line%loc
+          found = .true.
+          return
+        end associate
+      end do
+    end do
+  end function element_location
+
+  !> The location of the deck's last card (where a missing part would have to follow).
+  function deck_end(deck) result(loc)
+    type(deck_t), intent(in) :: deck
+    type(source_loc_t) :: loc
+    if (deck%n_cards == 0) return
+    associate (card => deck%cards(deck%n_cards))
+      loc = card%loc
+      if (card%n_lines > 0) loc = card%lines(card%n_lines)%loc
+    end associate
+  end function deck_end
 
   subroutine check_materials(model, diag)
     type(model_t), intent(in) :: model
@@ -162,26 +219,27 @@ contains
   end function cross
 
   !> Inverted or degenerate elements (det J <= 0 at a Gauss point or node).
-  subroutine check_jacobians(model, diag)
+  !> Inverted or degenerate elements (det J <= 0 at a Gauss point or node), each reported at its
+  !> *ELEMENT line (the first MAX_NAMED; mesh files check their own, fcs_gmsh_reader).
+  subroutine check_jacobians(model, diag, deck)
     type(model_t), intent(in) :: model
     type(diagnostics_t), intent(inout) :: diag
+    type(deck_t), intent(in) :: deck
     integer :: e, n_bad
     real(dp) :: ratio
-    character(len=:), allocatable :: names
     n_bad = 0
-    names = ''
     do e = 1, model%mesh%n_elements
       ratio = hex8_min_jacobian_ratio(model%mesh%x(:, model%mesh%connectivity(:, e)))
       if (ratio > 0.0_dp) cycle
       n_bad = n_bad + 1
-      if (n_bad <= MAX_NAMED) names = names // ', ' // str(model%mesh%element_id(e))
+      if (n_bad > MAX_NAMED) cycle
+      call report_at_element(diag, deck, model, e, 'element ' // str(model%mesh%element_id(e)) // &
+        ' is inverted or degenerate (Jacobian determinant <= 0). C3D8 numbering: nodes 1-4 go ' // &
+        'around one face and 5-8 around the opposite face in the same sense, so that 1-2-3-4 ' // &
+        'seen from node 5 is counterclockwise')
     end do
-    if (n_bad == 0) return
-    call diag%report_plain(model%deck_path // ': ' // str(n_bad) // ' element(s) are inverted or ' // &
-      'degenerate (Jacobian determinant <= 0): elements ' // names(3:) // &
-      trim(merge(', ...', '     ', n_bad > MAX_NAMED)) // '. C3D8 numbering: nodes 1-4 go around ' // &
-      'one face and 5-8 around the opposite face in the same sense, so that 1-2-3-4 seen from ' // &
-      'node 5 is counterclockwise')
+    if (n_bad > MAX_NAMED) call diag%report_plain(model%deck_path // ': ' // &
+      str(n_bad - MAX_NAMED) // ' more inverted or degenerate element(s)')
   end subroutine check_jacobians
 
 end module fcs_model_checks

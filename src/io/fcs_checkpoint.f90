@@ -12,7 +12,8 @@ module fcs_checkpoint
   use fcs_kinds, only: dp, i8
   use fcs_error, only: error_t, fatal_error, input_error, add_context, EXIT_INPUT
   use fcs_hdf5, only: h5_file_t, h5_library_open
-  use fcs_files, only: rename_file, remove_file, sync_file
+  use fcs_files, only: rename_file, remove_file, sync_file, file_kind, file_kind_name, &
+    is_readable, file_size, FILE_MISSING, FILE_REGULAR
   use fcs_checksum, only: checksum_t, checksum_text
   use fcs_state, only: state_t
   use fcs_contact_system, only: contact_system_t
@@ -96,10 +97,12 @@ contains
     if (.not. allocated(err)) call seal(archive, info, err)
     if (allocated(err)) then
       if (archive%h5%is_open()) call close_quietly(archive)
+      call discard(archive%path)
       call add_context(err, 'writing checkpoint ' // final_path)
       return
     end if
     call archive%h5%close(err)
+    if (allocated(err)) call discard(archive%path)
     if (.not. allocated(err)) call sync_file(archive%path, err)
     do g = generations - 1, 1, -1
       if (allocated(err)) exit
@@ -110,6 +113,13 @@ contains
     if (.not. allocated(err)) call sync_file(dirname(final_path), err)
     if (allocated(err)) call add_context(err, 'writing checkpoint ' // final_path)
   end subroutine write_checkpoint
+
+  !> Remove a temporary checkpoint that could not be written whole (it would only take space).
+  subroutine discard(path)
+    character(len=*), intent(in) :: path
+    type(error_t), allocatable :: ignored
+    call remove_file(path, ignored)
+  end subroutine discard
 
   subroutine close_quietly(archive)
     type(archive_t), intent(inout) :: archive
@@ -277,10 +287,20 @@ contains
     character(len=*), intent(in) :: path
     type(error_t), allocatable, intent(out) :: err
     character(len=:), allocatable :: format
-    integer :: version
+    integer :: version, kind
     archive%path = path
-    if (.not. file_exists(path)) then
+    kind = file_kind(path)
+    if (kind == FILE_MISSING) then
       call input_error(err, 'the file does not exist')
+      return
+    else if (kind /= FILE_REGULAR) then
+      call input_error(err, 'it is ' // file_kind_name(kind) // ', not a checkpoint file')
+      return
+    else if (.not. is_readable(path)) then
+      call input_error(err, 'the file cannot be read (no read permission)')
+      return
+    else if (file_size(path) == 0) then
+      call input_error(err, 'the file is empty (0 bytes): not a checkpoint')
       return
     end if
     call h5_library_open(err)

@@ -1,8 +1,11 @@
 !> `<job>.echo`: the deck as the builder understood it - every card of every included file, in
 !> reading order, with every parameter default filled in, data lines normalised, and a
 !> summary of the model.
+!>
+!> Written atomically (fcs_text_file): a failed write leaves the previous echo, if any.
 module fcs_echo
-  use fcs_error, only: error_t, fatal_error
+  use fcs_error, only: error_t
+  use fcs_text_file, only: text_file_t
   use fcs_deck_lexer, only: deck_t, card_t
   use fcs_model, only: model_t
   use fcs_strings, only: str, join_strings
@@ -18,43 +21,52 @@ contains
     type(deck_t), intent(in) :: deck
     type(model_t), intent(in) :: model
     type(error_t), allocatable, intent(out) :: err
-    integer :: unit, stat, i, j
-    character(len=256) :: msg
+    type(text_file_t) :: file
+    integer :: i, j
     character(len=:), allocatable :: current_file
-    open (newunit=unit, file=path, action='write', iostat=stat, iomsg=msg)
-    if (stat /= 0) then
-      call fatal_error(err, 'writing the echo ' // path // ': ' // trim(msg))
-      return
-    end if
-    write (unit, '(a)') '** ' // FCS3D_IDENTITY
-    write (unit, '(a)') '** fcs3d echo of ' // model%deck_path // ': the deck as read, with ' // &
-                        'every default filled in'
-    write (unit, '(a)') '** model: ' // str(model%mesh%n_nodes) // ' nodes, ' // &
-      str(model%mesh%n_elements) // ' elements, ' // str(size(model%materials)) // &
-      ' materials, ' // str(size(model%steps)) // ' steps; solver ' // model%solver_name
-    do i = 1, size(model%contact_pairs)
-      associate (pair => model%contact_pairs(i))
-        write (unit, '(a)') '** contact pair ' // pair%name // merge(' (tied)', '       ', pair%tied) // &
-          ': E_n = ' // str(pair%normal_stiffness) // ', E_t = ' // str(pair%stick_stiffness) // &
-          ' [stress/length]; master elements: E = ' // str(pair%master_modulus) // ', mean ' // &
-          'thickness h = ' // str(pair%master_thickness) // ' (default E_n = 10 E / h)'
-      end associate
-    end do
+    call file%open(path, err, atomic=.true.)
+    if (.not. allocated(err)) call write_summary(file, model, err)
     current_file = ''
     do i = 1, deck%n_cards
+      if (allocated(err)) exit
       associate (card => deck%cards(i))
         if (card%loc%file /= current_file) then
           current_file = card%loc%file
-          write (unit, '(a)') '** --- from ' // current_file // ' ---'
+          call file%write('** --- from ' // current_file // ' ---', err)
         end if
-        write (unit, '(a)') keyword_line(card)
+        if (.not. allocated(err)) call file%write(keyword_line(card), err)
         do j = 1, card%n_lines
-          write (unit, '(a)') join_strings(card%lines(j)%fields, ', ')
+          if (allocated(err)) exit
+          call file%write(join_strings(card%lines(j)%fields, ', '), err)
         end do
       end associate
     end do
-    close (unit)
+    if (.not. allocated(err)) call file%close(err)
+    if (allocated(err)) call file%abandon()
   end subroutine write_echo
+
+  !> The header: build, deck, model size, contact penalties.
+  subroutine write_summary(file, model, err)
+    type(text_file_t), intent(inout) :: file
+    type(model_t), intent(in) :: model
+    type(error_t), allocatable, intent(out) :: err
+    integer :: i
+    call file%write('** ' // FCS3D_IDENTITY, err)
+    if (.not. allocated(err)) call file%write('** fcs3d echo of ' // model%deck_path // &
+      ': the deck as read, with every default filled in', err)
+    if (.not. allocated(err)) call file%write('** model: ' // str(model%mesh%n_nodes) // &
+      ' nodes, ' // str(model%mesh%n_elements) // ' elements, ' // str(size(model%materials)) // &
+      ' materials, ' // str(size(model%steps)) // ' steps; solver ' // model%solver_name, err)
+    do i = 1, size(model%contact_pairs)
+      if (allocated(err)) return
+      associate (pair => model%contact_pairs(i))
+        call file%write('** contact pair ' // pair%name // merge(' (tied)', '       ', pair%tied) // &
+          ': E_n = ' // str(pair%normal_stiffness) // ', E_t = ' // str(pair%stick_stiffness) // &
+          ' [stress/length]; master elements: E = ' // str(pair%master_modulus) // ', mean ' // &
+          'thickness h = ' // str(pair%master_thickness) // ' (default E_n = 10 E / h)', err)
+      end associate
+    end do
+  end subroutine write_summary
 
   function keyword_line(card) result(line)
     type(card_t), intent(in) :: card

@@ -3,10 +3,14 @@
 !> event: onset and end times, the nodes that took part, the peak slip rate, the largest and
 !> mean slip of those nodes during the event, the mean drop of their shear traction, and the
 !> hypocentre (the node that crossed the threshold first, the fastest if several did).
+!>
+!> The CSV is written through fcs_text_file: a row is added whole or not at all, and the
+!> whole-file rewrite replaces the file atomically.
 module fcs_event_catalog
   use fcs_kinds, only: dp
-  use fcs_error, only: error_t, fatal_error
+  use fcs_error, only: error_t
   use fcs_strings, only: string_t
+  use fcs_text_file, only: text_file_t
   implicit none
   private
   public :: event_catalog_t, slip_event_t, pair_watch_t, EVENT_COLUMNS
@@ -178,44 +182,45 @@ contains
     type(event_catalog_t), intent(in) :: this
     integer, intent(in) :: i
     type(error_t), allocatable, intent(out) :: err
-    integer :: unit, stat
-    character(len=256) :: msg
+    type(text_file_t) :: file
     if (.not. this%writes) return
-    open (newunit=unit, file=this%csv_path, action='write', position='append', iostat=stat, iomsg=msg)
-    if (stat /= 0) then
-      call fatal_error(err, 'writing the event catalog ' // this%csv_path // ': ' // trim(msg))
-      return
-    end if
-    call write_event(unit, this%events(i), i)
-    close (unit)
+    call file%open(this%csv_path, err, append=.true.)
+    if (.not. allocated(err)) call file%write(event_text(this%events(i), i), err)
+    if (.not. allocated(err)) call file%close(err)
+    if (allocated(err)) err%message = 'event catalog: ' // err%message
   end subroutine append_csv
 
-  subroutine write_event(unit, e, i)
-    integer, intent(in) :: unit, i
+  !> Event `i` as a CSV row.
+  function event_text(e, i) result(text)
     type(slip_event_t), intent(in) :: e
-    write (unit, '(i0,a,i0,3(a,es16.9),a,i0,4(a,es16.9),a,i0,3(a,es16.9))') i, ',', e%pair, ',', &
+    integer, intent(in) :: i
+    character(len=:), allocatable :: text
+    character(len=512) :: buffer
+    write (buffer, '(i0,a,i0,3(a,es16.9),a,i0,4(a,es16.9),a,i0,3(a,es16.9))') i, ',', e%pair, ',', &
       e%onset, ',', e%finish, ',', e%finish - e%onset, ',', e%n_nodes, ',', e%peak_rate, ',', &
       e%max_slip, ',', e%mean_slip, ',', e%stress_drop, ',', e%hypocentre, ',', e%location(1), ',', &
       e%location(2), ',', e%location(3)
-  end subroutine write_event
+    text = trim(buffer)
+  end function event_text
 
   !> The whole CSV from the events in memory (new run, or after a restart).
   subroutine catalog_rewrite_csv(this, err)
     class(event_catalog_t), intent(inout) :: this
     type(error_t), allocatable, intent(out) :: err
-    integer :: unit, stat, i
-    character(len=256) :: msg
+    type(text_file_t) :: file
+    integer :: i
     if (.not. this%writes) return
-    open (newunit=unit, file=this%csv_path, action='write', status='replace', iostat=stat, iomsg=msg)
-    if (stat /= 0) then
-      call fatal_error(err, 'writing the event catalog ' // this%csv_path // ': ' // trim(msg))
-      return
-    end if
-    write (unit, '(a)') EVENT_COLUMNS
+    call file%open(this%csv_path, err, atomic=.true.)
+    if (.not. allocated(err)) call file%write(EVENT_COLUMNS, err)
     do i = 1, this%n_events
-      call write_event(unit, this%events(i), i)
+      if (allocated(err)) exit
+      call file%write(event_text(this%events(i), i), err)
     end do
-    close (unit)
+    if (.not. allocated(err)) call file%close(err)
+    if (allocated(err)) then
+      call file%abandon()
+      err%message = 'event catalog: ' // err%message
+    end if
   end subroutine catalog_rewrite_csv
 
 end module fcs_event_catalog

@@ -17,6 +17,16 @@
 !> `bytes`). Writing to a path that already exists replaces the dataset or attribute (HDF5 does
 !> not reclaim the old space; `h5repack` does).
 !>
+!> Full disks. A failed call whose errno says the disk is full (or the quota exceeded) or
+!> memory ran out says so first ("run.h5: the disk is full (No space left on device): H5Dwrite
+!> of ... failed"). Writers that must never be caught half-way by a full disk call `reserve`
+!> before they write: the space is allocated on disk beforehand (posix_fallocate), so the
+!> writes that follow, and the flush of the metadata they create, cannot fail for want of space;
+!> the unused rest is cut off at `close`. A file whose writing failed is given up with
+!> `abandon`: its id is dropped without a flush, so the file stays as its last successful flush
+!> left it (HDF5's own clean-up at exit, which would flush it, is switched off with
+!> H5dont_atexit).
+!>
 !> Library state. `h5_library_open` is idempotent: it calls `h5open_f` only when the Fortran
 !> predefined types are not valid ids, and always switches off HDF5's automatic printing of its
 !> error stack (the messages here replace it). `h5_library_close` calls `h5close_f` only when
@@ -41,17 +51,21 @@ module fcs_hdf5
     h5tcopy_f, h5tset_size_f, h5tset_strpad_f, h5tget_size_f, h5tget_class_f, h5tclose_f, &
     h5tis_variable_str_f, H5T_FORTRAN_S1, H5T_STR_NULLPAD_F, H5T_FLOAT_F, H5T_INTEGER_F, &
     H5T_STRING_F, H5T_IEEE_F64LE, H5T_STD_I32LE, H5T_STD_I64LE, H5T_NATIVE_DOUBLE, &
-    h5kind_to_type, H5_REAL_KIND, H5_INTEGER_KIND
+    h5kind_to_type, H5_REAL_KIND, H5_INTEGER_KIND, h5fget_filesize_f, h5dont_atexit_f
   use fcs_kinds, only: dp, i8
   use fcs_error, only: error_t, fatal_error, input_error
   use fcs_strings, only: str, string_t, dirname
-  use fcs_files, only: directory_exists
+  use fcs_files, only: directory_exists, current_errno, clear_errno, failure_text, &
+    is_disk_full_errno, reserve_space, free_space, truncate_file, file_size
+  use fcs_memory, only: memory_error, ERRNO_NO_MEMORY
   implicit none
   private
   public :: h5_file_t, h5_library_open, h5_library_close
 
   !> Longest link name `list_group` accepts.
   integer, parameter :: MAX_LINK_NAME = 1024
+  !> Smallest space reservation [bytes] (fewer posix_fallocate calls for small writes).
+  integer(i8), parameter :: MIN_RESERVATION = 65536_i8
 
   !> One open HDF5 file. `create` and `open` are the constructors, `close` the destructor.
   type :: h5_file_t
@@ -63,11 +77,17 @@ module fcs_hdf5
     character(len=:), allocatable :: path
     !> True when opened for writing.
     logical :: writable = .false.
+    !> End of the space reserved on disk (`reserve`), 0 when nothing is reserved now; whether
+    !> anything was reserved since the file was opened (the rest is cut off at `close`).
+    integer(i8) :: reserved_end = 0
+    logical :: reserved = .false.
   contains
     procedure :: create => h5_file_create
     procedure :: open => h5_file_open
     procedure :: close => h5_file_close
     procedure :: flush => h5_file_flush
+    procedure :: reserve => h5_file_reserve
+    procedure :: abandon => h5_file_abandon
     procedure :: is_open => h5_file_is_open
     procedure :: exists => h5_file_exists
     procedure :: is_group => h5_file_is_group
@@ -127,6 +147,9 @@ contains
   subroutine h5_library_open(err)
     type(error_t), allocatable, intent(out) :: err
     integer :: status
+    ! Before the first HDF5 call: no flush of files left open at exit (see `abandon`). Later
+    ! calls fail harmlessly.
+    call h5dont_atexit_f(status)
     if (.not. library_is_open()) then
       call h5open_f(status)
       if (status < 0) then
@@ -179,14 +202,16 @@ contains
     type(error_t), allocatable, intent(out) :: err
     logical, intent(in), optional :: file_locking
     integer(hid_t) :: access
-    integer :: status, close_status
+    integer :: status, close_status, code
     call prepare_open(this, path, file_locking, access, err)
     if (allocated(err)) return
+    call clear_errno()
     call h5fcreate_f(path, H5F_ACC_TRUNC_F, this%id, status, access_prp=access)
+    code = current_errno()
     call h5pclose_f(access, close_status)
     if (status < 0 .or. close_status < 0) then
       call abandon_open(this)
-      call fatal_error(err, path // ': H5Fcreate failed' // location_hint(path))
+      call fatal_error(err, path // ': H5Fcreate failed' // location_hint(path, code))
       return
     end if
     this%writable = .true.
@@ -201,7 +226,7 @@ contains
     type(error_t), allocatable, intent(out) :: err
     logical, intent(in), optional :: file_locking
     integer(hid_t) :: access
-    integer :: status, close_status, mode
+    integer :: status, close_status, mode, code
     logical :: found
     inquire (file=path, exist=found)
     if (.not. found) then
@@ -212,12 +237,18 @@ contains
     if (allocated(err)) return
     mode = H5F_ACC_RDONLY_F
     if (writable) mode = H5F_ACC_RDWR_F
+    call clear_errno()
     call h5fopen_f(path, mode, this%id, status, access_prp=access)
+    code = current_errno()
     call h5pclose_f(access, close_status)
     if (status < 0 .or. close_status < 0) then
       call abandon_open(this)
-      call fatal_error(err, path // ': H5Fopen failed (not an HDF5 file, no permission, or ' // &
-        'locked by another process)')
+      if (code /= 0) then
+        call fatal_error(err, path // ': H5Fopen failed: ' // failure_text(code))
+      else
+        call fatal_error(err, path // ': H5Fopen failed (not an HDF5 file, or locked by ' // &
+          'another process)')
+      end if
       return
     end if
     this%writable = writable
@@ -279,34 +310,53 @@ contains
     call release_library()
   end subroutine abandon_open
 
-  !> Why a file could not be created: a missing directory is the usual reason.
-  function location_hint(path) result(hint)
+  !> Why a file could not be created: a missing directory, or what errno `code` says (a full
+  !> disk named as such); a guess when errno says nothing.
+  function location_hint(path, code) result(hint)
     character(len=*), intent(in) :: path
+    integer, intent(in) :: code
     character(len=:), allocatable :: hint
     if (.not. directory_exists(dirname(path))) then
       hint = ' (directory ' // dirname(path) // ' does not exist)'
+    else if (code /= 0) then
+      hint = ': ' // failure_text(code)
     else
       hint = ' (no permission to write in ' // dirname(path) // ', disk full, or the file ' // &
         'is open elsewhere?)'
     end if
   end function location_hint
 
-  !> Close the file (no-op when not open), then the library if nothing else is open.
+  !> Close the file (no-op when not open), then the library if nothing else is open. Space
+  !> reserved beyond the file's end is given back.
   subroutine h5_file_close(this, err)
     class(h5_file_t), intent(inout) :: this
     type(error_t), allocatable, intent(out) :: err
     integer :: status, list_status
+    integer(hsize_t) :: used
+    logical :: trim_file
     if (.not. this%is_open()) return
     list_status = 0
+    trim_file = .false.
+    if (this%reserved) then
+      call h5fget_filesize_f(this%id, used, status)
+      trim_file = status >= 0
+    end if
     if (this%link_creation >= 0) call h5pclose_f(this%link_creation, list_status)
+    call clear_errno()
     call h5fclose_f(this%id, status)
     this%id = -1
     this%link_creation = -1
     this%writable = .false.
+    this%reserved_end = 0
+    this%reserved = .false.
     if (status < 0) then
       call release_library()
-      call fatal_error(err, this%path // ': H5Fclose failed')
+      call this%fail('H5Fclose failed', err)
       return
+    end if
+    if (trim_file) then
+      if (file_size(this%path) > int(used, i8)) call truncate_file(this%path, int(used, i8), err)
+      if (allocated(err)) return
     end if
     if (list_status < 0) then
       call release_library()
@@ -324,8 +374,55 @@ contains
     call this%require_open('flush', err)
     if (allocated(err)) return
     call h5fflush_f(this%id, H5F_SCOPE_GLOBAL_F, status)
+    ! HDF5 may cut the file back to its allocated end while flushing: reserve again next time.
+    this%reserved_end = 0
     if (status < 0) call this%fail('H5Fflush failed', err)
   end subroutine h5_file_flush
+
+  !> Make sure that the next `bytes` bytes the file grows by are allocated on disk, so that the
+  !> writes and the flush that follow cannot fail on a full disk. A disk too full for them is
+  !> an error now, before anything is written. Where the file system cannot reserve space, the
+  !> free space is checked instead (no guarantee: another process may take it meanwhile).
+  subroutine h5_file_reserve(this, bytes, err)
+    class(h5_file_t), intent(inout) :: this
+    integer(i8), intent(in) :: bytes
+    type(error_t), allocatable, intent(out) :: err
+    integer(hsize_t) :: used
+    integer(i8) :: length, available
+    integer :: status
+    logical :: supported
+    call this%require_open('reserving space', err, write=.true.)
+    if (allocated(err)) return
+    call h5fget_filesize_f(this%id, used, status)
+    if (status < 0) then
+      call this%fail('H5Fget_filesize failed', err)
+      return
+    end if
+    if (int(used, i8) + bytes <= this%reserved_end) return
+    length = max(bytes, MIN_RESERVATION)
+    call reserve_space(this%path, int(used, i8), length, supported, err)
+    if (allocated(err)) return
+    this%reserved = .true.
+    if (supported) then
+      this%reserved_end = int(used, i8) + length
+      return
+    end if
+    available = free_space(dirname(this%path))
+    if (available >= 0 .and. available < bytes) call fatal_error(err, this%path // &
+      ': the disk is full: ' // str(bytes) // ' bytes are needed, ' // str(available) // ' are free')
+  end subroutine h5_file_reserve
+
+  !> Give the file up after a failed write: the id is dropped without a flush or close, so the
+  !> file on disk stays as the last successful flush left it (a flush now could write half of
+  !> what failed). The library stays open; nothing flushes the file at exit (H5dont_atexit).
+  subroutine h5_file_abandon(this)
+    class(h5_file_t), intent(inout) :: this
+    this%id = -1
+    this%link_creation = -1
+    this%writable = .false.
+    this%reserved_end = 0
+    this%reserved = .false.
+  end subroutine h5_file_abandon
 
   !> True when the object holds an open file.
   pure logical function h5_file_is_open(this)
@@ -1113,15 +1210,23 @@ contains
   ! Small helpers
   ! ---------------------------------------------------------------------------------------------
 
-  !> An internal error "<file>: <what>".
+  !> An internal error "<file>: <what>", which first names a full disk or exhausted memory when
+  !> the failed call left that errno.
   subroutine h5_file_fail(this, what, err)
     class(h5_file_t), intent(in) :: this
     character(len=*), intent(in) :: what
     type(error_t), allocatable, intent(out) :: err
-    if (allocated(this%path)) then
-      call fatal_error(err, this%path // ': ' // what)
+    character(len=:), allocatable :: path
+    integer :: code
+    code = current_errno()
+    path = 'HDF5 file'
+    if (allocated(this%path)) path = this%path
+    if (is_disk_full_errno(code)) then
+      call fatal_error(err, path // ': ' // failure_text(code) // ': ' // what)
+    else if (code == ERRNO_NO_MEMORY) then
+      call memory_error(err, 'using ' // path // ' (' // what // ')', 0_i8)
     else
-      call fatal_error(err, 'HDF5 file: ' // what)
+      call fatal_error(err, path // ': ' // what)
     end if
   end subroutine h5_file_fail
 
@@ -1131,6 +1236,7 @@ contains
     character(len=*), intent(in) :: action
     type(error_t), allocatable, intent(out) :: err
     logical, intent(in), optional :: write
+    call clear_errno()
     if (.not. this%is_open()) then
       call this%fail(action // ': the file is not open', err)
       return

@@ -4,10 +4,14 @@
 !> once the run is known to go ahead: for a new run, and after a restart (rows from the
 !> checkpoint) only once the checkpoint was accepted, so that a refused restart leaves the
 !> CSV of the earlier run as it was.
+!>
+!> Writes are checked (fcs_text_file): a row that cannot be written whole is cut off again, so
+!> the CSV always ends with complete rows; the whole-file rewrite replaces the file atomically.
 module fcs_history
   use fcs_kinds, only: dp
-  use fcs_error, only: error_t, fatal_error
+  use fcs_error, only: error_t
   use fcs_strings, only: string_t, join_strings
+  use fcs_text_file, only: text_file_t
   implicit none
   private
   public :: history_table_t
@@ -52,8 +56,7 @@ contains
     real(dp), intent(in) :: values(:)
     type(error_t), allocatable, intent(out) :: err
     real(dp), allocatable :: grown(:, :)
-    integer :: unit, stat
-    character(len=256) :: msg
+    type(text_file_t) :: file
     if (this%n_rows == size(this%rows, 2)) then
       allocate (grown(size(this%rows, 1), 2 * size(this%rows, 2)))
       grown(:, 1:this%n_rows) = this%rows(:, 1:this%n_rows)
@@ -62,48 +65,45 @@ contains
     this%n_rows = this%n_rows + 1
     this%rows(:, this%n_rows) = values
     if (.not. this%writes) return
-    open (newunit=unit, file=this%csv_path, action='write', position='append', iostat=stat, iomsg=msg)
-    if (stat /= 0) then
-      call fatal_error(err, 'writing history ' // this%csv_path // ': ' // trim(msg))
-      return
-    end if
-    call write_row(unit, values)
-    close (unit)
+    call file%open(this%csv_path, err, append=.true.)
+    if (.not. allocated(err)) call file%write(row_text(values), err)
+    if (.not. allocated(err)) call file%close(err)
+    if (allocated(err)) err%message = 'history ' // this%name // ': ' // err%message
   end subroutine table_append
 
   !> Write the whole CSV: header and every row.
   subroutine table_rewrite_csv(this, err)
     class(history_table_t), intent(inout) :: this
     type(error_t), allocatable, intent(out) :: err
-    integer :: unit, stat, i
-    character(len=256) :: msg
+    type(text_file_t) :: file
+    integer :: i
     if (.not. this%writes) return
-    open (newunit=unit, file=this%csv_path, action='write', status='replace', iostat=stat, iomsg=msg)
-    if (stat /= 0) then
-      call fatal_error(err, 'writing history ' // this%csv_path // ': ' // trim(msg))
-      return
-    end if
-    write (unit, '(a)') join_strings(this%columns, ',')
+    call file%open(this%csv_path, err, atomic=.true.)
+    if (.not. allocated(err)) call file%write(join_strings(this%columns, ','), err)
     do i = 1, this%n_rows
-      call write_row(unit, this%rows(:, i))
+      if (allocated(err)) exit
+      call file%write(row_text(this%rows(:, i)), err)
     end do
-    close (unit)
+    if (.not. allocated(err)) call file%close(err)
+    if (allocated(err)) then
+      call file%abandon()
+      err%message = 'history ' // this%name // ': ' // err%message
+    end if
   end subroutine table_rewrite_csv
 
-  subroutine write_row(unit, values)
-    integer, intent(in) :: unit
+  !> One CSV row: every value with 17 significant digits.
+  function row_text(values) result(row)
     real(dp), intent(in) :: values(:)
+    character(len=:), allocatable :: row
     character(len=32) :: cell
     integer :: j
+    row = ''
     do j = 1, size(values)
       write (cell, '(es24.16)') values(j)
-      if (j < size(values)) then
-        write (unit, '(a)', advance='no') trim(adjustl(cell)) // ','
-      else
-        write (unit, '(a)') trim(adjustl(cell))
-      end if
+      row = row // trim(adjustl(cell))
+      if (j < size(values)) row = row // ','
     end do
-  end subroutine write_row
+  end function row_text
 
   !> The rows so far, (n_columns, n_rows).
   pure function table_values(this) result(values)

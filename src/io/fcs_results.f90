@@ -37,7 +37,16 @@
 !> file's contents, and continues the numbering.
 !>
 !> The file is opened without HDF5 file locking so that viewers can read it while a job runs;
-!> a reader may still see a frame being written, which the XDMF does not list yet.
+!> a reader may still see a frame being written, which the XDMF does not list yet. (Two runs of
+!> one job are kept apart by the job lock, fcs_job_lock.)
+!>
+!> Failures. Before each write the space it needs (the data plus a margin for HDF5's metadata)
+!> is reserved on disk (`h5_file_t%reserve`), so a full disk is met before a frame is begun or
+!> a dataset written, never half-way through the flush that completes a frame. Whatever fails
+!> while the file is being written (a full disk where space cannot be reserved, exhausted
+!> memory, an HDF5 error), the file is given up without a further flush (`h5_file_t%abandon`):
+!> it keeps every frame completed before, readable by h5py and listed in the XDMF, and
+!> `open_append` (a restart) deletes the frame that was being written.
 module fcs_results
   use fcs_kinds, only: dp, i8
   use fcs_error, only: error_t, fatal_error, input_error
@@ -47,6 +56,7 @@ module fcs_results
     XDMF_HEXAHEDRON, XDMF_QUADRILATERAL, XDMF_POLYVERTEX, XDMF_NODE, XDMF_CELL, &
     XDMF_SCALAR, XDMF_VECTOR, XDMF_TENSOR6, XDMF_MATRIX
   use fcs_version, only: FCS3D_IDENTITY
+  use fcs_memory, only: allocation_failed
   implicit none
   private
   public :: results_file_t, GRID_POINTS, GRID_QUADS
@@ -67,6 +77,10 @@ module fcs_results
   integer, parameter :: MAX_FRAMES = 10**FRAME_DIGITS - 1
   !> Longest field or grid name.
   integer, parameter :: MAX_NAME_LENGTH = 64
+  !> Space reserved for HDF5's metadata: per dataset written, and per frame begun or ended
+  !> [bytes]; per frame already in the file (the /frames group's heap may double) [bytes].
+  integer(i8), parameter :: DATASET_MARGIN = 16384_i8, FRAME_MARGIN = 262144_i8, &
+    MARGIN_PER_FRAME = 32_i8
   !> Name of the volume grid in the XDMF (reserved: no surface grid may use it).
   character(len=*), parameter :: VOLUME_GRID = 'volume'
   character(len=*), parameter :: WRITING = 'writing results', OPENING = 'opening results'
@@ -140,7 +154,9 @@ contains
       call prefix(err, 'creating results')
       return
     end if
-    call write_mesh(this, node_ids, x_ref, element_ids, connectivity, err)
+    call this%h5%reserve(FRAME_MARGIN + 8_i8 * (size(node_ids, kind=i8) + size(x_ref, kind=i8) + &
+      size(element_ids, kind=i8) + size(connectivity, kind=i8)), err)
+    if (.not. allocated(err)) call write_mesh(this, node_ids, x_ref, element_ids, connectivity, err)
     if (.not. allocated(err)) call this%h5%flush(err)
     if (allocated(err)) then
       call prefix(err, 'creating results')
@@ -165,6 +181,7 @@ contains
     call start(this, path_stem, OPENING, err)
     if (allocated(err)) return
     call this%h5%open(this%h5_path, .true., err, file_locking=.false.)
+    if (.not. allocated(err)) call this%h5%reserve(FRAME_MARGIN, err)
     if (.not. allocated(err)) call check_format(this, err)
     if (.not. allocated(err)) call load_mesh_sizes(this, err)
     if (.not. allocated(err)) call load_surfaces(this, err)
@@ -199,11 +216,19 @@ contains
     type(error_t), allocatable, intent(out) :: err
     character(len=:), allocatable :: path
     path = '/' // group // '/' // name
-    if (.not. this%h5%exists(path)) call this%h5%create_group(path, err)
+    call require(this, .false., 'write_table', err)
+    if (allocated(err)) return
+    call this%h5%reserve(data_bytes(size(values, kind=i8)), err)
+    if (.not. allocated(err)) then
+      if (.not. this%h5%exists(path)) call this%h5%create_group(path, err)
+    end if
     if (.not. allocated(err)) call this%h5%write_dataset(path // '/values', values, err)
     if (.not. allocated(err)) call this%h5%write_attribute(path // '/values', 'columns', columns, err)
     if (.not. allocated(err)) call this%h5%flush(err)
-    if (allocated(err)) call prefix(err, 'writing table ' // path // ' of')
+    if (allocated(err)) then
+      call prefix(err, 'writing table ' // path // ' of')
+      call give_up(this)
+    end if
   end subroutine results_write_table
 
   !> Number of complete frames.
@@ -251,6 +276,19 @@ contains
     call this%h5%close(ignored)
     this%in_frame = .false.
   end subroutine abandon
+
+  !> A write failed: give the file up without flushing it (see the module header).
+  subroutine give_up(this)
+    class(results_file_t), intent(inout) :: this
+    if (this%h5%is_open()) call this%h5%abandon()
+    this%in_frame = .false.
+  end subroutine give_up
+
+  !> Bytes to reserve for a dataset of `n` reals (or integers) and its metadata.
+  pure integer(i8) function data_bytes(n)
+    integer(i8), intent(in) :: n
+    data_bytes = 8_i8 * n + DATASET_MARGIN
+  end function data_bytes
 
   ! ---------------------------------------------------------------------------------------------
   ! Mesh
@@ -550,13 +588,15 @@ contains
       return
     end if
     path = frame_path(number)
-    call this%h5%create_group(path, err)
+    call this%h5%reserve(FRAME_MARGIN + MARGIN_PER_FRAME * number, err)
+    if (.not. allocated(err)) call this%h5%create_group(path, err)
     if (.not. allocated(err)) call this%h5%write_attribute(path, 'time', time, err)
     if (.not. allocated(err)) call this%h5%write_attribute(path, 'step', step, err)
     if (.not. allocated(err)) call this%h5%write_attribute(path, 'increment', increment, err)
     if (.not. allocated(err)) call this%h5%write_attribute(path, 'complete', 0, err)
     if (allocated(err)) then
       call prefix(err, WRITING)
+      call give_up(this)
       return
     end if
     this%frame_number = number
@@ -570,10 +610,13 @@ contains
     type(error_t), allocatable, intent(out) :: err
     call require(this, .true., 'end_frame', err)
     if (allocated(err)) return
-    call this%h5%write_attribute(frame_path(this%frame_number), 'complete', 1, err)
+    call this%h5%reserve(FRAME_MARGIN + MARGIN_PER_FRAME * this%frame_number, err)
+    if (.not. allocated(err)) call this%h5%write_attribute(frame_path(this%frame_number), &
+      'complete', 1, err)
     if (.not. allocated(err)) call this%h5%flush(err)
     if (allocated(err)) then
       call prefix(err, WRITING)
+      call give_up(this)
       return
     end if
     this%in_frame = .false.
@@ -592,9 +635,11 @@ contains
     call check_columns(this, 'coordinates', x, 3, this%n_nodes, 'nodes', err)
     if (allocated(err)) return
     path = frame_path(this%frame_number) // '/coordinates'
-    call this%h5%write_dataset(path, x, err)
+    call this%h5%reserve(data_bytes(size(x, kind=i8)), err)
+    if (.not. allocated(err)) call this%h5%write_dataset(path, x, err)
     if (allocated(err)) then
       call prefix(err, WRITING)
+      call give_up(this)
       return
     end if
     this%frame%grids(1)%geometry = real_data(path, this%n_nodes, 3)
@@ -641,7 +686,10 @@ contains
     call check_field(this, what, name, centre, values, n, this%frame%grids(1), err)
     if (allocated(err)) return
     call write_field(this, path, values, err)
-    if (allocated(err)) return
+    if (allocated(err)) then
+      call give_up(this)
+      return
+    end if
     call this%frame%grids(1)%add_attribute(field_attribute(name, centre, path, n, &
       size(values, 1)))
   end subroutine write_volume_field
@@ -665,15 +713,38 @@ contains
       return
     end if
     path = frame_path(this%frame_number) // '/integration_points/' // name
-    if (size(values, 1) == 6) then
-      call this%h5%write_dataset(path, values(TENSOR6_TO_XDMF, :, :), err)
-      if (.not. allocated(err)) call this%h5%write_attribute(path, 'components', &
-        TENSOR6_COMPONENTS, err)
+    call this%h5%reserve(data_bytes(size(values, kind=i8)), err)
+    if (allocated(err)) then
+    else if (size(values, 1) == 6) then
+      call write_tensor_field(this, path, values, err)
     else
       call this%h5%write_dataset(path, values, err)
     end if
-    if (allocated(err)) call prefix(err, WRITING)
+    if (allocated(err)) then
+      call prefix(err, WRITING)
+      call give_up(this)
+    end if
   end subroutine results_write_integration_points
+
+  !> A tensor field at integration points, `values(6, q, ne)`, stored with its components in
+  !> XDMF's order (a reordered copy, allocated with a check).
+  subroutine write_tensor_field(this, path, values, err)
+    class(results_file_t), intent(inout) :: this
+    character(len=*), intent(in) :: path
+    real(dp), intent(in) :: values(:, :, :)
+    type(error_t), allocatable, intent(out) :: err
+    real(dp), allocatable :: stored(:, :, :)
+    integer :: status, k
+    allocate (stored(6, size(values, 2), size(values, 3)), stat=status)
+    if (allocation_failed(status, 'writing ' // path // ' of ' // this%h5_path, &
+                          8_i8 * size(values, kind=i8), err)) return
+    do k = 1, size(values, 3)
+      stored(:, :, k) = values(TENSOR6_TO_XDMF, :, k)
+    end do
+    call this%h5%write_dataset(path, stored, err)
+    if (.not. allocated(err)) call this%h5%write_attribute(path, 'components', &
+      TENSOR6_COMPONENTS, err)
+  end subroutine write_tensor_field
 
   !> Current coordinates `x(3, m)` of surface grid `grid_name` in this frame.
   subroutine results_write_surface_coordinates(this, grid_name, x, err)
@@ -696,9 +767,11 @@ contains
       this%surfaces(k)%n_points, 'points', err)
     if (allocated(err)) return
     path = frame_path(this%frame_number) // '/surfaces/' // grid_name // '/coordinates'
-    call this%h5%write_dataset(path, x, err)
+    call this%h5%reserve(data_bytes(size(x, kind=i8)), err)
+    if (.not. allocated(err)) call this%h5%write_dataset(path, x, err)
     if (allocated(err)) then
       call prefix(err, WRITING)
+      call give_up(this)
       return
     end if
     call record_surface_coordinates(this, k, path)
@@ -728,29 +801,47 @@ contains
     if (allocated(err)) return
     path = frame_path(this%frame_number) // '/surfaces/' // grid_name // '/nodal/' // field_name
     call write_field(this, path, values, err)
-    if (allocated(err)) return
+    if (allocated(err)) then
+      call give_up(this)
+      return
+    end if
     call this%frame%grids(g)%add_attribute(field_attribute(field_name, XDMF_NODE, path, &
       this%surfaces(k)%n_points, size(values, 1)))
   end subroutine results_write_surface_field
 
-  !> Write a nodal/cell field: one component as a 1-D dataset, six reordered to XDMF's order.
+  !> Write a nodal/cell field: one component as a 1-D dataset, six reordered to XDMF's order
+  !> (scalars and tensors through a copy allocated with a check).
   subroutine write_field(this, path, values, err)
     class(results_file_t), intent(inout) :: this
     character(len=*), intent(in) :: path
     real(dp), intent(in) :: values(:, :)
     type(error_t), allocatable, intent(out) :: err
-    select case (size(values, 1))
-    case (1)
-      call this%h5%write_dataset(path, values(1, :), err)
-    case (3)
+    real(dp), allocatable :: stored(:, :)
+    integer :: status
+    call this%h5%reserve(data_bytes(size(values, kind=i8)), err)
+    if (allocated(err)) then
+      call prefix(err, WRITING)
+      return
+    end if
+    if (size(values, 1) == 3) then
       call this%h5%write_dataset(path, values, err)
       if (.not. allocated(err)) call this%h5%write_attribute(path, 'components', &
         VECTOR_COMPONENTS, err)
-    case default
-      call this%h5%write_dataset(path, values(TENSOR6_TO_XDMF, :), err)
+      if (allocated(err)) call prefix(err, WRITING)
+      return
+    end if
+    allocate (stored(size(values, 1), size(values, 2)), stat=status)
+    if (allocation_failed(status, 'writing ' // path // ' of ' // this%h5_path, &
+                          8_i8 * size(values, kind=i8), err)) return
+    if (size(values, 1) == 1) then
+      stored = values
+      call this%h5%write_dataset(path, stored(1, :), err)
+    else
+      stored = values(TENSOR6_TO_XDMF, :)
+      call this%h5%write_dataset(path, stored, err)
       if (.not. allocated(err)) call this%h5%write_attribute(path, 'components', &
         TENSOR6_COMPONENTS, err)
-    end select
+    end if
     if (allocated(err)) call prefix(err, WRITING)
   end subroutine write_field
 

@@ -15,12 +15,13 @@
 !> expands them) and Matrix; topologies Hexahedron, Quadrilateral, Polyvertex.
 !>
 !> `xdmf_series_t%write` replaces the XDMF file atomically: it writes "<path>.tmp", fsyncs it,
-!> renames it over "<path>" and fsyncs the directory, so a viewer never reads half a file.
+!> renames it over "<path>" and fsyncs the directory, so a viewer never reads half a file
+!> (fcs_text_file; every write checked, a failure leaves the previous index in place).
 module fcs_xdmf
   use fcs_kinds, only: dp, i8
-  use fcs_error, only: error_t, fatal_error, add_context
-  use fcs_strings, only: str, dirname, replace_all
-  use fcs_files, only: rename_file, sync_file, remove_file
+  use fcs_error, only: error_t
+  use fcs_strings, only: str, replace_all
+  use fcs_text_file, only: text_file_t
   implicit none
   private
   public :: xdmf_series_t, xdmf_frame_t, xdmf_grid_t, xdmf_attribute_t, xdmf_data_t
@@ -155,115 +156,97 @@ contains
     class(xdmf_series_t), intent(in) :: this
     character(len=*), intent(in) :: path
     type(error_t), allocatable, intent(out) :: err
-    character(len=:), allocatable :: temporary
-    type(error_t), allocatable :: ignored
-    integer :: unit, status
-    character(len=256) :: message
-    temporary = path // '.tmp'
-    open (newunit=unit, file=temporary, status='replace', action='write', form='formatted', &
-      iostat=status, iomsg=message)
-    if (status /= 0) then
-      call fatal_error(err, 'writing XDMF ' // temporary // ': ' // trim(message))
-      return
-    end if
-    call write_document(this, unit, status, message)
-    if (status == 0) then
-      close (unit, iostat=status, iomsg=message)
-    else
-      close (unit)
-    end if
-    if (status /= 0) then
-      call fatal_error(err, 'writing XDMF ' // temporary // ': ' // trim(message))
-      call remove_file(temporary, ignored)
-      return
-    end if
-    call sync_file(temporary, err)
-    if (.not. allocated(err)) call rename_file(temporary, path, err)
-    if (.not. allocated(err)) call sync_file(dirname(path), err)
-    if (allocated(err)) call add_context(err, 'writing XDMF ' // path)
+    type(text_file_t) :: file
+    call file%open(path, err, atomic=.true.)
+    if (.not. allocated(err)) call write_document(this, file, err)
+    if (.not. allocated(err)) call file%close(err)
+    if (allocated(err)) call file%abandon()
   end subroutine series_write
 
-  !> The XML document; `status`/`message` report the first I/O error.
-  subroutine write_document(series, unit, status, message)
+  !> The XML document.
+  subroutine write_document(series, file, err)
     type(xdmf_series_t), intent(in) :: series
-    integer, intent(in) :: unit
-    integer, intent(out) :: status
-    character(len=*), intent(inout) :: message
+    type(text_file_t), intent(inout) :: file
+    type(error_t), allocatable, intent(out) :: err
     integer :: i
-    write (unit, '(a)', iostat=status, iomsg=message) '<?xml version="1.0" ?>', &
-      '<!DOCTYPE Xdmf SYSTEM "Xdmf.dtd" []>', '<Xdmf Version="2.0">', '  <Domain>', &
-      '    <Grid Name="' // xml_text(series%name) // &
-      '" GridType="Collection" CollectionType="Temporal">'
+    call write_lines(file, [character(len=40) :: '<?xml version="1.0" ?>', &
+      '<!DOCTYPE Xdmf SYSTEM "Xdmf.dtd" []>', '<Xdmf Version="2.0">', '  <Domain>'], err)
+    if (.not. allocated(err)) call file%write('    <Grid Name="' // xml_text(series%name) // &
+      '" GridType="Collection" CollectionType="Temporal">', err)
     do i = 1, series%n_frames
-      if (status /= 0) return
-      call write_frame(series, series%frames(i), unit, status, message)
+      if (allocated(err)) return
+      call write_frame(series, series%frames(i), file, err)
     end do
-    if (status /= 0) return
-    write (unit, '(a)', iostat=status, iomsg=message) '    </Grid>', '  </Domain>', '</Xdmf>'
+    if (.not. allocated(err)) call write_lines(file, [character(len=12) :: '    </Grid>', &
+      '  </Domain>', '</Xdmf>'], err)
   end subroutine write_document
 
   !> One frame: a single grid, or a Spatial collection of its grids, with the frame's time.
-  subroutine write_frame(series, frame, unit, status, message)
+  subroutine write_frame(series, frame, file, err)
     type(xdmf_series_t), intent(in) :: series
     type(xdmf_frame_t), intent(in) :: frame
-    integer, intent(in) :: unit
-    integer, intent(out) :: status
-    character(len=*), intent(inout) :: message
+    type(text_file_t), intent(inout) :: file
+    type(error_t), allocatable, intent(out) :: err
     character(len=*), parameter :: indent = '      '
     character(len=:), allocatable :: stamp
     integer :: i
-    status = 0
     stamp = indent // '  <Time Value="' // real_text(frame%time) // '"/>'
     if (frame%n_grids == 1 .and. .not. series%spatial_collections) then
-      call write_grid(series, frame%grids(1), indent, stamp, unit, status, message)
+      call write_grid(series, frame%grids(1), indent, stamp, file, err)
       return
     end if
-    write (unit, '(a)', iostat=status, iomsg=message) &
-      indent // '<Grid Name="' // xml_text(frame%name) // &
-      '" GridType="Collection" CollectionType="Spatial">', stamp
+    call file%write(indent // '<Grid Name="' // xml_text(frame%name) // &
+      '" GridType="Collection" CollectionType="Spatial">', err)
+    if (.not. allocated(err)) call file%write(stamp, err)
     do i = 1, frame%n_grids
-      if (status /= 0) return
-      call write_grid(series, frame%grids(i), indent // '  ', '', unit, status, message)
+      if (allocated(err)) return
+      call write_grid(series, frame%grids(i), indent // '  ', '', file, err)
     end do
-    if (status /= 0) return
-    write (unit, '(a)', iostat=status, iomsg=message) indent // '</Grid>'
+    if (.not. allocated(err)) call file%write(indent // '</Grid>', err)
   end subroutine write_frame
 
   !> One Uniform grid; `stamp` (the <Time> line, or empty) follows the opening tag.
-  subroutine write_grid(series, grid, indent, stamp, unit, status, message)
+  subroutine write_grid(series, grid, indent, stamp, file, err)
     type(xdmf_series_t), intent(in) :: series
     type(xdmf_grid_t), intent(in) :: grid
     character(len=*), intent(in) :: indent, stamp
-    integer, intent(in) :: unit
-    integer, intent(out) :: status
-    character(len=*), intent(inout) :: message
+    type(text_file_t), intent(inout) :: file
+    type(error_t), allocatable, intent(out) :: err
     integer :: i
-    write (unit, '(a)', iostat=status, iomsg=message) &
-      indent // '<Grid Name="' // xml_text(grid%name) // '" GridType="Uniform">'
-    if (status == 0 .and. len(stamp) > 0) &
-      write (unit, '(a)', iostat=status, iomsg=message) stamp
-    if (status /= 0) return
-    write (unit, '(a)', iostat=status, iomsg=message) &
-      indent // '  <Topology TopologyType="' // topology_name(grid%topology) // &
-      '" NumberOfElements="' // str(grid%n_cells) // '" NodesPerElement="' // &
-      str(grid%nodes_per_cell) // '">', &
-      data_item(series, grid%connectivity, indent // '    '), &
-      indent // '  </Topology>', &
-      indent // '  <Geometry GeometryType="XYZ">', &
-      data_item(series, grid%geometry, indent // '    '), &
-      indent // '  </Geometry>'
+    call file%write(indent // '<Grid Name="' // xml_text(grid%name) // '" GridType="Uniform">', err)
+    if (.not. allocated(err) .and. len(stamp) > 0) call file%write(stamp, err)
+    if (.not. allocated(err)) call file%write(indent // '  <Topology TopologyType="' // &
+      topology_name(grid%topology) // '" NumberOfElements="' // str(grid%n_cells) // &
+      '" NodesPerElement="' // str(grid%nodes_per_cell) // '">', err)
+    if (.not. allocated(err)) call file%write(data_item(series, grid%connectivity, &
+      indent // '    '), err)
+    if (.not. allocated(err)) call file%write(indent // '  </Topology>', err)
+    if (.not. allocated(err)) call file%write(indent // '  <Geometry GeometryType="XYZ">', err)
+    if (.not. allocated(err)) call file%write(data_item(series, grid%geometry, indent // '    '), err)
+    if (.not. allocated(err)) call file%write(indent // '  </Geometry>', err)
     do i = 1, grid%n_attributes
-      if (status /= 0) return
-      write (unit, '(a)', iostat=status, iomsg=message) &
-        indent // '  <Attribute Name="' // xml_text(grid%attributes(i)%name) // &
+      if (allocated(err)) return
+      call file%write(indent // '  <Attribute Name="' // xml_text(grid%attributes(i)%name) // &
         '" AttributeType="' // attribute_type_name(grid%attributes(i)%attribute_type) // &
-        '" Center="' // centre_name(grid%attributes(i)%centre) // '">', &
-        data_item(series, grid%attributes(i)%data, indent // '    '), &
-        indent // '  </Attribute>'
+        '" Center="' // centre_name(grid%attributes(i)%centre) // '">', err)
+      if (.not. allocated(err)) call file%write(data_item(series, grid%attributes(i)%data, &
+        indent // '    '), err)
+      if (.not. allocated(err)) call file%write(indent // '  </Attribute>', err)
     end do
-    if (status /= 0) return
-    write (unit, '(a)', iostat=status, iomsg=message) indent // '</Grid>'
+    if (.not. allocated(err)) call file%write(indent // '</Grid>', err)
   end subroutine write_grid
+
+  !> Write each of `lines` (trailing blanks removed).
+  subroutine write_lines(file, lines, err)
+    type(text_file_t), intent(inout) :: file
+    character(len=*), intent(in) :: lines(:)
+    type(error_t), allocatable, intent(out) :: err
+    integer :: i
+    do i = 1, size(lines)
+      call file%write(trim(lines(i)), err)
+      if (allocated(err)) return
+    end do
+  end subroutine write_lines
 
   !> A DataItem line referring to the heavy dataset.
   function data_item(series, data, indent) result(line)

@@ -44,6 +44,7 @@ module fcs_gmsh_reader
   use fcs_int_map, only: int_map_t
   use fcs_mesh, only: mesh_t
   use fcs_hex_face_match, only: match_quads_to_hex_faces
+  use fcs_hex8_shape, only: hex8_min_jacobian_ratio
   use fcs_gmsh_stream, only: msh_stream_t, is_finite_bits
   implicit none
   private
@@ -60,6 +61,8 @@ module fcs_gmsh_reader
   integer, parameter :: BLOCK_SKIP = 0, BLOCK_HEXAHEDRA = 1, BLOCK_QUADS = 2, BLOCK_NODES = 3
   !> Largest tag that fits a mesh id.
   integer(i8), parameter :: MAX_TAG = int(huge(1), i8)
+  !> Inverted hexahedra named one by one in the error.
+  integer, parameter :: MAX_INVERTED_NAMED = 5
   !> Elements per read in a binary element block (bounds the temporary buffer).
   integer, parameter :: BINARY_BATCH = 65536
   !> Fewest bytes a node, an entity and a block header take in text and binary files, used to
@@ -1171,7 +1174,40 @@ contains
       end if
       element_index(k) = mesh%n_elements
     end do
+    call check_orientation(path, content, mesh, element_index, err)
   end subroutine add_hexahedra
+
+  !> Every hexahedron read must have a positive Jacobian: an inverted or degenerate one is an
+  !> error at its line of the file (the first MAX_INVERTED_NAMED are named).
+  subroutine check_orientation(path, content, mesh, element_index, err)
+    character(len=*), intent(in) :: path
+    type(msh_content_t), intent(in) :: content
+    type(mesh_t), intent(in) :: mesh
+    integer, intent(in) :: element_index(:)
+    type(error_t), allocatable, intent(out) :: err
+    integer :: k, e, n_bad
+    character(len=:), allocatable :: text
+    n_bad = 0
+    text = ''
+    do k = 1, content%hexahedra%n
+      e = element_index(k)
+      if (hex8_min_jacobian_ratio(mesh%x(:, mesh%connectivity(:, e))) > 0.0_dp) cycle
+      n_bad = n_bad + 1
+      if (n_bad > MAX_INVERTED_NAMED) cycle
+      if (n_bad > 1) text = text // new_line('a')
+      text = text // path
+      if (content%hexahedra%line(k) > 0) text = text // ':' // str(content%hexahedra%line(k))
+      text = text // ': element ' // str(content%hexahedra%tag(k)) // ' is inverted or ' // &
+        'degenerate (Jacobian determinant <= 0)'
+    end do
+    if (n_bad == 0) return
+    if (n_bad > MAX_INVERTED_NAMED) text = text // new_line('a') // path // ': ' // &
+      str(n_bad - MAX_INVERTED_NAMED) // ' more inverted or degenerate element(s)'
+    call input_error(err, text // new_line('a') // 'gmsh numbering of a hexahedron: nodes 0-3 ' // &
+      'counter-clockwise on one face seen from the opposite face, 4-7 above them; a volume ' // &
+      'meshed with the reverse orientation gives inverted elements (reverse the surface loop ' // &
+      'of the volume in the .geo file)')
+  end subroutine check_orientation
 
   !> Match every kept quad to the hexahedron face with the same four nodes; a quad on no face
   !> (or, in a non-conforming mesh, on more than two) is an error.

@@ -12,6 +12,7 @@ module fcs_gmsh_stream
   use, intrinsic :: iso_fortran_env, only: int32
   use fcs_kinds, only: dp, i8
   use fcs_error, only: error_t, input_error
+  use fcs_files, only: file_kind, file_kind_name, FILE_REGULAR
   use fcs_strings, only: str
   implicit none
   private
@@ -90,6 +91,11 @@ contains
     inquire (file=path, exist=exists)
     if (.not. exists) then
       call input_error(err, path // ': the gmsh mesh file does not exist')
+      return
+    end if
+    if (file_kind(path) /= FILE_REGULAR) then
+      call input_error(err, path // ': is ' // file_kind_name(file_kind(path)) // &
+        ', not a gmsh mesh file')
       return
     end if
     open (newunit=this%unit, file=path, access='stream', form='unformatted', status='old', &

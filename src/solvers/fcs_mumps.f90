@@ -17,6 +17,7 @@
 module fcs_mumps
   use fcs_kinds, only: dp, i8
   use fcs_error, only: error_t, fatal_error
+  use fcs_memory, only: memory_error
   use fcs_strings, only: str
   use fcs_timer, only: wall_time
   use fcs_sparse, only: sparse_matrix_t
@@ -402,10 +403,27 @@ contains
     this%id%JOB = job
     call dmumps(this%id)
     if (this%id%INFOG(1) < 0) then
-      call fatal_error(err, 'MUMPS ' // phase // ' (JOB=' // str(job) // '): ' // &
-        infog_text(this%id%INFOG(1), this%id%INFOG(2)))
+      if (any(this%id%INFOG(1) == [MUMPS_ERROR_ANALYSIS_REAL_ALLOCATION, &
+              MUMPS_ERROR_ANALYSIS_INTEGER_ALLOCATION, MUMPS_ERROR_ALLOCATION])) then
+        call memory_error(err, 'MUMPS ran its ' // phase // ' (JOB=' // str(job) // '; ' // &
+          'an allocation of ' // workspace_size(this%id%INFOG(2)) // ' failed, INFOG(1)=' // &
+          str(this%id%INFOG(1)) // ')', 8_i8 * workspace_entries(this%id%INFOG(2)))
+      else
+        call fatal_error(err, 'MUMPS ' // phase // ' (JOB=' // str(job) // '): ' // &
+          infog_text(this%id%INFOG(1), this%id%INFOG(2)))
+      end if
     end if
   end subroutine run_job
+
+  !> A workspace size as MUMPS reports it in INFO(2)/INFOG(2), in entries.
+  pure integer(i8) function workspace_entries(detail)
+    integer, intent(in) :: detail
+    if (detail < 0) then
+      workspace_entries = 1000000_i8 * int(-detail, i8)
+    else
+      workspace_entries = int(detail, i8)
+    end if
+  end function workspace_entries
 
   !> The ordering MUMPS used, from INFOG(7) (MUMPS 5.5 User's Guide, ICNTL(7)).
   pure function ordering_name(code) result(name)

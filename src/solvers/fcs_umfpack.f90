@@ -16,6 +16,7 @@ module fcs_umfpack
   use, intrinsic :: iso_c_binding, only: c_long, c_double, c_ptr, c_null_ptr, c_associated
   use fcs_kinds, only: dp, i8
   use fcs_error, only: error_t, fatal_error
+  use fcs_memory, only: memory_error
   use fcs_strings, only: str
   use fcs_timer, only: wall_time
   use fcs_sparse, only: sparse_matrix_t
@@ -80,7 +81,12 @@ contains
     started = wall_time()
     status = umfpack_dl_numeric(this%column_ptr, this%row_index, matrix%val, this%symbolic, &
                                 this%numeric, this%control, this%info)
-    if (status /= UMFPACK_OK) then
+    if (status == UMFPACK_ERROR_out_of_memory) then
+      call release_numeric(this)
+      call memory_error(err, 'factorising the stiffness matrix (UMFPACK, ' // str(this%n) // &
+        ' equations)', int(this%peak_memory_estimate, i8))
+      return
+    else if (status /= UMFPACK_OK) then
       call fatal_error(err, 'UMFPACK numeric factorisation (umfpack_dl_numeric): ' // &
         status_text(status) // numeric_details(this, status))
       call release_numeric(this)
@@ -115,10 +121,19 @@ contains
     type(sparse_matrix_t), intent(in) :: matrix
     type(error_t), allocatable, intent(out) :: err
     integer(c_long) :: status, n
+    integer :: status32
     call release_symbolic(this)
     this%analysed_version = -1
     if (matrix%n < 1) then
       call fatal_error(err, 'UMFPACK symbolic analysis: the matrix has no equations')
+      return
+    end if
+    if (allocated(this%column_ptr)) deallocate (this%column_ptr)
+    if (allocated(this%row_index)) deallocate (this%row_index)
+    allocate (this%column_ptr(size(matrix%row_ptr)), this%row_index(size(matrix%col)), stat=status32)
+    if (status32 /= 0) then
+      call memory_error(err, 'analysing the stiffness matrix (UMFPACK, ' // str(matrix%n) // &
+        ' equations)', 8_i8 * (size(matrix%row_ptr, kind=i8) + size(matrix%col, kind=i8)))
       return
     end if
     this%column_ptr = int(matrix%row_ptr - 1, c_long)
@@ -138,7 +153,12 @@ contains
       status = umfpack_dl_symbolic(n, n, this%column_ptr, this%row_index, matrix%val, &
                                    this%symbolic, this%control, this%info)
     end if
-    if (status /= UMFPACK_OK) then
+    if (status == UMFPACK_ERROR_out_of_memory) then
+      call release_symbolic(this)
+      call memory_error(err, 'analysing the stiffness matrix (UMFPACK, ' // str(matrix%n) // &
+        ' equations)', 0_i8)
+      return
+    else if (status /= UMFPACK_OK) then
       call fatal_error(err, 'UMFPACK symbolic analysis (umfpack_dl_symbolic) of ' // &
         str(matrix%n) // ' equations: ' // status_text(status))
       call release_symbolic(this)

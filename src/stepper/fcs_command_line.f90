@@ -59,6 +59,11 @@ contains
           return
         end if
         i = i + 1
+        if (len(argument(i)) == 0) then
+          call input_error(err, 'option ' // arg // ' needs a value, got an empty string (' // &
+            trim(option_value_text(arg)) // ')')
+          return
+        end if
         select case (arg)
         case ('--solver')
           options%solver = to_upper(argument(i))
@@ -104,6 +109,20 @@ contains
     end if
   end subroutine parse_command_line
 
+  !> What option `name` expects, for the message about an empty value.
+  function option_value_text(name) result(text)
+    character(len=*), intent(in) :: name
+    character(len=:), allocatable :: text
+    select case (name)
+    case ('--solver')
+      text = 'UMFPACK, SKYLINE or MUMPS'
+    case ('--restart')
+      text = 'the checkpoint to continue from, e.g. job.rst.h5; without --restart the run starts afresh'
+    case default
+      text = 'an existing directory for the output files; without -o they go next to the deck'
+    end select
+  end function option_value_text
+
   subroutine print_keywords(markdown)
     use fcs_keyword_docs, only: print_keyword_list, print_keyword_reference
     logical, intent(in) :: markdown
@@ -140,14 +159,18 @@ contains
       '  --list-keywords       the keywords the deck may use, with their parameters', &
       '  --markdown            with --list-keywords: the deck reference in Markdown', &
       '  --check               read and check the deck and the model, write job.echo, do not run', &
-      '  --solver NAME         linear solver: UMFPACK (default), SKYLINE or MUMPS', &
+      '  --solver NAME         linear solver: UMFPACK (default; MUMPS in a parallel run), SKYLINE', &
+      '                        or MUMPS', &
       '  --restart FILE        continue from a checkpoint (job.rst.h5)', &
       '  -o, --output-dir DIR  write the output files into DIR (which must exist)', &
       '  -q, --quiet           no progress on the terminal (warnings and errors still shown)', &
       '', &
-      'exit status: 0 success; 1 internal failure (solver, file system, bad state during the', &
-      'run); 2 bad input (deck, mesh, command line, checkpoint that does not match);', &
-      '3 stopped by SIGTERM/SIGINT after writing a checkpoint.', &
+      'exit status: 0 success; 1 run failure (solver, bad state during the run, full disk or', &
+      'other failed write, too little memory); 2 bad input (deck, mesh, command line, checkpoint', &
+      'that does not match, the same job already running in the output directory); 3 stopped by', &
+      'SIGTERM/SIGINT after writing a checkpoint.', &
+      '', &
+      'environment: OPENBLAS_NUM_THREADS (default 1: fcs3d sets it and restarts itself).', &
       '', &
       'documentation: doc/user_guide.md, doc/deck_reference.md, doc/theory.md']
     integer :: i

@@ -2,7 +2,7 @@
 !> outputs, runs every step increment by increment, and writes results at the output times.
 module fcs_driver
   use fcs_kinds, only: dp, i8
-  use fcs_error, only: error_t, fatal_error, input_error, add_context, EXIT_INTERRUPTED
+  use fcs_error, only: error_t, fatal_error, input_error, add_context, EXIT_INTERRUPTED, EXIT_INPUT
   use fcs_mesh, only: hex8_face_nodes
   use fcs_deck_lexer, only: deck_t
   use fcs_model, only: model_t, step_t, output_request_t, OUTPUT_NODE_PRINT, OUTPUT_EL_PRINT, &
@@ -32,12 +32,14 @@ module fcs_driver
   use fcs_strings, only: str, to_upper, to_lower, join_strings
   use fcs_signals, only: install_signal_handlers, signal_received
   use fcs_heap_policy, only: keep_freed_memory
+  use fcs_memory, only: prepare_memory, ensure_memory, set_activity, set_failure_log
   use fcs_run_checkpoint, only: save_checkpoint, restore_checkpoint
   use fcs_checkpoint, only: checkpoint_info_t
   use fcs_files, only: truncate_file, file_size
   use fcs_monitors, only: monitors_t
   use fcs_event_catalog, only: EVENT_COLUMNS
   use fcs_version, only: FCS3D_IDENTITY
+  use fcs_job_lock, only: job_lock_t
   implicit none
   private
   public :: run_job
@@ -56,6 +58,8 @@ module fcs_driver
     type(monitors_t) :: monitors
     !> Rank 0 of a parallel run writes every file and the terminal output.
     logical :: writer = .true.
+    !> The job's lock (rank 0), held from before the first file is written to the end.
+    type(job_lock_t) :: lock
   end type run_t
 
 contains
@@ -68,43 +72,91 @@ contains
     type(deck_t) :: deck
     type(run_t) :: run
     real(dp) :: t_start
+    character(len=:), allocatable :: memory_note
     t_start = wall_time()
     call keep_freed_memory(err)
+    if (.not. allocated(err)) call prepare_memory(memory_note, err)
     if (allocated(err)) return
     call run%analysis%comm%init(err)
     if (allocated(err)) return
     run%writer = run%analysis%comm%is_root()
-    call run_job_on_ranks(options, run, model, deck, t_start, err)
+    call run_job_on_ranks(options, run, model, deck, t_start, memory_note, err)
     call run%analysis%comm%agree_error(err)
     ! Every rank of a parallel run returns the same error; rank 0 reports it.
     if (allocated(err) .and. .not. run%writer) err%silent = .true.
+    call end_log(run, err)
+    call run%lock%release()
     call run%analysis%comm%finalize()
   end subroutine run_job
 
-  subroutine run_job_on_ranks(options, run, model, deck, t_start, err)
+  !> Take the job's lock, then open the log (appended to on a restart): both before anything
+  !> is read or written, so that the log records input errors too and a second run of the job
+  !> is refused before it touches a file.
+  subroutine start_log(options, run, memory_note, err)
+    type(run_options_t), intent(in) :: options
+    type(run_t), intent(inout) :: run
+    character(len=*), intent(in) :: memory_note
+    type(error_t), allocatable, intent(out) :: err
+    if (run%writer) call run%lock%acquire(options%job, err)
+    call run%analysis%comm%agree_error(err)
+    if (allocated(err)) return
+    if (run%writer) then
+      call run%log%open(options%job // '.log', options%quiet, err, append=len(options%restart_file) > 0)
+    else
+      run%log%terminal = .false.
+    end if
+    call run%analysis%comm%agree_error(err)
+    if (allocated(err)) return
+    if (run%writer) call set_failure_log(options%job // '.log')
+    call run%log%detail(FCS3D_IDENTITY)
+    if (len(memory_note) > 0) call run%log%detail('note: ' // memory_note)
+    if (len(run%lock%previous_holder) > 0) call run%log%detail('note: ' // options%job // &
+      '.lock was left by a run that ended without removing it (' // run%lock%previous_holder // &
+      '); taken over')
+  end subroutine start_log
+
+  !> The run's outcome into the log (an error message and the exit status), then close it; a
+  !> failed write to the log becomes the run's error if it has none.
+  subroutine end_log(run, err)
+    type(run_t), intent(inout) :: run
+    type(error_t), allocatable, intent(inout) :: err
+    type(error_t), allocatable :: log_err
+    if (allocated(err)) then
+      if (err%exit_code /= EXIT_INTERRUPTED) then
+        call run%log%detail('fcs3d: ' // err%message)
+        call run%log%detail('exit status ' // str(err%exit_code) // ' (' // &
+          trim(merge('bad input  ', 'run failure', err%exit_code == EXIT_INPUT)) // ')')
+      end if
+    end if
+    call run%log%close(log_err)
+    if (.not. allocated(err) .and. allocated(log_err)) call move_alloc(log_err, err)
+  end subroutine end_log
+
+  subroutine run_job_on_ranks(options, run, model, deck, t_start, memory_note, err)
     type(run_options_t), intent(in) :: options
     type(run_t), intent(inout) :: run
     type(model_t), intent(out) :: model
     type(deck_t), intent(out) :: deck
     real(dp), intent(in) :: t_start
+    character(len=*), intent(in) :: memory_note
     type(error_t), allocatable, intent(out) :: err
+    call start_log(options, run, memory_note, err)
+    if (allocated(err)) return
+    call set_activity('reading the deck ' // options%deck_path)
     call build_model(options%deck_path, model, deck, err)
     if (allocated(err)) return
     if (len(options%solver) > 0) model%solver_name = to_upper(options%solver)
+    if (run%analysis%comm%size > 1 .and. len(options%solver) == 0 .and. .not. model%solver_chosen) &
+      model%solver_name = 'MUMPS'
     if (run%writer) call write_echo(options%job // '.echo', deck, model, err)
+    call run%analysis%comm%agree_error(err)
     if (allocated(err)) return
-    if (run%writer) then
-      call run%log%open(options%job // '.log', options%quiet, err, append=len(options%restart_file) > 0)
-      if (allocated(err)) return
-    else
-      run%log%terminal = .false.
-    end if
     call describe_model(run%log, model, options)
     if (run%analysis%comm%size > 1) call run%log%info('parallel run on ' // &
-      str(run%analysis%comm%size) // ' processes (elements partitioned by METIS, solver MUMPS)')
+      str(run%analysis%comm%size) // ' processes (elements partitioned by METIS, solver ' // &
+      model%solver_name // ')')
     if (options%check_only) then
       call run%log%info('check: the deck and the model are valid (echo in ' // options%job // '.echo)')
-      call run%log%close()
       return
     end if
     run%started = t_start
@@ -128,14 +180,13 @@ contains
     else if (err%exit_code == EXIT_INTERRUPTED) then
       call summary(run, model, 'stopped')
     end if
-    call close_outputs(run)
+    call close_outputs(run, err)
   end subroutine run_job_on_ranks
 
   subroutine describe_model(log, model, options)
     type(logger_t), intent(inout) :: log
     type(model_t), intent(in) :: model
     type(run_options_t), intent(in) :: options
-    call log%detail(FCS3D_IDENTITY)
     if (len(model%title) > 0) then
       call log%info('fcs3d: ' // options%deck_path // ': ' // model%title)
     else
@@ -158,6 +209,9 @@ contains
     integer :: n_state, n
     associate (a => run%analysis)
       call make_materials(model, a%materials, n_state, err)
+      if (allocated(err)) return
+      call set_activity('setting up the analysis', setup_bytes(model, n_state))
+      call ensure_memory(setup_bytes(model, n_state), 'setting up the analysis', err)
       if (allocated(err)) return
       a%materials_have_states = n_state > 0
       call a%state%init(model%mesh%x, model%mesh%n_elements, n_state)
@@ -194,6 +248,19 @@ contains
     end associate
     run%total_time = sum(model%steps(:)%period)
   end subroutine setup
+
+  !> About the memory the set-up allocates [bytes]: state and force vectors, integration-point
+  !> arrays, element cliques, and the sparse pattern (about 27 neighbours per node of a
+  !> hexahedral mesh, 3 x 3 entries of 12 bytes each).
+  pure integer(i8) function setup_bytes(model, n_state) result(bytes)
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: n_state
+    integer(i8) :: nodes, elements
+    nodes = int(model%mesh%n_nodes, i8)
+    elements = int(model%mesh%n_elements, i8)
+    bytes = 8_i8 * 3_i8 * nodes * 15_i8 + 8_i8 * int(N_GAUSS_HEX8, i8) * elements * &
+      (12_i8 + int(n_state, i8)) + 4_i8 * 8_i8 * elements + 9_i8 * 27_i8 * 12_i8 * nodes
+  end function setup_bytes
 
   !> This process's share of the work: its elements (METIS partition), its contact slaves
   !> (equal consecutive blocks), and the pressure faces whose load stiffness rank 0 adds.
@@ -269,21 +336,38 @@ contains
     call run%analysis%comm%agree_error(err)
   end subroutine resume_outputs
 
-  !> Cut the text and results files back to the checkpoint and reopen them.
+  !> Cut the text and results files back to the checkpoint and reopen them. Outputs that hold
+  !> less than they held at the checkpoint (deleted, emptied, cut) are kept as they are and
+  !> continued, with a warning: what they lack is lost (doc/restart.md).
   subroutine reopen_outputs(run, model, info, err)
     type(run_t), intent(inout) :: run
     type(model_t), intent(in) :: model
     type(checkpoint_info_t), intent(in) :: info
     type(error_t), allocatable, intent(out) :: err
+    integer(i8) :: dat_size
     call run%monitors%write_files(err)
     if (allocated(err)) return
-    if (file_size(run%job // '.dat') >= 0) call truncate_file(run%job // '.dat', info%dat_size, err)
-    if (allocated(err)) return
-    call run%dat%open(run%job // '.dat', err, append=.true.)
+    dat_size = file_size(run%job // '.dat')
+    if (dat_size >= info%dat_size) then
+      call truncate_file(run%job // '.dat', info%dat_size, err)
+    else if (info%dat_size > 0) then
+      call run%log%warn(run%job // '.dat holds ' // str(max(dat_size, 0_i8)) // ' bytes, ' // &
+        'fewer than the ' // str(info%dat_size) // ' it held at the checkpoint (deleted or ' // &
+        'cut since?): the tables printed before the checkpoint are incomplete; the restart ' // &
+        'appends its tables to what is there')
+    end if
+    if (.not. allocated(err)) call run%dat%open(run%job // '.dat', err, append=.true.)
     if (allocated(err)) return
     if (file_size(run%job // '.h5') >= 0) then
       call run%results%open_append(run%job, err, keep_frames=info%n_frames)
+      if (.not. allocated(err) .and. run%results%n_frames() < info%n_frames) call run%log%warn( &
+        run%job // '.h5 holds ' // str(run%results%n_frames()) // ' complete frame(s), fewer ' // &
+        'than the ' // str(info%n_frames) // ' it held at the checkpoint: the missing frames ' // &
+        'are lost; the restart adds its frames after the ones there')
     else
+      if (info%n_frames > 0) call run%log%warn(run%job // '.h5 is missing: the ' // &
+        str(info%n_frames) // ' frame(s) written before the checkpoint are lost; a new ' // &
+        run%job // '.h5 holds the frames written from the checkpoint on')
       call run%results%create(run%job, model%mesh%node_id, model%mesh%x, model%mesh%element_id, &
                               model%mesh%connectivity, err)
     end if
@@ -295,6 +379,7 @@ contains
     type(run_t), intent(inout) :: run
     type(model_t), intent(in) :: model
     type(error_t), allocatable, intent(out) :: err
+    call set_activity('writing the checkpoint ' // run%job // '.rst.h5')
     call gather_element_fields(run%analysis)
     if (run%writer) call save_checkpoint(run%job, run%analysis, run%monitors, model, &
                                          run%results%n_frames(), err)
@@ -449,6 +534,7 @@ contains
         state%step_time = model%steps(k)%period
         call sample_histories(run, model, .true., err)
         if (.not. allocated(err)) call increment_outputs(run, model, .true., err)
+        call run%analysis%comm%agree_error(err)
         if (allocated(err)) return
         call run%log%info('end of step ' // str(k) // ' ("' // model%steps(k)%name // '") at time ' // &
                           str(state%time) // ' after ' // str(state%step_increment) // ' increment(s)' // &
@@ -482,6 +568,8 @@ contains
             'on *STEP or the R-minimum limits')
           exit
         end if
+        call set_activity('computing increment ' // str(state%increment + 1) // ' (step ' // &
+                          str(k) // ', time ' // str(state%time) // ')')
         call take_increment(a, model, record, err)
         if (allocated(err)) then
           call save_last_good(run, model, err)
@@ -492,6 +580,8 @@ contains
         if (.not. allocated(err)) call run%monitors%watch_events(model, a, state%time - &
                                                                  state%last_increment, run%log, err)
         if (.not. allocated(err)) call sample_histories(run, model, .false., err)
+        if (.not. allocated(err)) call run%log%check(err)
+        call run%analysis%comm%agree_error(err)
         if (allocated(err)) exit
         if (any_rank(run, signal_received() /= 0)) then
           call stop_on_signal(run, model, err)
@@ -632,14 +722,16 @@ contains
         if (.not. is_due(model, step, step%outputs(i), state, end_of_step)) cycle
         select case (step%outputs(i)%kind)
         case (OUTPUT_NODE_PRINT)
-          call run%dat%node_print(model, step%outputs(i), state%time, state%u, state%reaction)
+          call run%dat%node_print(model, step%outputs(i), state%time, state%u, state%reaction, err)
         case (OUTPUT_EL_PRINT)
           call plastic_fields(model, state, run%analysis%materials, peeq, plastic_strain, back_stress)
-          call run%dat%el_print(model, step%outputs(i), state%time, state%stress, state%strain, peeq)
+          call run%dat%el_print(model, step%outputs(i), state%time, state%stress, state%strain, peeq, &
+                                err)
         case (OUTPUT_CONTACT_PRINT)
           call run%dat%contact_print(model, step%outputs(i), state%time, run%analysis%contact, &
-                                     state%contact, run%analysis%x_contact)
+                                     state%contact, run%analysis%x_contact, err)
         end select
+        if (allocated(err)) return
       end do
       if (need_frame) call write_frame(run, model, err)
       call run%analysis%timers%stop('output')
@@ -744,8 +836,15 @@ contains
     type(error_t), allocatable, intent(out) :: err
     real(dp), allocatable :: nodal(:, :), cell_mises(:, :), nodal_mises(:, :)
     integer :: q
+    integer(i8) :: bytes
     call gather_element_fields(run%analysis)
     if (.not. run%writer) return
+    ! Nodal averages, Mises values and the reordered copy of an integration-point field.
+    bytes = 8_i8 * (8_i8 * int(model%mesh%n_nodes, i8) + int(model%mesh%n_elements, i8) * &
+      (1_i8 + 6_i8 * int(N_GAUSS_HEX8, i8)))
+    call set_activity('writing a results frame to ' // run%job // '.h5', bytes)
+    call ensure_memory(bytes, 'writing a results frame to ' // run%job // '.h5', err)
+    if (allocated(err)) return
     associate (state => run%analysis%state)
       call run%results%begin_frame(state%time, state%step, state%increment, err)
       if (allocated(err)) return
@@ -884,13 +983,16 @@ contains
     call run%log%info(line)
   end subroutine log_solver_stats
 
-  subroutine close_outputs(run)
+  !> Close the output files; a failed close becomes the run's error if it has none.
+  subroutine close_outputs(run, err)
     type(run_t), intent(inout) :: run
-    type(error_t), allocatable :: err
-    call run%dat%close()
-    if (run%results%is_open()) call run%results%close(err)
+    type(error_t), allocatable, intent(inout) :: err
+    type(error_t), allocatable :: dat_err, results_err
+    call run%dat%close(dat_err)
+    if (run%results%is_open()) call run%results%close(results_err)
     if (allocated(run%analysis%solver)) call run%analysis%solver%free()
-    call run%log%close()
+    if (.not. allocated(err) .and. allocated(dat_err)) call move_alloc(dat_err, err)
+    if (.not. allocated(err) .and. allocated(results_err)) call move_alloc(results_err, err)
   end subroutine close_outputs
 
 end module fcs_driver

@@ -4,7 +4,7 @@ module fcs_monitors
   use fcs_kinds, only: dp
   use fcs_error, only: error_t
   use fcs_model, only: model_t, history_request_t, HISTORY_NSET_U, HISTORY_NSET_RF, &
-                       HISTORY_CONTACT, HISTORY_ENERGY
+                       HISTORY_CONTACT, HISTORY_ENERGY, HISTORY_RESIDUAL
   use fcs_static_explicit, only: analysis_t, current_reactions
   use fcs_assembly, only: plastic_fields
   use fcs_history, only: history_table_t
@@ -123,6 +123,8 @@ contains
                      string_t(p // '_SHEAR_MEAN')]
         case (HISTORY_ENERGY)
           columns = [columns, string_t('STRAIN_ENERGY'), string_t('FRICTION_WORK')]
+        case (HISTORY_RESIDUAL)
+          columns = [columns, string_t('RESIDUAL')]
         end select
       end associate
     end do
@@ -183,6 +185,8 @@ contains
       values = sum(reaction(:, model%mesh%node_sets(target)%members), dim=2)
     case (HISTORY_CONTACT)
       values = contact_values(a, target)
+    case (HISTORY_RESIDUAL)
+      values = [a%state%residual_norm]
     case default
       values = [strain_energy(this, model, a), sum(a%state%contact%work)]
     end select

@@ -156,7 +156,7 @@ def make_deck(path, case, penalty=None, max_increment=None, law='COULOMB'):
                   'DC=1e-3, V0=1e-3, VINIT=1e-3, VC=1e-12']
     elif case != 'frictionless':
         lines += law_card(law, push_of(case))
-    items = ['CONTACT, %s' % PAIR, 'NSET, TOP, RF']
+    items = ['CONTACT, %s' % PAIR, 'NSET, TOP, RF', 'RESIDUAL']
     if case == 'joint2':
         lines += ['*CONTACT PAIR, INTERACTION=SI, NAME=PAIR', 'SLAVE, MASTER1',
                   '*CONTACT PAIR, INTERACTION=SI, NAME=PAIR2', 'SLAVE, MASTER2']
@@ -193,6 +193,7 @@ class Run:
         self.open = sum(data[p + '_OPEN'] for p in pairs)
         self.t = data['TOP_RF1']
         self.rf_z = data['TOP_RF3']
+        self.history_residual = data['RESIDUAL']
         self.residuals = []
         with open(job + '.log') as log:
             for line in log:
@@ -208,6 +209,9 @@ def check(case, job, tolerance, law='COULOMB'):
     worst = max(run.residuals) if run.residuals else 0.0
     checker.check(worst <= EQUILIBRIUM_TOLERANCE, 'out-of-balance ratio <= %g at every increment '
                   '(%d increments, largest %.3g)' % (EQUILIBRIUM_TOLERANCE, len(run.residuals), worst))
+    checker.check(abs(run.history_residual.max() - worst) <= 1e-6 * max(worst, 1e-30),
+                  'the history\'s RESIDUAL column has the log\'s largest ratio (%.6g)'
+                  % run.history_residual.max())
     push = push_of(case)
     step2 = (run.time > 1.0 + 1e-9) & (run.time <= 2.0 + 1e-9)
     u = push * (run.time - 1.0)

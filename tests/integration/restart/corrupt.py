@@ -9,8 +9,9 @@ increments before). Then, each time on fresh copies of the three checkpoints:
     says "checksum mismatch ... damaged";
   - one character changed in the /meta attribute model_hash: exit 2, "overall checksum";
     in the checksum attribute of /state/u: exit 2, "/state/u: checksum mismatch";
-  - job.rst.h5 truncated to 0, 2048 bytes, half its size, its size less one byte: exit 2,
-    "not a readable HDF5 file (truncated or damaged?)";
+  - job.rst.h5 truncated to 0 bytes: exit 2, "the file is empty (0 bytes)"; to 2048 bytes,
+    half its size, its size less one byte: exit 2, "not a readable HDF5 file (truncated or
+    damaged?)";
   - every message above ends with "an older checkpoint is readable: job.rst.1.h5 (...);
     restart from it with --restart job.rst.1.h5";
   - the restart from the offered checkpoint (taken from the message) completes, and its
@@ -123,8 +124,10 @@ def main():
     for length in [0, 2048, size // 2, size - 1]:
         trial.restore()
         os.truncate(newest, length)
-        message = trial.expect_refusal('truncated to %d bytes' % length,
-                                       ['not a readable HDF5 file (truncated or damaged?)'])
+        expected = 'not a readable HDF5 file (truncated or damaged?)'
+        if length == 0:
+            expected = 'the file is empty (0 bytes): not a checkpoint'
+        message = trial.expect_refusal('truncated to %d bytes' % length, [expected])
     print('job.rst.h5 (%d bytes) truncated to 0, 2048, %d, %d bytes: refused as truncated or '
           'damaged, job.rst.1.h5 offered' % (size, size // 2, size - 1))
 
