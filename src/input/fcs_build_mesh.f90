@@ -2,9 +2,10 @@
 module fcs_build_mesh
   use fcs_kinds, only: dp
   use fcs_error, only: error_t
-  use fcs_deck_lexer, only: card_t
+  use fcs_deck_lexer, only: card_t, data_line_t
   use fcs_deck_fields, only: param_upper, param_value, has_flag, line_real, line_int, &
-                             line_optional_real, resolve_nodes, resolve_elements, is_integer_text
+                             line_optional_real, resolve_nodes, resolve_elements, is_integer_text, &
+                             element_records
   use fcs_diagnostics, only: diagnostics_t, format_location
   use fcs_mesh, only: mesh_t, SURFACE_FACES
   use fcs_gmsh_reader, only: read_gmsh
@@ -70,12 +71,19 @@ contains
     integer :: i, a, b, id, node_id, n_added
     integer :: nodes(8)
     integer, allocatable :: added(:)
+    type(data_line_t), allocatable :: records(:)
     logical :: ok, duplicate
-    allocate (added(card%n_lines))
+    records = element_records(card, 9)
+    allocate (added(size(records)))
     n_added = 0
-    do i = 1, card%n_lines
-      associate (line => card%lines(i))
-        if (size(line%fields) /= 9) then
+    do i = 1, size(records)
+      associate (line => records(i))
+        if (size(line%fields) < 9 .and. .not. line%continued) then
+          call diag%report(line%loc, '*ELEMENT: a C3D8 element needs its id and 8 node ids; ' // &
+                           'found ' // str(size(line%fields)) // ' fields (a record continues ' // &
+                           'on the next line only after a trailing comma)')
+          cycle
+        else if (size(line%fields) /= 9) then
           call diag%report(line%loc, '*ELEMENT: a C3D8 element needs its id and 8 node ids; ' // &
                            'found ' // str(size(line%fields)) // ' fields')
           cycle

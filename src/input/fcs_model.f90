@@ -240,6 +240,9 @@ module fcs_model
     real(dp) :: event_threshold = 0.0_dp
     !> Events whose largest slip stays below this are not catalogued [length].
     real(dp) :: event_min_slip = 0.0_dp
+    !> The reader's warnings ("file:line: text"): input read, but not quite as written (a
+    !> parameter CalculiX ignores, an undefined id skipped in a set); the driver logs them.
+    type(string_t), allocatable :: warnings(:)
   end type model_t
 
 end module fcs_model

@@ -79,6 +79,7 @@ contains
     end if
     model%steps = state%steps
     if (.not. diag%has_errors()) call check_model(model, diag, deck)
+    model%warnings = diag%warning_list()
     if (diag%has_errors()) then
       call diag%to_error(err)
       return
@@ -143,7 +144,7 @@ contains
     call model%mesh%init()
     allocate (model%materials(0), model%sections(0), model%amplitudes(0), &
               model%time_points(0), model%steps(0), model%interactions(0), model%contact_pairs(0), &
-              model%histories(0))
+              model%histories(0), model%warnings(0))
   end subroutine init_model
 
   !> After a card with errors: still open or close its step, or mark the step's procedure as

@@ -140,11 +140,15 @@ contains
     real(dp), intent(in) :: t_start
     character(len=*), intent(in) :: memory_note
     type(error_t), allocatable, intent(out) :: err
+    integer :: i
     call start_log(options, run, memory_note, err)
     if (allocated(err)) return
     call set_activity('reading the deck ' // options%deck_path)
     call build_model(options%deck_path, model, deck, err)
     if (allocated(err)) return
+    do i = 1, size(model%warnings)
+      call run%log%warn(model%warnings(i)%s)
+    end do
     if (len(options%solver) > 0) model%solver_name = to_upper(options%solver)
     if (run%analysis%comm%size > 1 .and. len(options%solver) == 0 .and. .not. model%solver_chosen) &
       model%solver_name = 'MUMPS'
