@@ -10,7 +10,7 @@ module fcs_keywords
   use fcs_friction_factory, only: friction_parameter_t, friction_parameters, friction_laws
   implicit none
   private
-  public :: keyword_spec_t, param_spec_t, keyword_table, find_keyword, find_param_spec
+  public :: keyword_spec_t, param_spec_t, keyword_table, find_keyword, find_param_spec, same_name
   public :: PARAM_FLAG, PARAM_TEXT, PARAM_NAME, PARAM_REAL, PARAM_INTEGER, PARAM_CHOICE, PARAM_FILE
   public :: CONTEXT_MODEL, CONTEXT_STEP, CONTEXT_ANY, param_kind_name, context_name
 
@@ -483,25 +483,43 @@ contains
     out%s = text
   end function s
 
-  !> Index of keyword `name` (upper case) in `table`, 0 if unknown.
+  !> Index of keyword `name` in `table`, 0 if unknown (compared as `same_name`).
   pure integer function find_keyword(table, name) result(k)
     type(keyword_spec_t), intent(in) :: table(:)
     character(len=*), intent(in) :: name
     do k = 1, size(table)
-      if (table(k)%name == to_upper(name)) return
+      if (same_name(table(k)%name, name)) return
     end do
     k = 0
   end function find_keyword
 
-  !> Index of parameter `name` of keyword `spec`, 0 if unknown.
+  !> Index of parameter `name` of keyword `spec`, 0 if unknown (compared as `same_name`).
   pure integer function find_param_spec(spec, name) result(k)
     type(keyword_spec_t), intent(in) :: spec
     character(len=*), intent(in) :: name
     do k = 1, size(spec%params)
-      if (spec%params(k)%name == name) return
+      if (same_name(spec%params(k)%name, name)) return
     end do
     k = 0
   end function find_param_spec
+
+  !> True when two keyword, parameter or choice names are the same name for CalculiX, which
+  !> ignores case and blanks in them: *ENDSTEP is *END STEP, *SOLIDSECTION is *SOLID SECTION,
+  !> TIMEPOINTS= is TIME POINTS=, TYPE=NODETOSURFACE is TYPE=NODE TO SURFACE.
+  pure logical function same_name(a, b)
+    character(len=*), intent(in) :: a, b
+    same_name = without_blanks(to_upper(a)) == without_blanks(to_upper(b))
+  end function same_name
+
+  pure function without_blanks(text) result(out)
+    character(len=*), intent(in) :: text
+    character(len=:), allocatable :: out
+    integer :: i
+    out = ''
+    do i = 1, len(text)
+      if (text(i:i) /= ' ') out = out // text(i:i)
+    end do
+  end function without_blanks
 
   pure function param_kind_name(kind) result(name)
     integer, intent(in) :: kind

@@ -13,7 +13,7 @@ module fcs_model_builder
   use fcs_deck_lexer, only: deck_t, card_t, param_t, read_deck
   use fcs_diagnostics, only: diagnostics_t
   use fcs_keywords, only: keyword_spec_t, param_spec_t, keyword_table, find_keyword, &
-                          find_param_spec, PARAM_FLAG, PARAM_NAME, PARAM_REAL, PARAM_INTEGER, &
+                          find_param_spec, same_name, PARAM_FLAG, PARAM_NAME, PARAM_REAL, PARAM_INTEGER, &
                           PARAM_CHOICE, PARAM_FILE, CONTEXT_MODEL, CONTEXT_STEP
   use fcs_builder_state, only: builder_t
   use fcs_build_mesh, only: handle_node, handle_element, handle_nset, handle_elset, &
@@ -59,6 +59,7 @@ contains
     call state%loads%clear()
     call state%pressures%clear()
     table = keyword_table()
+    call canonical_spellings(deck, table)
     last_step_end = end_of_last_step(deck)
     do i = 1, deck%n_cards
       if (i > last_step_end) then
@@ -86,6 +87,19 @@ contains
     end if
     call hash_deck(deck, model)
   end subroutine build_model
+
+  !> Spell every keyword as the keyword table (or the list of refused CalculiX keywords) does:
+  !> CalculiX ignores blanks in keywords, so that *ENDSTEP is *END STEP and *SOLIDSECTION is
+  !> *SOLID SECTION.
+  subroutine canonical_spellings(deck, table)
+    type(deck_t), intent(inout) :: deck
+    type(keyword_spec_t), intent(in) :: table(:)
+    integer :: i, k
+    do i = 1, deck%n_cards
+      k = find_keyword(table, deck%cards(i)%keyword)
+      if (k > 0) deck%cards(i)%keyword = table(k)%name
+    end do
+  end subroutine canonical_spellings
 
   !> Index of the last *END STEP card when no *STEP follows it; past the last card otherwise.
   pure integer function end_of_last_step(deck) result(last)
@@ -320,6 +334,7 @@ contains
                          card%params(i)%name // '"; ' // expected_params(spec))
         cycle
       end if
+      card%params(i)%name = spec%params(j)%name
       call check_param_value(card, card%params(i), spec%params(j), diag)
     end do
     do j = 1, size(spec%params)
@@ -363,7 +378,10 @@ contains
     case (PARAM_CHOICE)
       param%value = to_upper(param%value)
       do i = 1, size(spec%choices)
-        if (spec%choices(i)%s == param%value) return
+        if (same_name(spec%choices(i)%s, param%value)) then
+          param%value = spec%choices(i)%s
+          return
+        end if
       end do
       call diag%report(card%loc, prefix // '=' // param%value // ' is not valid; expected ' // &
                        join_strings(spec%choices, ', ') // '. ' // spec%description)
@@ -424,34 +442,48 @@ contains
     end if
   end function unknown_keyword_message
 
-  !> Why a keyword of CalculiX/Abaqus is refused ('' when it is simply unknown).
+  !> Why a keyword of CalculiX/Abaqus is refused ('' when it is simply unknown). Names are
+  !> compared as CalculiX compares them (`same_name`: *RIGIDBODY is *RIGID BODY).
   function unsupported_keyword_reason(keyword) result(reason)
     character(len=*), intent(in) :: keyword
     character(len=:), allocatable :: reason
-    select case (keyword)
-    case ('DYNAMIC', 'MODAL DYNAMIC', 'FREQUENCY', 'BUCKLE', 'HEAT TRANSFER', 'VISCO', &
-          'COUPLED TEMPERATURE-DISPLACEMENT', 'UNCOUPLED TEMPERATURE-DISPLACEMENT', &
-          'STEADY STATE DYNAMICS', 'GREEN', 'SENSITIVITY', 'COMPLEX FREQUENCY', 'ELECTROMAGNETICS')
+    if (is_one_of(keyword, [character(len=34) :: 'DYNAMIC', 'MODAL DYNAMIC', 'FREQUENCY', &
+        'BUCKLE', 'HEAT TRANSFER', 'VISCO', 'COUPLED TEMPERATURE-DISPLACEMENT', &
+        'UNCOUPLED TEMPERATURE-DISPLACEMENT', 'STEADY STATE DYNAMICS', 'GREEN', 'SENSITIVITY', &
+        'COMPLEX FREQUENCY', 'ELECTROMAGNETICS'])) then
       reason = 'fcs3d solves quasi-static problems with its static-explicit stepper only (*STATIC)'
-    case ('SHELL SECTION', 'BEAM SECTION', 'MEMBRANE SECTION', 'SPRING', 'DASHPOT', 'MASS', &
-          'USER ELEMENT', 'GAP')
+    else if (is_one_of(keyword, [character(len=34) :: 'SHELL SECTION', 'BEAM SECTION', &
+             'MEMBRANE SECTION', 'SPRING', 'DASHPOT', 'MASS', 'USER ELEMENT', 'GAP'])) then
       reason = 'fcs3d has 8-node hexahedra (C3D8) only'
-    case ('EQUATION', 'MPC', 'RIGID BODY', 'COUPLING', 'DISTRIBUTING', 'KINEMATIC', 'TRANSFORM')
+    else if (is_one_of(keyword, [character(len=34) :: 'EQUATION', 'MPC', 'RIGID BODY', &
+             'COUPLING', 'DISTRIBUTING', 'KINEMATIC', 'TRANSFORM'])) then
       reason = 'constraints other than *BOUNDARY are not available yet'
-    case ('ORIENTATION', 'EXPANSION', 'CONDUCTIVITY', 'SPECIFIC HEAT', 'HYPERELASTIC', &
-          'HYPERFOAM', 'CREEP', 'USER MATERIAL', 'DEFORMATION PLASTICITY', 'RATE DEPENDENT', &
-          'CAP PLASTICITY', 'MOHR COULOMB', 'DRUCKER PRAGER CREEP')
+    else if (is_one_of(keyword, [character(len=34) :: 'ORIENTATION', 'EXPANSION', &
+             'CONDUCTIVITY', 'SPECIFIC HEAT', 'HYPERELASTIC', 'HYPERFOAM', 'CREEP', &
+             'USER MATERIAL', 'DEFORMATION PLASTICITY', 'RATE DEPENDENT', 'CAP PLASTICITY', &
+             'MOHR COULOMB', 'DRUCKER PRAGER CREEP'])) then
       reason = 'materials are isotropic hypoelastic (*ELASTIC), with von Mises (*PLASTIC) or ' // &
                'linear Drucker-Prager (*DRUCKER PRAGER) plasticity'
-    case ('INITIAL CONDITIONS', 'TEMPERATURE', 'DLOAD', 'CFLUX', 'DFLUX', 'FILM', 'RADIATE')
+    else if (is_one_of(keyword, [character(len=34) :: 'INITIAL CONDITIONS', 'TEMPERATURE', &
+             'DLOAD', 'CFLUX', 'DFLUX', 'FILM', 'RADIATE'])) then
       reason = 'this load or initial condition is not available yet'
-    case ('NODE OUTPUT', 'ELEMENT OUTPUT', 'OUTPUT', 'CONTACT OUTPUT', 'SECTION PRINT', &
-          'FACE PRINT')
+    else if (is_one_of(keyword, [character(len=34) :: 'NODE OUTPUT', 'ELEMENT OUTPUT', &
+             'OUTPUT', 'CONTACT OUTPUT', 'SECTION PRINT', 'FACE PRINT'])) then
       reason = 'use *NODE PRINT / *EL PRINT (text) or *NODE FILE / *EL FILE (results file)'
-    case default
+    else
       reason = ''
-    end select
+    end if
   end function unsupported_keyword_reason
+
+  !> True when `keyword` is one of `names` (compared as `same_name`).
+  pure logical function is_one_of(keyword, names)
+    character(len=*), intent(in) :: keyword, names(:)
+    integer :: i
+    is_one_of = .false.
+    do i = 1, size(names)
+      if (same_name(keyword, trim(names(i)))) is_one_of = .true.
+    end do
+  end function is_one_of
 
   !> Levenshtein distance between two short strings.
   pure integer function edit_distance(a, b) result(d)
