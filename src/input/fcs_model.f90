@@ -50,10 +50,12 @@ module fcs_model
     type(source_loc_t) :: plastic_loc, cyclic_loc, drucker_prager_loc, dp_hardening_loc
   end type material_def_t
 
-  !> *SOLID SECTION: a material and a formulation for an element set.
+  !> *SOLID SECTION: a material and a formulation for an element set. The material may be
+  !> defined after the section (as CalculiX allows): its name is resolved after the last card.
   type :: section_t
     integer :: element_set = 0
     integer :: material = 0
+    character(len=:), allocatable :: material_name
     integer :: formulation = FORMULATION_FULL
     type(source_loc_t) :: loc
   end type section_t
@@ -141,6 +143,9 @@ module fcs_model
     real(dp) :: period = 1.0_dp
     real(dp) :: min_increment = 1.0e-5_dp
     real(dp) :: max_increment = 1.0_dp
+    !> *STATIC, DIRECT: every increment is tried with initial_increment and never grows beyond
+    !> it (the R-minimum control may still shorten it).
+    logical :: direct = .false.
     type(rmin_settings_t) :: rmin
     !> Whether *STATIC and *RMIN were given in the step (each at most once).
     logical :: has_procedure = .false.
@@ -171,7 +176,10 @@ module fcs_model
     !> Slave: a surface (element-face or node based); master: an element-face surface.
     integer :: slave_surface = 0
     integer :: master_surface = 0
+    !> The *SURFACE INTERACTION, which may come after the pair (as CalculiX allows): its name
+    !> is resolved after the last card.
     integer :: interaction = 0
+    character(len=:), allocatable :: interaction_name
     logical :: tied = .false.
     !> *TIE: slave nodes farther than this from the master are not tied (<= 0: default).
     real(dp) :: position_tolerance = 0.0_dp

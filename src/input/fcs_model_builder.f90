@@ -13,13 +13,15 @@ module fcs_model_builder
   use fcs_deck_lexer, only: deck_t, card_t, param_t, read_deck
   use fcs_diagnostics, only: diagnostics_t
   use fcs_keywords, only: keyword_spec_t, param_spec_t, keyword_table, find_keyword, &
-                          find_param_spec, same_name, PARAM_FLAG, PARAM_NAME, PARAM_REAL, PARAM_INTEGER, &
-                          PARAM_CHOICE, PARAM_FILE, CONTEXT_MODEL, CONTEXT_STEP
+                          find_param_spec, same_name, PARAM_FLAG, PARAM_NAME, PARAM_REAL, &
+                          PARAM_INTEGER, PARAM_CHOICE, PARAM_FILE, PARAM_IGNORED, CONTEXT_MODEL, &
+                          CONTEXT_STEP
   use fcs_builder_state, only: builder_t
   use fcs_build_mesh, only: handle_node, handle_element, handle_nset, handle_elset, &
                             handle_surface, handle_mesh
   use fcs_build_material, only: handle_material, handle_elastic, handle_density, &
-                                handle_solid_section, handle_solver, handle_restart
+                                handle_solid_section, handle_solver, handle_restart, &
+                                resolve_section_materials
   use fcs_build_plasticity, only: handle_plastic, handle_cyclic_hardening, handle_drucker_prager, &
                                   handle_drucker_prager_hardening
   use fcs_build_step, only: handle_step, handle_static, handle_end_step, handle_boundary, &
@@ -27,7 +29,8 @@ module fcs_model_builder
                             handle_rmin
   use fcs_build_output, only: handle_output_request, handle_history, handle_event_catalog
   use fcs_build_contact, only: handle_surface_interaction, handle_surface_behavior, &
-                               handle_friction, handle_contact_pair, handle_tie
+                               handle_friction, handle_contact_pair, handle_tie, &
+                               resolve_pair_interactions
   use fcs_model, only: model_t, step_t
   use fcs_model_checks, only: check_model
   use fcs_deck_hash, only: hash_deck
@@ -79,6 +82,8 @@ contains
       call diag%report(state%step%loc, '*STEP: the step is not closed (add *END STEP at the end)')
     end if
     model%steps = state%steps
+    if (.not. diag%is_full()) call resolve_section_materials(model, diag)
+    if (.not. diag%is_full()) call resolve_pair_interactions(model, diag)
     if (.not. diag%has_errors()) call check_model(model, diag, deck)
     model%warnings = diag%warning_list()
     if (diag%has_errors()) then
@@ -248,13 +253,16 @@ contains
       call handle_static(card, state, diag)
     case ('RMIN')
       call handle_rmin(card, state, diag)
+    case ('CONTROLS')
+      call diag%warn(card%loc, '*CONTROLS is ignored: it tunes CalculiX''s Newton iterations ' // &
+        'and increments; fcs3d''s follow its R-minimum step control (*RMIN sets its limits)')
     case ('END STEP')
       call handle_end_step(card, state, diag)
     case ('BOUNDARY')
       call handle_boundary(card, model, state, diag)
     case ('CLOAD')
       call handle_cload(card, model, state, diag)
-    case ('DSLOAD')
+    case ('DSLOAD', 'DLOAD')
       call handle_dsload(card, model, state, diag)
     case ('HISTORY')
       call handle_history(card, model, diag)
@@ -312,12 +320,22 @@ contains
       if (len(spec%data) == 0 .and. card%n_lines > 0) then
         call diag%report(card%lines(1)%loc, '*' // card%keyword // ' takes no data lines ' // &
                          '(is a "*" missing at the start of the next keyword line?)')
-      else if (spec%data_required .and. card%n_lines == 0) then
+      else if (spec%data_required .and. card%n_lines == 0 .and. .not. removes_all(card)) then
         call diag%report(card%loc, '*' // card%keyword // ': missing data lines: ' // spec%data)
       end if
     end associate
     ok = diag%count == n_before
   end function valid_card
+
+  !> True for a card with OP=NEW (*BOUNDARY, *CLOAD, *DSLOAD): without data lines it removes
+  !> every earlier condition of its kind, as in CalculiX.
+  pure logical function removes_all(card)
+    type(card_t), intent(in) :: card
+    integer :: k
+    k = card%find_param('OP')
+    removes_all = .false.
+    if (k > 0) removes_all = card%params(k)%value == 'NEW'
+  end function removes_all
 
   !> Check each given parameter and add defaults of the absent ones.
   subroutine check_params(card, spec, diag)
@@ -335,6 +353,11 @@ contains
         cycle
       end if
       card%params(i)%name = spec%params(j)%name
+      if (spec%params(j)%kind == PARAM_IGNORED) then
+        call diag%warn(card%loc, '*' // card%keyword // ': ' // card%params(i)%name // ' is ' // &
+                       spec%params(j)%description)
+        cycle
+      end if
       call check_param_value(card, card%params(i), spec%params(j), diag)
     end do
     do j = 1, size(spec%params)
@@ -456,7 +479,7 @@ contains
              'MEMBRANE SECTION', 'SPRING', 'DASHPOT', 'MASS', 'USER ELEMENT', 'GAP'])) then
       reason = 'fcs3d has 8-node hexahedra (C3D8) only'
     else if (is_one_of(keyword, [character(len=34) :: 'EQUATION', 'MPC', 'RIGID BODY', &
-             'COUPLING', 'DISTRIBUTING', 'KINEMATIC', 'TRANSFORM'])) then
+             'COUPLING', 'DISTRIBUTING', 'KINEMATIC', 'TRANSFORM', 'CYCLIC SYMMETRY MODEL'])) then
       reason = 'constraints other than *BOUNDARY are not available yet'
     else if (is_one_of(keyword, [character(len=34) :: 'ORIENTATION', 'EXPANSION', &
              'CONDUCTIVITY', 'SPECIFIC HEAT', 'HYPERELASTIC', 'HYPERFOAM', 'CREEP', &
@@ -465,8 +488,12 @@ contains
       reason = 'materials are isotropic hypoelastic (*ELASTIC), with von Mises (*PLASTIC) or ' // &
                'linear Drucker-Prager (*DRUCKER PRAGER) plasticity'
     else if (is_one_of(keyword, [character(len=34) :: 'INITIAL CONDITIONS', 'TEMPERATURE', &
-             'DLOAD', 'CFLUX', 'DFLUX', 'FILM', 'RADIATE'])) then
+             'CFLUX', 'DFLUX', 'FILM', 'RADIATE'])) then
       reason = 'this load or initial condition is not available yet'
+    else if (is_one_of(keyword, [character(len=34) :: 'CHANGE FRICTION', &
+             'CHANGE SURFACE BEHAVIOR', 'CHANGE CONTACT TYPE'])) then
+      reason = 'changing a contact interaction between steps is not available yet (an ' // &
+               'interaction keeps its *SURFACE BEHAVIOR and *FRICTION through every step)'
     else if (is_one_of(keyword, [character(len=34) :: 'NODE OUTPUT', 'ELEMENT OUTPUT', &
              'OUTPUT', 'CONTACT OUTPUT', 'SECTION PRINT', 'FACE PRINT'])) then
       reason = 'use *NODE PRINT / *EL PRINT (text) or *NODE FILE / *EL FILE (results file)'
