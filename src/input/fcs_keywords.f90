@@ -442,9 +442,12 @@ contains
             description=GLOBAL_ONLY)], &
          data_required=.true.), &
       kw('CONTACT PRINT', CONTEXT_STEP, 'CalculiX', 'Print the state of every closed contact ' // &
-         'node to <job>.dat in CalculiX''s layout.', 'CDIS (relative contact displacement: ' // &
-         'normal gap, tangential components), CSTR (contact pressure and shear traction ' // &
-         'components); CDISP, CSTRESS are accepted as aliases.', &
+         'node to <job>.dat in CalculiX''s layout and frame: tangential components on t1, the ' // &
+         'global x axis projected on the contact plane (the z axis when the master normal n ' // &
+         'is along x), and t2 = n x t1.', 'CDIS (relative contact displacement: normal gap, ' // &
+         'then the accumulated tangential displacement on t1, t2), CSTR (contact pressure, ' // &
+         'then the shear on t1, t2 with the sign of the elastic slip, as CalculiX prints it: ' // &
+         'the shear the slave exerts on the master); CDISP, CSTRESS are accepted as aliases.', &
          [p('FREQUENCY', PARAM_INTEGER, default='0', description='Also print every N ' // &
             'increments (0: only at the end of the step and at the time points).'), &
           p('TIME POINTS', PARAM_NAME, description='Print at these times.'), &
