@@ -1,5 +1,5 @@
 !> Model builder, contact keywords: *SURFACE INTERACTION, *SURFACE BEHAVIOR, *FRICTION,
-!> *CONTACT PAIR, *TIE (with their CalculiX meaning; method notes 1.2-1.3).
+!> *CONTACT PAIR, *TIE, *CHANGE FRICTION (with their CalculiX meaning; method notes 1.2-1.3).
 module fcs_build_contact
   use fcs_kinds, only: dp
   use fcs_deck_lexer, only: card_t
@@ -7,7 +7,7 @@ module fcs_build_contact
   use fcs_diagnostics, only: diagnostics_t, source_loc_t
   use fcs_builder_state, only: builder_t
   use fcs_mesh, only: SURFACE_FACES
-  use fcs_model, only: model_t, interaction_def_t, contact_pair_def_t
+  use fcs_model, only: model_t, interaction_def_t, contact_pair_def_t, friction_change_t
   use fcs_strings, only: to_upper, str, parse_real, string_t
   use fcs_error, only: error_t
   use fcs_friction_factory, only: friction_def_t, friction_def_problems, set_friction_parameter, &
@@ -15,7 +15,7 @@ module fcs_build_contact
   implicit none
   private
   public :: handle_surface_interaction, handle_surface_behavior, handle_friction
-  public :: handle_contact_pair, handle_tie, resolve_pair_interactions
+  public :: handle_contact_pair, handle_tie, resolve_pair_interactions, handle_change_friction
 
 contains
 
@@ -97,22 +97,42 @@ contains
   end subroutine handle_surface_behavior
 
   !> *FRICTION, LAW=...: the law and its parameters (keyword line), or for COULOMB the
-  !> CalculiX data line mu[, stick slope]; the stick slope also as STICK SLOPE=.
+  !> CalculiX data line mu[, stick slope]; the stick slope also as STICK SLOPE=. In a step,
+  !> after *CHANGE FRICTION: the new Coulomb friction of that interaction (handle_step_friction).
   subroutine handle_friction(card, model, state, diag)
     type(card_t), intent(in) :: card
     type(model_t), intent(inout) :: model
-    type(builder_t), intent(in) :: state
+    type(builder_t), intent(inout) :: state
     type(diagnostics_t), intent(inout) :: diag
     type(friction_def_t) :: def
-    type(string_t), allocatable :: problems(:)
     real(dp) :: stick
-    integer :: i
+    if (state%in_step) then
+      call handle_step_friction(card, state, diag)
+      return
+    end if
     if (.not. has_interaction(card, state, diag)) return
     if (model%interactions(state%interaction)%has_friction) then
       call diag%report(card%loc, '*FRICTION: interaction ' // model%interactions(state%interaction)%name // &
                        ' already has friction')
       return
     end if
+    if (.not. read_friction(card, def, stick, diag)) return
+    associate (interaction => model%interactions(state%interaction))
+      interaction%has_friction = .true.
+      interaction%friction = def
+      interaction%stick_stiffness = stick
+    end associate
+  end subroutine handle_friction
+
+  !> The law, its parameters and the stick slope of a *FRICTION card; false after errors.
+  logical function read_friction(card, def, stick, diag) result(ok)
+    type(card_t), intent(in) :: card
+    type(friction_def_t), intent(out) :: def
+    real(dp), intent(out) :: stick
+    type(diagnostics_t), intent(inout) :: diag
+    type(string_t), allocatable :: problems(:)
+    integer :: i
+    ok = .false.
     def%law = param_upper(card, 'LAW')
     def%loc = card%loc
     stick = 0.0_dp
@@ -124,13 +144,68 @@ contains
     do i = 1, size(problems)
       call diag%report(card%loc, '*FRICTION, LAW=' // def%law // ': ' // problems(i)%s)
     end do
-    if (size(problems) > 0) return
-    associate (interaction => model%interactions(state%interaction))
-      interaction%has_friction = .true.
-      interaction%friction = def
-      interaction%stick_stiffness = stick
-    end associate
-  end subroutine handle_friction
+    ok = size(problems) == 0
+  end function read_friction
+
+  !> *CHANGE FRICTION, INTERACTION=: the next *FRICTION of this step changes that interaction.
+  subroutine handle_change_friction(card, model, state, diag)
+    type(card_t), intent(in) :: card
+    type(model_t), intent(in) :: model
+    type(builder_t), intent(inout) :: state
+    type(diagnostics_t), intent(inout) :: diag
+    integer :: k
+    state%changed_interaction = 0
+    do k = 1, size(model%interactions)
+      if (model%interactions(k)%name == param_upper(card, 'INTERACTION')) state%changed_interaction = k
+    end do
+    if (state%changed_interaction == 0) then
+      call diag%report(card%loc, '*CHANGE FRICTION: interaction "' // &
+                       param_value(card, 'INTERACTION') // '" is not defined')
+      return
+    end if
+    if (model%interactions(state%changed_interaction)%tied) then
+      call diag%report(card%loc, '*CHANGE FRICTION: interaction "' // &
+                       param_value(card, 'INTERACTION') // '" is tied (PRESSURE-OVERCLOSURE=TIED)')
+      state%changed_interaction = 0
+      return
+    end if
+    if (model%interactions(state%changed_interaction)%has_friction) then
+      if (model%interactions(state%changed_interaction)%friction%law /= 'COULOMB') then
+        call diag%report(card%loc, '*CHANGE FRICTION: interaction "' // &
+          param_value(card, 'INTERACTION') // '" has friction LAW=' // &
+          model%interactions(state%changed_interaction)%friction%law // &
+          '; only Coulomb friction can be changed between steps')
+        state%changed_interaction = 0
+        return
+      end if
+    end if
+    state%change_loc = card%loc
+  end subroutine handle_change_friction
+
+  !> *FRICTION in a step: after *CHANGE FRICTION, the Coulomb friction (mu[, stick slope]) of
+  !> its interaction from this step on.
+  subroutine handle_step_friction(card, state, diag)
+    type(card_t), intent(in) :: card
+    type(builder_t), intent(inout) :: state
+    type(diagnostics_t), intent(inout) :: diag
+    type(friction_change_t) :: change
+    if (state%changed_interaction == 0) then
+      call diag%report(card%loc, '*FRICTION in a step must follow *CHANGE FRICTION, ' // &
+                       'INTERACTION= (or move it before the first *STEP)')
+      return
+    end if
+    change%interaction = state%changed_interaction
+    change%loc = card%loc
+    state%changed_interaction = 0
+    if (.not. read_friction(card, change%friction, change%stick_stiffness, diag)) return
+    if (change%friction%law /= 'COULOMB') then
+      call diag%report(card%loc, '*FRICTION: only Coulomb friction (mu[, stick slope]) can ' // &
+                       'be changed between steps, not LAW=' // change%friction%law)
+      return
+    end if
+    if (.not. allocated(state%step%friction_changes)) allocate (state%step%friction_changes(0))
+    state%step%friction_changes = [state%step%friction_changes, change]
+  end subroutine handle_step_friction
 
   !> The law's parameters from the keyword line; STICK SLOPE into `stick`.
   logical function set_law_parameters(card, def, stick, diag) result(ok)

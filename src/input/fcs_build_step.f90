@@ -205,6 +205,11 @@ contains
     state%step%loads = state%loads%to_array()
     state%step%pressures = state%pressures%to_array()
     if (.not. allocated(state%step%outputs)) allocate (state%step%outputs(0))
+    if (.not. allocated(state%step%friction_changes)) allocate (state%step%friction_changes(0))
+    if (state%changed_interaction > 0) then
+      call diag%report(state%change_loc, '*CHANGE FRICTION: no *FRICTION follows it in this step')
+      state%changed_interaction = 0
+    end if
     state%steps = [state%steps, state%step]
     state%in_step = .false.
   end subroutine handle_end_step
@@ -485,10 +490,11 @@ contains
       text = 'load label "' // label // '" (a body load) is not available yet in fcs3d; ' // &
              'available: ' // expected
     case default
-      if (len(label) == 4) then
-        if (label(1:1) == 'P' .and. label(3:4) == 'NU') then
-          text = 'load label "' // label // '" (a user subroutine DLOAD) is not available ' // &
-                 'in fcs3d; available: ' // expected
+      if (len(label) > 2) then
+        if (label(1:1) == 'P' .and. index('123456', label(2:2)) > 0) then
+          text = 'load label "' // label // '" (a non-uniform pressure of CalculiX: by user ' // &
+                 'subroutine or from nodal values) is not available in fcs3d; available: ' // &
+                 expected
           return
         end if
       end if

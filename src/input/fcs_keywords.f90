@@ -224,12 +224,19 @@ contains
             description='LINEAR: penalty contact (opens under tension). TIED: the pair is ' // &
             'tied (no separation, no slip), the "stick" segments of the paper.')], &
          data_required=.true.), &
-      kw('FRICTION', CONTEXT_MODEL, 'CalculiX', 'Friction of the current interaction, treated ' // &
+      kw('FRICTION', CONTEXT_ANY, 'CalculiX', 'Friction of the current interaction, treated ' // &
          'like plasticity: stick with stiffness E_t, slip on the cone |f_t| = mu f_n with ' // &
          'mu = mu(f_n, V, phi) (paper eqs. 2-6). LAW= and the law''s parameters are fcs3d ' // &
-         'extensions; doc/friction.md gives each law.', &
+         'extensions; doc/friction.md gives each law. In a step, right after *CHANGE ' // &
+         'FRICTION: the new Coulomb friction of that interaction.', &
          'COULOMB only (the CalculiX form, instead of MU0=): mu, stick slope E_t [stress/length].', &
          friction_keyword_params()), &
+      kw('CHANGE FRICTION', CONTEXT_STEP, 'CalculiX', 'Change the friction of an interaction ' // &
+         'from this step on: the *FRICTION that follows (Coulomb: mu[, stick slope]) replaces ' // &
+         'it. At the start of the step every closed node takes the new mu; a friction force ' // &
+         'beyond the new cone is brought back onto it (the node slips), as a return mapping ' // &
+         'does. Only Coulomb friction can be changed.', '', &
+         [p('INTERACTION', PARAM_NAME, required=.true., description='The *SURFACE INTERACTION.')]), &
       kw('CONTACT PAIR', CONTEXT_MODEL, 'CalculiX', 'A node-to-point contact pair: the slave ' // &
          'surface''s nodes against the master surface''s 4-node faces.', &
          'slave surface (element-face or node based), master surface (element-face).', &

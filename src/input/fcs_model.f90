@@ -12,7 +12,7 @@ module fcs_model
   private
   public :: model_t, material_def_t, section_t, amplitude_t, time_points_t, dof_condition_t
   public :: face_load_t, output_request_t, step_t, rmin_settings_t
-  public :: friction_def_t, interaction_def_t, contact_pair_def_t, checkpoint_settings_t
+  public :: friction_def_t, friction_change_t, interaction_def_t, contact_pair_def_t, checkpoint_settings_t
   public :: history_item_t, history_request_t, HISTORY_NSET_U, HISTORY_NSET_RF
   public :: HISTORY_CONTACT, HISTORY_ENERGY, HISTORY_RESIDUAL
   public :: BC_DISPLACEMENT, BC_VELOCITY, FORMULATION_FULL, FORMULATION_BBAR
@@ -133,6 +133,16 @@ module fcs_model
     logical :: carry_unbalanced = .false.
   end type rmin_settings_t
 
+  !> *CHANGE FRICTION in a step: the Coulomb friction of interaction `interaction` from this
+  !> step on (until a later change).
+  type :: friction_change_t
+    integer :: interaction = 0
+    type(friction_def_t) :: friction
+    !> Stick slope E_t [stress/length]; <= 0: the pair keeps its own.
+    real(dp) :: stick_stiffness = 0.0_dp
+    type(source_loc_t) :: loc
+  end type friction_change_t
+
   !> One step (loading stage). The condition lists are complete: they hold every condition
   !> active in this step, after applying OP=NEW/MOD to those of the previous steps.
   type :: step_t
@@ -154,6 +164,8 @@ module fcs_model
     type(dof_condition_t), allocatable :: loads(:)
     type(face_load_t), allocatable :: pressures(:)
     type(output_request_t), allocatable :: outputs(:)
+    !> *CHANGE FRICTION of this step (the changes of earlier steps still hold).
+    type(friction_change_t), allocatable :: friction_changes(:)
     type(source_loc_t) :: loc
   end type step_t
 

@@ -30,7 +30,7 @@ module fcs_model_builder
   use fcs_build_output, only: handle_output_request, handle_history, handle_event_catalog
   use fcs_build_contact, only: handle_surface_interaction, handle_surface_behavior, &
                                handle_friction, handle_contact_pair, handle_tie, &
-                               resolve_pair_interactions
+                               resolve_pair_interactions, handle_change_friction
   use fcs_model, only: model_t, step_t
   use fcs_model_checks, only: check_model
   use fcs_deck_hash, only: hash_deck
@@ -239,6 +239,8 @@ contains
       call handle_surface_behavior(card, model, state, diag)
     case ('FRICTION')
       call handle_friction(card, model, state, diag)
+    case ('CHANGE FRICTION')
+      call handle_change_friction(card, model, state, diag)
     case ('CONTACT PAIR')
       call handle_contact_pair(card, model, diag)
     case ('TIE')
@@ -490,10 +492,10 @@ contains
     else if (is_one_of(keyword, [character(len=34) :: 'INITIAL CONDITIONS', 'TEMPERATURE', &
              'CFLUX', 'DFLUX', 'FILM', 'RADIATE'])) then
       reason = 'this load or initial condition is not available yet'
-    else if (is_one_of(keyword, [character(len=34) :: 'CHANGE FRICTION', &
-             'CHANGE SURFACE BEHAVIOR', 'CHANGE CONTACT TYPE'])) then
-      reason = 'changing a contact interaction between steps is not available yet (an ' // &
-               'interaction keeps its *SURFACE BEHAVIOR and *FRICTION through every step)'
+    else if (is_one_of(keyword, [character(len=34) :: 'CHANGE SURFACE BEHAVIOR', &
+             'CHANGE CONTACT TYPE'])) then
+      reason = 'changing a contact interaction between steps is not available yet, except ' // &
+               'its Coulomb friction (*CHANGE FRICTION)'
     else if (is_one_of(keyword, [character(len=34) :: 'NODE OUTPUT', 'ELEMENT OUTPUT', &
              'OUTPUT', 'CONTACT OUTPUT', 'SECTION PRINT', 'FACE PRINT'])) then
       reason = 'use *NODE PRINT / *EL PRINT (text) or *NODE FILE / *EL FILE (results file)'

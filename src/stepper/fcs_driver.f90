@@ -21,6 +21,7 @@ module fcs_driver
   use fcs_linear_solver, only: solver_stats_t
   use fcs_results, only: results_file_t, GRID_POINTS
   use fcs_contact_system, only: pair_totals_t
+  use fcs_contact_friction_change, only: apply_friction_changes
   use fcs_dat_output, only: dat_file_t
   use fcs_echo, only: write_echo
   use fcs_log, only: logger_t, format_duration
@@ -532,8 +533,8 @@ contains
     associate (state => run%analysis%state)
       do while (state%step <= size(model%steps))
         k = state%step
-        call begin_step(run, model, k)
-        call run_increments(run, model, k, err)
+        call begin_step(run, model, k, err)
+        if (.not. allocated(err)) call run_increments(run, model, k, err)
         if (allocated(err)) return
         state%step_time = model%steps(k)%period
         call sample_histories(run, model, .true., err)
@@ -635,12 +636,17 @@ contains
     call run%log%detail(err%message)
   end subroutine stop_on_signal
 
-  subroutine begin_step(run, model, k)
+  subroutine begin_step(run, model, k, err)
     type(run_t), intent(inout) :: run
     type(model_t), intent(in) :: model
     integer, intent(in) :: k
+    type(error_t), allocatable, intent(out) :: err
     associate (state => run%analysis%state)
       call build_step_loading(model, k, state%time - state%step_time, run%analysis%loading)
+      ! *CHANGE FRICTION of this and the earlier steps (again when resuming within the step).
+      if (run%analysis%contact%n_slaves() > 0) call apply_friction_changes(run%analysis%contact, &
+        model, k, state%contact, err)
+      if (allocated(err)) return
       if (state%step_time == 0.0_dp) then
         state%step_start_u = state%u
         state%step_increment = 0
