@@ -6,6 +6,8 @@ non-matching meshes, default increments and penalties, against closed forms (iss
     plain_decks.py run CASE [CASE ...] [--penalty E] [--law LAW] [--tolerance T]
                                         (writes, runs and checks each, in the current directory)
     plain_decks.py tie [--tolerance T]  (the tie patch tests: see make_tie_deck)
+    plain_decks.py rotation [--tolerance T]  (a cube under follower pressure turned rigidly:
+                                              see make_rotation_deck)
 
 Units mm, N, MPa. E = 1000, nu = 0.3 for every body. The slider is pressed by p = 1 on its top
 (N = p A = 1: the pressure resultant, A = 1) in step 1, its top nodes (TOP) held in x and y;
@@ -358,6 +360,64 @@ def make_tie_deck(path, load):
     cc.write_deck(path, lines)
 
 
+def make_rotation_deck(path):
+    """A cube 1 x 1 x 1 (2x2x2 hexahedra, E = 1000, nu = 0.3) under a follower pressure p = 1
+    on all six faces, on statically determinate supports (corner 1 fixed, corner (1, 0, 0) held
+    in y and z, corner (0, 1, 0) in z), NLGEOM. Step 1 raises the pressure; the cube shrinks to
+    s = exp(-p (1 - 2 nu) / E) (hypoelastic, logarithmic strain). Step 2 turns it rigidly by 90
+    degrees about z: corner (1, 0, 0) moves on the circle of radius s, its x and y displacements
+    following s cos(theta) - 1 and s sin(theta) through tabular amplitudes (points every half
+    degree: the increments end on them, on the circle, where the Hughes-Winget update of a
+    rigid increment is exact). Expected: sigma = -p I throughout and zero reactions (the
+    pressure on a closed surface is self-equilibrated)."""
+    cube = cc.Box(np.linspace(0, 1, 3), np.linspace(0, 1, 3), np.linspace(0, 1, 3))
+    s = math.exp(-PRESSURE * (1 - 2 * POISSON) / YOUNG)
+    lines = ['*HEADING', 'Rigid rotation of a cube under a follower pressure '
+             '(tests/integration/contact/plain_decks.py)']
+    lines += cube.mesh_cards('CUBE') + cc.material_cards('MAT', 'CUBE', YOUNG, POISSON)
+    faces = []
+    for axis in range(3):
+        for side in (0, 1):
+            name = 'F%d%d' % (axis, side)
+            lines += cc.face_surface_cards(name, cube, axis, side)
+            faces.append(name)
+    corner = {key: cube.ids[key] for key in [(0, 0, 0), (2, 0, 0), (0, 2, 0)]}
+    turn_x, turn_y = [], []
+    for k in range(181):
+        t = k / 180.0
+        turn_x.append('%.15g, %.15g' % (t, s * math.cos(math.radians(90.0 * t)) - 1.0))
+        turn_y.append('%.15g, %.15g' % (t, s * math.sin(math.radians(90.0 * t))))
+    lines += ['*AMPLITUDE, NAME=TURNX'] + turn_x + ['*AMPLITUDE, NAME=TURNY'] + turn_y
+    lines += cc.nset_cards('SUPPORTS', sorted(corner.values()))
+    lines += ['*BOUNDARY', '%d, 1, 3' % corner[(0, 0, 0)], '%d, 2, 3' % corner[(2, 0, 0)],
+              '%d, 3, 3' % corner[(0, 2, 0)]]
+    lines += ['*STEP, NLGEOM', '*STATIC', '*DSLOAD'] + ['%s, P, %g' % (f, PRESSURE) for f in faces]
+    lines += ['*END STEP', '*STEP, NLGEOM', '*STATIC', '*BOUNDARY, AMPLITUDE=TURNX',
+              '%d, 1, 1, 1.' % corner[(2, 0, 0)], '*BOUNDARY, AMPLITUDE=TURNY',
+              '%d, 2, 2, 1.' % corner[(2, 0, 0)],
+              '*NODE PRINT, NSET=SUPPORTS', 'RF', '*EL PRINT, ELSET=CUBE', 'S', '*END STEP']
+    cc.write_deck(path, lines)
+
+
+def check_rotation(job, tolerance):
+    """sigma = -p I at every integration point and zero reactions, within tolerance of p (and of
+    the pressure load of a face, p)."""
+    checker = cc.Checker()
+    blocks = cc.read_dat(job + '.dat')
+    stress = np.array([v for k, v in [b for b in blocks if b['title'].startswith('stresses')][-1]['rows']])
+    expected = np.array([-PRESSURE] * 3 + [0.0] * 3)
+    error = np.abs(stress - expected).max() / PRESSURE
+    checker.check(error <= tolerance, 'after the 90-degree turn: sigma = -p I within %.2e of p at '
+                  'every integration point (tolerance %g)' % (error, tolerance))
+    rows = {k[0]: v for k, v in [b for b in blocks if b['title'].startswith('forces')][-1]['rows']}
+    # The supported degrees of freedom (RF at a free one is the pressure load applied there).
+    supported = [(1, [0, 1, 2]), (3, [0, 1, 2]), (7, [2])]
+    reaction = max(np.abs(rows[node][dofs]).max() for node, dofs in supported) / PRESSURE
+    checker.check(reaction <= tolerance, 'reactions at the supports: largest %.2e of a face load p '
+                  '(tolerance %g)' % (reaction, tolerance))
+    checker.finish()
+
+
 def check_tie(job, load, tolerance):
     """Every integration point's stress equals the uniform closed form within tolerance of
     its largest component."""
@@ -393,11 +453,12 @@ def main():
         p.add_argument('--max-increment', type=float)
     for p in (d, c, r):
         p.add_argument('--law', default='COULOMB', choices=LAWS)
+    rot = sub.add_parser('rotation')
     t = sub.add_parser('tie')
     ct = sub.add_parser('check-tie')
     ct.add_argument('load')
     ct.add_argument('job')
-    for p in (c, r, t, ct):
+    for p in (c, r, t, ct, rot):
         p.add_argument('--tolerance', type=float, default=5e-3)
     args = parser.parse_args()
     if args.command == 'deck':
@@ -421,6 +482,13 @@ def main():
         sys.exit(1 if failed else 0)
     elif args.command == 'check-tie':
         check_tie(args.job, args.load, args.tolerance)
+    elif args.command == 'rotation':
+        make_rotation_deck('rotation.inp')
+        print('== rotation')
+        if os.system('"%s" -q rotation.inp' % os.environ.get('FCS3D', 'fcs3d')) != 0:
+            print('FAIL fcs3d failed on rotation.inp')
+            sys.exit(1)
+        check_rotation('rotation', args.tolerance)
     else:
         failed = 0
         for case in args.cases:
