@@ -112,7 +112,16 @@ contains
          [p('TYPE', PARAM_CHOICE, default='UMFPACK', &
             choices=[s('UMFPACK'), s('SKYLINE'), s('MUMPS')], &
             description='UMFPACK (SuiteSparse, default), SKYLINE (profile LU with reverse ' // &
-            'Cuthill-McKee numbering) or MUMPS. The command line option --solver overrides it.')]) &
+            'Cuthill-McKee numbering) or MUMPS. The command line option --solver overrides it.'), &
+          p('REUSE TOLERANCE', PARAM_REAL, default='1e-10', unit='-', description='Relative ' // &
+            'residual |b - A x| / |b| to which a new tangent is solved with the factors of an ' // &
+            'earlier one, by GMRES preconditioned by them, instead of factorising it ' // &
+            '(doc/theory.md section 7.1); the factors are renewed when GMRES needs many ' // &
+            'iterations or does not converge, and when the sparsity pattern changes. 0: ' // &
+            'factorise every tangent. The default is far below the equilibrium tolerance ' // &
+            '(1e-3 of the force scale): on the block-sliding test deck the results agree ' // &
+            'with those of fresh factorisations within 1e-12 of their scale. Range ' // &
+            '[0, 1e-3]. The command line option --reuse-tolerance overrides it.')]) &
       ]
   end function model_keywords
 

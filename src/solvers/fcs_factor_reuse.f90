@@ -12,7 +12,8 @@
 !>   changed since the one held (`pattern_version`, order, entries), or when reuse is off
 !>   (tolerance 0); otherwise it keeps the held factors and marks the matrix as not factorised.
 !> * `solve` on a factorised matrix is the solver's direct solve. On a matrix that is not, it
-!>   runs GMRES preconditioned by the held factors to |b - A x| <= tolerance |b|:
+!>   runs GMRES preconditioned by the held factors to |b - A x| <= tolerance |b| (or the
+!>   caller's larger reference norm, see `solve`):
 !>   - converged within `refactor_iterations` iterations: done;
 !>   - converged in more: done, and the matrix is factorised now, so that its other
 !>     right-hand sides and the next matrices start from fresh factors;
@@ -148,8 +149,12 @@ contains
     if (.not. allocated(err)) this%stats%pattern_factorisations = this%stats%pattern_factorisations + 1
   end subroutine reuse_prepare
 
-  !> Solve matrix x = b, `matrix` being the one of the last `prepare` (see the module).
-  subroutine reuse_solve(this, solver, matrix, b, x, timers, err)
+  !> Solve matrix x = b, `matrix` being the one of the last `prepare` (see the module). A
+  !> solve by GMRES stops at |b - A x| <= tolerance max(|b|, reference_norm): a caller that
+  !> adds x to a larger solution (the out-of-balance part of an increment to its load part)
+  !> gives that one's right-hand side norm, so that the small part is not solved to a far
+  !> smaller absolute residual than the large one.
+  subroutine reuse_solve(this, solver, matrix, b, x, timers, err, reference_norm)
     class(factor_reuse_t), intent(inout) :: this
     class(linear_solver_t), intent(inout), target :: solver
     type(sparse_matrix_t), intent(in), target :: matrix
@@ -157,14 +162,20 @@ contains
     real(dp), intent(out) :: x(:)
     type(phase_timer_t), intent(inout) :: timers
     type(error_t), allocatable, intent(out) :: err
+    real(dp), intent(in), optional :: reference_norm
     type(gmres_result_t) :: result
+    real(dp) :: b_norm, scale
     this%stats%solves = this%stats%solves + 1
     if (.not. this%current) then
-      call krylov_solve(this, solver, matrix, b, x, timers, result, err)
+      b_norm = norm2(b)
+      scale = b_norm
+      if (present(reference_norm)) scale = max(b_norm, reference_norm)
+      call krylov_solve(this, solver, matrix, b, x, timers, b_norm, scale, result, err)
       if (allocated(err)) return
       if (result%outcome == GMRES_CONVERGED) then
         this%stats%krylov_solves = this%stats%krylov_solves + 1
-        this%stats%worst_residual = max(this%stats%worst_residual, result%residual_ratio)
+        if (scale > 0.0_dp) this%stats%worst_residual = max(this%stats%worst_residual, &
+          result%residual_ratio * b_norm / scale)
         if (result%iterations <= this%settings%refactor_iterations) return
         call factorise(this, solver, matrix, timers, err)
         if (.not. allocated(err)) this%stats%threshold_factorisations = &
@@ -181,14 +192,17 @@ contains
     if (.not. allocated(err)) this%stats%direct_solves = this%stats%direct_solves + 1
   end subroutine reuse_solve
 
-  !> GMRES on `matrix` preconditioned by the held factors.
-  subroutine krylov_solve(this, solver, matrix, b, x, timers, result, err)
+  !> GMRES on `matrix` preconditioned by the held factors, to |b - A x| <= tolerance scale
+  !> (b_norm = |b| <= scale; the relative tolerance GMRES gets is kept below 0.1, so that
+  !> every accepted solve reduces its residual).
+  subroutine krylov_solve(this, solver, matrix, b, x, timers, b_norm, scale, result, err)
     class(factor_reuse_t), intent(inout) :: this
     class(linear_solver_t), intent(inout), target :: solver
     type(sparse_matrix_t), intent(in), target :: matrix
     real(dp), intent(in) :: b(:)
     real(dp), intent(out) :: x(:)
     type(phase_timer_t), intent(inout) :: timers
+    real(dp), intent(in) :: b_norm, scale
     type(gmres_result_t), intent(out) :: result
     type(error_t), allocatable, intent(out) :: err
     type(reuse_operator_t) :: op
@@ -197,6 +211,8 @@ contains
     op%matrix => matrix
     op%comm = this%comm
     settings%tolerance = this%settings%tolerance
+    if (scale > b_norm .and. b_norm > 0.0_dp) &
+      settings%tolerance = min(0.1_dp, this%settings%tolerance * scale / b_norm)
     settings%max_iterations = this%settings%max_iterations
     settings%restart = this%settings%restart
     settings%rate_check_from = 3

@@ -6,6 +6,8 @@
 !> * a matrix whose pattern was rebuilt is factorised afresh;
 !> * a matrix far from the factorised one (GMRES cannot reach the tolerance) falls back to a
 !>   factorisation and a direct solve, with the direct answer;
+!> * with a reference norm larger than |b| (the out-of-balance part of an increment beside its
+!>   load part) GMRES stops at the tolerance times that norm;
 !> * tolerance 0 (reuse off) factorises every matrix;
 !> * the same sequence twice gives bit-identical solutions (decisions on iteration counts only).
 program test_fcs_factor_reuse
@@ -34,6 +36,7 @@ program test_fcs_factor_reuse
   call check_small_change(suite, mumps, 'MUMPS')
   call check_fallback(suite, mumps)
   call check_pattern_change(suite, umfpack)
+  call check_reference_norm(suite, umfpack)
   call check_fallback(suite, umfpack)
   call check_reuse_off(suite, umfpack)
   call check_repeatable(suite)
@@ -136,6 +139,40 @@ contains
     call suite%check(relative_residual(matrix, x, b) <= 1.0e-12_dp, 'new pattern: direct accuracy')
     call solver%free()
   end subroutine check_pattern_change
+
+  !> The same perturbed matrix solved twice with the old factors, the second time with a
+  !> reference norm 1e4 |b|: the residual meets 1e-10 x 1e4 |b|, in fewer iterations.
+  subroutine check_reference_norm(suite, solver)
+    type(test_suite_t), intent(inout) :: suite
+    class(linear_solver_t), intent(inout) :: solver
+    type(test_mesh_t) :: mesh
+    type(sparse_matrix_t) :: matrix
+    type(factor_reuse_t) :: reuse
+    type(phase_timer_t) :: timers
+    type(comm_t) :: comm
+    type(error_t), allocatable :: err
+    real(dp), allocatable :: b(:), x(:)
+    integer :: plain
+    call make_matrix(mesh, matrix)
+    call reuse%init(reuse_settings_t(tolerance=1.0e-10_dp), comm)
+    b = right_hand_side(matrix%n)
+    allocate (x(matrix%n))
+    call reuse%prepare(solver, matrix, timers, err)
+    if (.not. allocated(err)) call reuse%solve(solver, matrix, b, x, timers, err)
+    call perturb(matrix, 1.0e-3_dp, seed=11)
+    call reuse%prepare(solver, matrix, timers, err)
+    if (.not. allocated(err)) call reuse%solve(solver, matrix, b, x, timers, err)
+    plain = int(reuse%stats%krylov_iterations)
+    if (.not. allocated(err)) call reuse%solve(solver, matrix, b, x, timers, err, &
+                                               reference_norm=1.0e4_dp * norm2(b))
+    call suite%check(.not. allocated(err), 'reference norm: solved')
+    call suite%equal_int(reuse%stats%krylov_solves, 2, 'reference norm: both by GMRES')
+    call suite%check(int(reuse%stats%krylov_iterations) - plain < plain, &
+                     'reference norm: fewer iterations than to 1e-10 |b|')
+    call suite%check(relative_residual(matrix, x, b) <= 1.0e-6_dp, &
+                     'reference norm: residual within 1e-10 x 1e4 |b|')
+    call solver%free()
+  end subroutine check_reference_norm
 
   !> Factors of an unrelated matrix (random diagonally dominant values on the same pattern):
   !> GMRES stagnates far from the tolerance, gives up, and the matrix is factorised and solved
