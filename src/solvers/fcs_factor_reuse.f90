@@ -39,19 +39,20 @@ module fcs_factor_reuse
   use fcs_strings, only: str
   implicit none
   private
-  public :: factor_reuse_t, reuse_settings_t, reuse_stats_t, DEFAULT_REUSE_TOLERANCE
+  public :: factor_reuse_t, reuse_settings_t, reuse_stats_t, RECOMMENDED_REUSE_TOLERANCE
 
-  !> Default relative residual |b - A x| / |b| of a solve with reused factors. Far below what
-  !> the stepper can see: the equilibrium correction of each increment works to an
-  !> out-of-balance force of 1e-3 of the force scale. On the contact deck of the
-  !> test suite the .dat values with and without reuse agree within 1e-12 of their scale
-  !> (tests/integration/contact_factor_reuse.sh; doc/theory.md, section 7.1).
-  real(dp), parameter :: DEFAULT_REUSE_TOLERANCE = 1.0e-10_dp
+  !> Relative residual |b - A x| / |b| recommended for a solve with reused factors (reuse is
+  !> off unless the deck or the command line sets a tolerance; doc/theory.md, section 7.1).
+  !> Far below what the stepper can see: the equilibrium correction of each increment works
+  !> to an out-of-balance force of 1e-3 of the force scale. On the contact deck of the test
+  !> suite the .dat values with and without reuse agree within 1e-12 of their scale
+  !> (tests/integration/contact_factor_reuse.sh).
+  real(dp), parameter :: RECOMMENDED_REUSE_TOLERANCE = 1.0e-10_dp
 
   !> What reuse may do.
   type :: reuse_settings_t
     !> Relative residual of a solve with reused factors; 0: factorise every matrix.
-    real(dp) :: tolerance = DEFAULT_REUSE_TOLERANCE
+    real(dp) :: tolerance = RECOMMENDED_REUSE_TOLERANCE
     !> A solve that needed more iterations than this factorises its matrix afterwards.
     integer :: refactor_iterations = 10
     !> GMRES limits (`gmres_settings_t`): a solve that cannot converge within max_iterations

@@ -186,8 +186,8 @@ contains
       '  --restart FILE        continue from a checkpoint (job.rst.h5)', &
       '  --reuse-tolerance TOL', &
       '                        relative residual of a tangent solved by GMRES with the factors', &
-      '                        of an earlier one (default 1e-10; 0: factorise every tangent);', &
-      '                        overrides *SOLVER, REUSE TOLERANCE', &
+      '                        of an earlier one (default 0: factorise every tangent; 1e-10', &
+      '                        recommended when on); overrides *SOLVER, REUSE TOLERANCE', &
       '  -o, --output-dir DIR  write the output files into DIR (which must exist)', &
       '  -q, --quiet           no progress on the terminal (warnings and errors still shown)', &
       '', &
