@@ -9,8 +9,11 @@
 #  - the log reports solves by GMRES and fewer factorisations than solves;
 #  - the same binary twice on the same deck writes identical .dat files (serial runs are
 #    deterministic: reuse decisions depend on iteration counts, never on timings);
-#  - --reuse-tolerance out of range is a command-line error (exit status 2).
-# About 15 s.
+#  - --reuse-tolerance out of range is a command-line error (exit status 2);
+#  - with the MPI build (FCS3D_MPI or bin/fcs3d-mpi, and mpirun): MUMPS distributed on 2 ranks
+#    with reuse (products summed over the ranks, collective preconditioner) against the serial
+#    fresh run, within the same 1e-6 (skipped without an MPI build).
+# About 15 s serial, 1-2 min with the MPI part.
 set -u
 tests=$(cd "$(dirname "$0")/.." && pwd)
 py=${PYTHON:-/usr/bin/python3}
@@ -41,5 +44,19 @@ if [ "$status" -eq 2 ] && printf '%s' "$out" | grep -qF -- '--reuse-tolerance 0.
   echo "PASS  --reuse-tolerance 0.5 refused (exit 2)"
 else
   echo "FAIL  --reuse-tolerance 0.5: exit status $status, output: $out"; fail=1
+fi
+here=$(cd "$tests/.." && pwd)
+mpi_bin=${FCS3D_MPI:-$here/bin/fcs3d-mpi}
+if [ -x "$mpi_bin" ] && command -v mpirun >/dev/null 2>&1; then
+  export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+  cp reused.inp ranks2.inp || exit 1
+  if timeout 600 mpirun --oversubscribe -np 2 "$mpi_bin" -q --solver MUMPS ranks2.inp > ranks2.out 2>&1; then
+    "$py" "$script" compare fresh ranks2 --relative 1e-6 || fail=1
+    "$py" "$script" counts ranks2 || fail=1
+  else
+    echo "FAIL  fcs3d-mpi on 2 ranks failed: $(tail -3 ranks2.out)"; fail=1
+  fi
+else
+  echo "SKIP  MPI part: no MPI build at $mpi_bin or no mpirun"
 fi
 exit $fail
