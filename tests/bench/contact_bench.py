@@ -442,12 +442,12 @@ def main():
         reuse_notes = ["", "Factorisation reuse (the summary line of each fcs3d log):", ""] + \
             reuse_notes
         print("\n".join(reuse_notes), flush=True)
-    growth = reuse_notes + ["", "Growth with size, cost ~ DOF^p (least squares on log-log; in brackets the "
+    growth = ["", "Growth with size, cost ~ DOF^p (least squares on log-log; in brackets the "
               "number of sizes fitted):", ""] + growth_table(results)
     print("\n".join(growth), flush=True)
     if args.markdown:
         with open(args.markdown, "w") as handle:
-            handle.write("\n".join(notes + [""] + lines + growth) + "\n")
+            handle.write("\n".join(notes + [""] + lines + reuse_notes + growth) + "\n")
     return 0
 
 
