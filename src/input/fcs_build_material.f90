@@ -164,12 +164,24 @@ contains
     end associate
   end subroutine handle_restart
 
-  !> *SOLVER, TYPE=.
-  subroutine handle_solver(card, model)
+  !> *SOLVER, TYPE=, REUSE TOLERANCE=.
+  subroutine handle_solver(card, model, diag)
+    use fcs_deck_fields, only: param_value
+    use fcs_strings, only: parse_real
     type(card_t), intent(in) :: card
     type(model_t), intent(inout) :: model
+    type(diagnostics_t), intent(inout) :: diag
+    real(dp) :: tolerance
+    logical :: ok
     model%solver_name = param_upper(card, 'TYPE')
     model%solver_chosen = .true.
+    call parse_real(param_value(card, 'REUSE TOLERANCE'), tolerance, ok)
+    if (.not. ok .or. .not. (tolerance >= 0.0_dp .and. tolerance <= 1.0e-3_dp)) then
+      call diag%report(card%loc, '*SOLVER: REUSE TOLERANCE must lie in [0, 1e-3] (0: factorise ' // &
+                       'every tangent)')
+      return
+    end if
+    model%reuse_tolerance = tolerance
   end subroutine handle_solver
 
 end module fcs_build_material

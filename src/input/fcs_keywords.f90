@@ -130,7 +130,18 @@ contains
          [p('TYPE', PARAM_CHOICE, default='UMFPACK', &
             choices=[s('UMFPACK'), s('SKYLINE'), s('MUMPS')], &
             description='UMFPACK (SuiteSparse, default), SKYLINE (profile LU with reverse ' // &
-            'Cuthill-McKee numbering) or MUMPS. The command line option --solver overrides it.')]) &
+            'Cuthill-McKee numbering) or MUMPS. The command line option --solver overrides it.'), &
+          p('REUSE TOLERANCE', PARAM_REAL, default='0', unit='-', description='Relative ' // &
+            'residual |b - A x| / |b| to which a new tangent is solved with the factors of an ' // &
+            'earlier one, by GMRES preconditioned by them, instead of factorising it ' // &
+            '(doc/theory.md section 7.1); the factors are renewed when GMRES needs many ' // &
+            'iterations or does not converge, and when the sparsity pattern changes. 0 ' // &
+            '(default): factorise every tangent. Recommended when on: 1e-10, far below the ' // &
+            'equilibrium tolerance (1e-3 of the force scale); on the block-sliding test deck ' // &
+            'the results agree with those of fresh factorisations within 1e-12 of their ' // &
+            'scale. A restarted run starts from a fresh factorisation, so with reuse on it ' // &
+            'agrees with the uninterrupted run to that level, not bit for bit. Range ' // &
+            '[0, 1e-3]. The command line option --reuse-tolerance overrides it.')]) &
       ]
   end function model_keywords
 

@@ -248,6 +248,8 @@ module fcs_model
     character(len=:), allocatable :: solver_name
     !> True when the deck chose the solver (*SOLVER); otherwise a parallel run takes MUMPS.
     logical :: solver_chosen = .false.
+    !> *SOLVER, REUSE TOLERANCE: relative residual of a solve with reused factors (0: off).
+    real(dp) :: reuse_tolerance = 0.0_dp
     type(interaction_def_t), allocatable :: interactions(:)
     type(contact_pair_def_t), allocatable :: contact_pairs(:)
     !> Checksums of the model definition (its cards and the mesh) and of each step's cards,

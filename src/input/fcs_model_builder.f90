@@ -214,7 +214,7 @@ contains
     case ('MESH')
       call handle_mesh(card, model, diag)
     case ('SOLVER')
-      call handle_solver(card, model)
+      call handle_solver(card, model, diag)
     case ('RESTART')
       call handle_restart(card, model, diag)
     case ('MATERIAL')

@@ -19,6 +19,7 @@ module fcs_driver
   use fcs_mumps, only: mumps_solver_t
   use fcs_solver_factory, only: create_linear_solver
   use fcs_linear_solver, only: solver_stats_t
+  use fcs_factor_reuse, only: reuse_settings_t
   use fcs_results, only: results_file_t, GRID_POINTS
   use fcs_contact_system, only: pair_totals_t
   use fcs_contact_friction_change, only: apply_friction_changes
@@ -151,6 +152,7 @@ contains
       call run%log%warn(model%warnings(i)%s)
     end do
     if (len(options%solver) > 0) model%solver_name = to_upper(options%solver)
+    if (options%reuse_tolerance >= 0.0_dp) model%reuse_tolerance = options%reuse_tolerance
     if (run%analysis%comm%size > 1 .and. len(options%solver) == 0 .and. .not. model%solver_chosen) &
       model%solver_name = 'MUMPS'
     if (run%writer) call write_echo(options%job // '.echo', deck, model, err)
@@ -232,6 +234,7 @@ contains
       call create_linear_solver(model%solver_name, a%solver, err)
       if (allocated(err)) return
       a%solver%node_id = model%mesh%node_id(1:model%mesh%n_nodes)
+      call a%reuse%init(reuse_settings_t(tolerance=model%reuse_tolerance), a%comm)
       select type (solver => a%solver)
       type is (mumps_solver_t)
         call solver%set_comm(a%comm)
@@ -681,6 +684,7 @@ contains
         trim(merge(' (floor)', '        ', record%floored)) // ' events ' // &
         str(record%n_events_taken) // optional_count(' switches ', record%n_switches) // &
         optional_count(' iterations ', record%iterations) // optional_count(' cuts ', record%cuts) // &
+        optional_count(' krylov ', record%krylov_iterations) // &
         ' residual ' // str(record%residual_ratio) // trim(merge(' (carried)', '          ', record%carried))
       call run%log%detail(trim(line))
       call run%log%progress('time ' // str(state%time) // ' of ' // str(run%total_time) // ', inc ' // &
@@ -974,6 +978,7 @@ contains
         call run%log%info('  ' // phases(i) // ': ' // format_duration(a%timers%total(trim(phases(i)))))
       end do
       call log_solver_stats(run, a%solver%stats)
+      call run%log%info('  ' // a%reuse%summary())
       call run%monitors%report_open_events(a, run%log)
     end associate
   end subroutine summary
