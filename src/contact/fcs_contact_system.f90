@@ -32,6 +32,7 @@ module fcs_contact_system
                              EVENT_NONE
   use fcs_sort, only: unique_sorted, argsort_integers
   use fcs_strings, only: str
+  use fcs_archive, only: archive_t
   implicit none
   private
   public :: contact_system_t, contact_pair_t, pair_totals_t
@@ -146,6 +147,8 @@ module fcs_contact_system
     procedure :: hold_states => system_hold_states
     procedure :: check_held => system_check_held
     procedure :: release_states => system_release_states
+    procedure :: save => system_save
+    procedure :: load => system_load
   end type contact_system_t
 
 contains
@@ -155,6 +158,46 @@ contains
     system_n_slaves = 0
     if (allocated(this%slave_node)) system_n_slaves = size(this%slave_node)
   end function system_n_slaves
+
+  !> Write the search and pattern bookkeeping that a restart needs to continue exactly into
+  !> group /contact_system of `archive`: the face each slave's pattern clique was built
+  !> around, whether the pattern is due for a rebuild, and the coordinates each pair's search
+  !> grid was built on (the grid is rebuilt from them, as it was). Nothing without slaves.
+  subroutine system_save(this, archive, err)
+    class(contact_system_t), intent(in) :: this
+    class(archive_t), intent(inout) :: archive
+    type(error_t), allocatable, intent(out) :: err
+    integer :: k
+    if (this%n_slaves() == 0) return
+    call archive%group('/contact_system', err)
+    if (.not. allocated(err)) call archive%put('/contact_system/pattern_face', this%pattern_face, err)
+    do k = 1, size(this%pairs)
+      if (allocated(err)) return
+      call archive%put('/contact_system/grid_' // str(k), this%pairs(k)%grid%built_x, err)
+    end do
+    if (.not. allocated(err)) call archive%put_flag('/contact_system', 'pattern_dirty', &
+                                                    this%pattern_dirty, err)
+  end subroutine system_save
+
+  !> Read what `save` wrote into a system set up for the same model (`init`).
+  subroutine system_load(this, archive, err)
+    class(contact_system_t), intent(inout) :: this
+    class(archive_t), intent(inout) :: archive
+    type(error_t), allocatable, intent(out) :: err
+    real(dp), allocatable :: grid(:, :, :)
+    integer :: k
+    if (this%n_slaves() == 0) return
+    call archive%get('/contact_system/pattern_face', this%pattern_face, err)
+    do k = 1, size(this%pairs)
+      if (allocated(err)) return
+      allocate (grid, mold=this%pairs(k)%grid%built_x)
+      call archive%get('/contact_system/grid_' // str(k), grid, err)
+      if (.not. allocated(err)) call this%pairs(k)%grid%build(grid, this%pairs(k)%reach)
+      deallocate (grid)
+    end do
+    if (.not. allocated(err)) call archive%get_flag('/contact_system', 'pattern_dirty', &
+                                                    this%pattern_dirty, err)
+  end subroutine system_load
 
   !> Set up every pair of the model on coordinates x and find the initial contact state.
   subroutine system_init(this, model, x, cstate, err)

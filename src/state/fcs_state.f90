@@ -1,7 +1,12 @@
-!> The run state: everything that changes during an analysis, in one object, so that a
-!> checkpoint is "write state_t" and a restart is "read state_t" (doc/architecture.md).
+!> The run state: everything that changes during an analysis (doc/architecture.md, "Run
+!> state"). This object saves and loads its own part - coordinates, displacements, reactions,
+!> the integration-point fields, time, step and increment counters and the R-minimum
+!> bookkeeping - through the archive (`save`, `load`); the contact states it holds save
+!> themselves (contact_state_t).
 module fcs_state
   use fcs_kinds, only: dp
+  use fcs_error, only: error_t
+  use fcs_archive, only: archive_t
   use fcs_hex8_shape, only: N_GAUSS_HEX8
   use fcs_contact_state, only: contact_state_t
   implicit none
@@ -51,6 +56,8 @@ module fcs_state
     type(contact_state_t) :: contact
   contains
     procedure :: init => state_init
+    procedure :: save => state_save
+    procedure :: load => state_load
   end type state_t
 
 contains
@@ -78,5 +85,62 @@ contains
     this%increment = 0
     this%step_increment = 0
   end subroutine state_init
+
+  !> Write this state's records into group /state of `archive`.
+  subroutine state_save(this, archive, err)
+    class(state_t), intent(in) :: this
+    class(archive_t), intent(inout) :: archive
+    type(error_t), allocatable, intent(out) :: err
+    call archive%group('/state', err)
+    if (.not. allocated(err)) call archive%put('/state/x', this%x, err)
+    if (.not. allocated(err)) call archive%put('/state/u', this%u, err)
+    if (.not. allocated(err)) call archive%put('/state/reaction', this%reaction, err)
+    if (.not. allocated(err)) call archive%put('/state/step_start_u', this%step_start_u, err)
+    if (.not. allocated(err)) call archive%put('/state/stress', this%stress, err)
+    if (.not. allocated(err)) call archive%put('/state/strain', this%strain, err)
+    if (.not. allocated(err) .and. size(this%material_state, 1) > 0) &
+      call archive%put('/state/material_state', this%material_state, err)
+    if (.not. allocated(err)) call archive%put('/state/scalars', [this%time, this%step_time, &
+      this%last_increment, this%last_r, this%residual_norm, this%friction_dt, &
+      this%step_worst_residual, this%force_scale], err)
+    if (.not. allocated(err)) call archive%put('/state/counters', [this%step, this%increment, &
+      this%step_increment, this%friction_kind, this%friction_node, &
+      this%step_worst_residual_increment], err)
+  end subroutine state_save
+
+  !> Read the records `save` wrote into this state, which is set up for the model (`init`), so
+  !> that the sizes of the records are checked against it.
+  subroutine state_load(this, archive, err)
+    class(state_t), intent(inout) :: this
+    class(archive_t), intent(inout) :: archive
+    type(error_t), allocatable, intent(out) :: err
+    real(dp) :: scalars(8)
+    integer :: counters(6)
+    call archive%get('/state/x', this%x, err)
+    if (.not. allocated(err)) call archive%get('/state/u', this%u, err)
+    if (.not. allocated(err)) call archive%get('/state/reaction', this%reaction, err)
+    if (.not. allocated(err)) call archive%get('/state/step_start_u', this%step_start_u, err)
+    if (.not. allocated(err)) call archive%get('/state/stress', this%stress, err)
+    if (.not. allocated(err)) call archive%get('/state/strain', this%strain, err)
+    if (.not. allocated(err) .and. size(this%material_state, 1) > 0) &
+      call archive%get('/state/material_state', this%material_state, err)
+    if (.not. allocated(err)) call archive%get('/state/scalars', scalars, err)
+    if (.not. allocated(err)) call archive%get('/state/counters', counters, err)
+    if (allocated(err)) return
+    this%time = scalars(1)
+    this%step_time = scalars(2)
+    this%last_increment = scalars(3)
+    this%last_r = scalars(4)
+    this%residual_norm = scalars(5)
+    this%friction_dt = scalars(6)
+    this%step_worst_residual = scalars(7)
+    this%force_scale = scalars(8)
+    this%step = counters(1)
+    this%increment = counters(2)
+    this%step_increment = counters(3)
+    this%friction_kind = counters(4)
+    this%friction_node = counters(5)
+    this%step_worst_residual_increment = counters(6)
+  end subroutine state_load
 
 end module fcs_state

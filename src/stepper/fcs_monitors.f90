@@ -15,6 +15,7 @@ module fcs_monitors
   use fcs_hex8_shape, only: N_GAUSS_HEX8
   use fcs_log, only: logger_t
   use fcs_strings, only: string_t, str
+  use fcs_archive, only: archive_t
   implicit none
   private
   public :: monitors_t
@@ -33,6 +34,8 @@ module fcs_monitors
     procedure :: sample => monitors_sample
     procedure :: watch_events => monitors_watch_events
     procedure :: report_open_events => monitors_report_open_events
+    procedure :: save => monitors_save
+    procedure :: load => monitors_load
   end type monitors_t
 
 contains
@@ -63,6 +66,33 @@ contains
     end if
     if (any([(has_energy(model%histories(k)), k = 1, size(model%histories))])) call reference_volumes(this, model)
   end subroutine monitors_init
+
+  !> Write the rows of every history and the event catalog into group /monitors of `archive`.
+  subroutine monitors_save(this, archive, err)
+    class(monitors_t), intent(in) :: this
+    class(archive_t), intent(inout) :: archive
+    type(error_t), allocatable, intent(out) :: err
+    integer :: k
+    call archive%group('/monitors', err)
+    do k = 1, size(this%tables)
+      if (allocated(err)) return
+      call this%tables(k)%save(archive, '/monitors/history_' // str(k), err)
+    end do
+    if (.not. allocated(err)) call this%catalog%save(archive, '/monitors', err)
+  end subroutine monitors_save
+
+  !> Read what `save` wrote into monitors set up for the model (`init`).
+  subroutine monitors_load(this, archive, err)
+    class(monitors_t), intent(inout) :: this
+    class(archive_t), intent(inout) :: archive
+    type(error_t), allocatable, intent(out) :: err
+    integer :: k
+    do k = 1, size(this%tables)
+      call this%tables(k)%load(archive, '/monitors/history_' // str(k), err)
+      if (allocated(err)) return
+    end do
+    call this%catalog%load(archive, '/monitors', err)
+  end subroutine monitors_load
 
   !> Write every history CSV and the event catalog CSV whole from what is in memory: at the
   !> start of a new run (headers), or after a restart was accepted (the checkpoint's rows).
