@@ -14,7 +14,7 @@ module fcs_contact_system
   use fcs_kinds, only: dp
   use fcs_error, only: error_t, fatal_error, input_error
   use fcs_model, only: model_t, contact_pair_def_t
-  use fcs_mesh, only: mesh_t, hex8_face_nodes, SURFACE_FACES
+  use fcs_mesh, only: mesh_t, SURFACE_FACES
   use fcs_contact_geometry, only: segment_point_t, segment_point, project_to_segment
   use fcs_contact_search, only: face_grid_t, closest_face, edge_excess, edge_support, XI_TOLERANCE, &
                                 EDGE_EXTENSION
@@ -220,7 +220,8 @@ contains
     this%reference = model%mesh%x
     do k = 1, size(model%contact_pairs)
       if (.not. this%pairs(k)%tied) cycle
-      call surface_face_nodes(model%mesh, model%contact_pairs(k)%slave_surface, slave_faces)
+      call surface_face_nodes(model%mesh, model%contact_pairs(k)%slave_surface, slave_faces, err)
+      if (allocated(err)) return
       call this%ties%add(slave_faces, this%pairs(k)%face_nodes, x, this%pairs(k)%normal_stiffness, &
                          this%pairs(k)%position_tolerance)
     end do
@@ -263,6 +264,7 @@ contains
     real(dp), intent(in) :: x(:, :)
     type(error_t), allocatable, intent(out) :: err
     type(friction_def_t) :: frictionless
+    integer, allocatable :: nodes(:)
     integer :: f, nf
     pair%name = def%name
     pair%tied = def%tied
@@ -273,7 +275,14 @@ contains
       nf = size(surface%element)
       allocate (pair%face_nodes(4, nf))
       do f = 1, nf
-        pair%face_nodes(:, f) = hex8_face_nodes(model%mesh, surface%element(f), surface%face(f))
+        nodes = model%mesh%face_nodes(surface%element(f), surface%face(f))
+        if (size(nodes) /= 4) then
+          call input_error(err, 'contact pair ' // def%name // ': face S' // str(surface%face(f)) // &
+            ' of element ' // str(model%mesh%element_id(surface%element(f))) // ' has ' // &
+            str(size(nodes)) // ' nodes; master surfaces need 4-node (quadrilateral) faces')
+          return
+        end if
+        pair%face_nodes(:, f) = nodes
       end do
     end associate
     pair%face_size = 0.0_dp

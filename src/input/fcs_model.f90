@@ -8,6 +8,7 @@ module fcs_model
   use fcs_strings, only: string_t
   use fcs_friction_factory, only: friction_def_t
   use fcs_material_factory, only: plastic_def_t
+  use fcs_element_catalogue, only: element_catalogue_t
   implicit none
   private
   public :: model_t, material_def_t, section_t, amplitude_t, time_points_t, dof_condition_t
@@ -215,6 +216,8 @@ module fcs_model
     character(len=:), allocatable :: title
     character(len=:), allocatable :: deck_path
     type(mesh_t) :: mesh
+    !> The element kinds the mesh's elements are of (mesh%element_kind(e) indexes them).
+    type(element_catalogue_t) :: element_kinds
     type(material_def_t), allocatable :: materials(:)
     type(section_t), allocatable :: sections(:)
     !> Section index of every element (0 = none, an error after building).

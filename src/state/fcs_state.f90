@@ -1,13 +1,13 @@
 !> The run state: everything that changes during an analysis (doc/architecture.md, "Run
 !> state"). This object saves and loads its own part - coordinates, displacements, reactions,
-!> the integration-point fields, time, step and increment counters and the R-minimum
-!> bookkeeping - through the archive (`save`, `load`); the contact states it holds save
-!> themselves (contact_state_t).
+!> time, step and increment counters and the R-minimum bookkeeping (the stepper's state) -
+!> through the archive (`save`, `load`); the element fields and the contact states it holds
+!> save themselves (element_state_t, contact_state_t).
 module fcs_state
   use fcs_kinds, only: dp
   use fcs_error, only: error_t
   use fcs_archive, only: archive_t
-  use fcs_hex8_shape, only: N_GAUSS_HEX8
+  use fcs_element_state, only: element_state_t
   use fcs_contact_state, only: contact_state_t
   implicit none
   private
@@ -19,12 +19,8 @@ module fcs_state
     !> Current coordinates (3, n_nodes) and total displacements from the reference.
     real(dp), allocatable :: x(:, :)
     real(dp), allocatable :: u(:, :)
-    !> Cauchy stress and accumulated strain at the integration points (6, 8, n_elements),
-    !> Voigt order 11, 22, 33, 12, 13, 23; strains with engineering shear.
-    real(dp), allocatable :: stress(:, :, :)
-    real(dp), allocatable :: strain(:, :, :)
-    !> Material internal variables (n_state, 8, n_elements); n_state may be 0.
-    real(dp), allocatable :: material_state(:, :, :)
+    !> Stresses, strains and material internal variables at the integration points.
+    type(element_state_t) :: elements
     !> Reaction forces at constrained degrees of freedom (3, n_nodes), last computed.
     real(dp), allocatable :: reaction(:, :)
     !> Displacements at the start of the current step (for ramped prescribed displacements).
@@ -62,11 +58,12 @@ module fcs_state
 
 contains
 
-  !> Initial state: reference geometry, zero stress.
-  subroutine state_init(this, x_reference, n_elements, n_material_state)
+  !> Initial state: reference geometry, zero stress at the max_points integration points of
+  !> each element (the most any element of the model has).
+  subroutine state_init(this, x_reference, n_elements, max_points, n_material_state)
     class(state_t), intent(inout) :: this
     real(dp), intent(in) :: x_reference(:, :)
-    integer, intent(in) :: n_elements, n_material_state
+    integer, intent(in) :: n_elements, max_points, n_material_state
     this%n_nodes = size(x_reference, 2)
     this%n_elements = n_elements
     this%x = x_reference
@@ -74,11 +71,7 @@ contains
     this%u = 0.0_dp
     this%reaction = 0.0_dp
     this%step_start_u = this%u
-    allocate (this%stress(6, N_GAUSS_HEX8, n_elements), this%strain(6, N_GAUSS_HEX8, n_elements))
-    this%stress = 0.0_dp
-    this%strain = 0.0_dp
-    allocate (this%material_state(n_material_state, N_GAUSS_HEX8, n_elements))
-    this%material_state = 0.0_dp
+    call this%elements%init(max_points, n_elements, n_material_state)
     this%time = 0.0_dp
     this%step_time = 0.0_dp
     this%step = 1
@@ -86,7 +79,8 @@ contains
     this%step_increment = 0
   end subroutine state_init
 
-  !> Write this state's records into group /state of `archive`.
+  !> Write this state's records into group /state of `archive` (the element fields add theirs
+  !> to the group: element_state_t%save).
   subroutine state_save(this, archive, err)
     class(state_t), intent(in) :: this
     class(archive_t), intent(inout) :: archive
@@ -96,10 +90,6 @@ contains
     if (.not. allocated(err)) call archive%put('/state/u', this%u, err)
     if (.not. allocated(err)) call archive%put('/state/reaction', this%reaction, err)
     if (.not. allocated(err)) call archive%put('/state/step_start_u', this%step_start_u, err)
-    if (.not. allocated(err)) call archive%put('/state/stress', this%stress, err)
-    if (.not. allocated(err)) call archive%put('/state/strain', this%strain, err)
-    if (.not. allocated(err) .and. size(this%material_state, 1) > 0) &
-      call archive%put('/state/material_state', this%material_state, err)
     if (.not. allocated(err)) call archive%put('/state/scalars', [this%time, this%step_time, &
       this%last_increment, this%last_r, this%residual_norm, this%friction_dt, &
       this%step_worst_residual, this%force_scale], err)
@@ -120,10 +110,6 @@ contains
     if (.not. allocated(err)) call archive%get('/state/u', this%u, err)
     if (.not. allocated(err)) call archive%get('/state/reaction', this%reaction, err)
     if (.not. allocated(err)) call archive%get('/state/step_start_u', this%step_start_u, err)
-    if (.not. allocated(err)) call archive%get('/state/stress', this%stress, err)
-    if (.not. allocated(err)) call archive%get('/state/strain', this%strain, err)
-    if (.not. allocated(err) .and. size(this%material_state, 1) > 0) &
-      call archive%get('/state/material_state', this%material_state, err)
     if (.not. allocated(err)) call archive%get('/state/scalars', scalars, err)
     if (.not. allocated(err)) call archive%get('/state/counters', counters, err)
     if (allocated(err)) return

@@ -3,15 +3,15 @@
 module fcs_driver
   use fcs_kinds, only: dp, i8
   use fcs_error, only: error_t, fatal_error, input_error, add_context, EXIT_INTERRUPTED, EXIT_INPUT
-  use fcs_mesh, only: hex8_face_nodes
   use fcs_deck_lexer, only: deck_t
-  use fcs_model, only: model_t, step_t, output_request_t, OUTPUT_NODE_PRINT, OUTPUT_EL_PRINT, &
+  use fcs_model, only: model_t, step_t, output_request_t, FORMULATION_BBAR, OUTPUT_NODE_PRINT, OUTPUT_EL_PRINT, &
                        OUTPUT_NODE_FILE, OUTPUT_EL_FILE, OUTPUT_CONTACT_PRINT, OUTPUT_CONTACT_FILE
   use fcs_model_builder, only: build_model
   use fcs_run_options, only: run_options_t
   use fcs_state, only: state_t
   use fcs_loading, only: build_step_loading
-  use fcs_assembly, only: make_materials, plastic_fields
+  use fcs_assembly, only: make_materials
+  use fcs_material, only: material_slot_t
   use fcs_static_explicit, only: analysis_t, take_increment, increment_record_t, build_pattern, &
                                  contact_positions, current_reactions, gather_element_fields
   use fcs_comm, only: comm_t
@@ -27,8 +27,7 @@ module fcs_driver
   use fcs_timer, only: wall_time, peak_memory_mib
   use fcs_rmin_events, only: event_kind_name, EVENT_FULL_INCREMENT, EVENT_STRAIN_LIMIT, &
                              EVENT_ROTATION_LIMIT, EVENT_YIELD, EVENT_PLASTIC_STRAIN_LIMIT
-  use fcs_hex8_element, only: mises_stress, hex8_extrapolate
-  use fcs_hex8_shape, only: N_GAUSS_HEX8
+  use fcs_element_loops, only: mises_stress
   use fcs_strings, only: str, to_upper, to_lower, join_strings
   use fcs_signals, only: install_signal_handlers, signal_received
   use fcs_heap_policy, only: keep_freed_memory
@@ -206,15 +205,20 @@ contains
     type(run_t), intent(inout) :: run
     type(model_t), intent(in) :: model
     type(error_t), allocatable, intent(out) :: err
+    type(material_slot_t), allocatable :: materials(:)
     integer :: n_state, n
     associate (a => run%analysis)
-      call make_materials(model, a%materials, n_state, err)
+      call make_materials(model, materials, err)
+      if (.not. allocated(err)) call a%elements%init(model%element_kinds, model%mesh, &
+        model%sections(model%element_section)%material, &
+        model%sections(model%element_section)%formulation == FORMULATION_BBAR, materials, err)
       if (allocated(err)) return
-      call set_activity('setting up the analysis', setup_bytes(model, n_state))
-      call ensure_memory(setup_bytes(model, n_state), 'setting up the analysis', err)
+      n_state = a%elements%n_material_state()
+      call set_activity('setting up the analysis', setup_bytes(model, a%elements%max_points, n_state))
+      call ensure_memory(setup_bytes(model, a%elements%max_points, n_state), &
+                         'setting up the analysis', err)
       if (allocated(err)) return
-      a%materials_have_states = n_state > 0
-      call a%state%init(model%mesh%x, model%mesh%n_elements, n_state)
+      call a%state%init(model%mesh%x, model%mesh%n_elements, a%elements%max_points, n_state)
       call contact_positions(a, model)
       if (size(model%contact_pairs) > 0) then
         call a%contact%init(model, a%x_contact, a%state%contact, err)
@@ -250,16 +254,17 @@ contains
   end subroutine setup
 
   !> About the memory the set-up allocates [bytes]: state and force vectors, integration-point
-  !> arrays, element cliques, and the sparse pattern (about 27 neighbours per node of a
-  !> hexahedral mesh, 3 x 3 entries of 12 bytes each).
-  pure integer(i8) function setup_bytes(model, n_state) result(bytes)
+  !> arrays (max_points per element), element cliques, and the sparse pattern (about 27
+  !> neighbours per node of a hexahedral mesh, 3 x 3 entries of 12 bytes each).
+  pure integer(i8) function setup_bytes(model, max_points, n_state) result(bytes)
     type(model_t), intent(in) :: model
-    integer, intent(in) :: n_state
+    integer, intent(in) :: max_points, n_state
     integer(i8) :: nodes, elements
     nodes = int(model%mesh%n_nodes, i8)
     elements = int(model%mesh%n_elements, i8)
-    bytes = 8_i8 * 3_i8 * nodes * 15_i8 + 8_i8 * int(N_GAUSS_HEX8, i8) * elements * &
-      (12_i8 + int(n_state, i8)) + 4_i8 * 8_i8 * elements + 9_i8 * 27_i8 * 12_i8 * nodes
+    bytes = 8_i8 * 3_i8 * nodes * 15_i8 + 8_i8 * int(max_points, i8) * elements * &
+      (12_i8 + int(n_state, i8)) + 4_i8 * int(size(model%mesh%connectivity, 1), i8) * elements + &
+      9_i8 * 27_i8 * 12_i8 * nodes
   end function setup_bytes
 
   !> This process's share of the work: its elements (METIS partition), its contact slaves
@@ -268,26 +273,23 @@ contains
     type(run_t), intent(inout) :: run
     type(model_t), intent(in) :: model
     type(error_t), allocatable, intent(out) :: err
-    integer, allocatable :: owner(:)
-    integer :: e, n, k, i, j, m
+    integer, allocatable :: owner(:), nodes(:)
+    integer :: e, n, k, i
     associate (a => run%analysis)
       call partition_elements(a%comm, model%mesh%connectivity, model%mesh%n_nodes, owner, err)
       if (allocated(err)) return
-      a%my_elements = pack([(e, e = 1, model%mesh%n_elements)], owner == a%comm%rank)
+      call a%elements%set_share(pack([(e, e = 1, model%mesh%n_elements)], owner == a%comm%rank))
       n = a%contact%n_slaves()
       allocate (a%owns_slave(n))
       a%owns_slave = [((i - 1) * a%comm%size / max(n, 1) == a%comm%rank, i = 1, n)]
-      m = 0
-      do k = 1, size(model%steps)
-        m = m + size(model%steps(k)%pressures)
-      end do
-      allocate (a%pressure_cliques(4, m))
-      j = 0
+      allocate (a%pressure_ptr(1), a%pressure_nodes(0))
+      a%pressure_ptr(1) = 1
       do k = 1, size(model%steps)
         do i = 1, size(model%steps(k)%pressures)
-          j = j + 1
-          a%pressure_cliques(:, j) = hex8_face_nodes(model%mesh, model%steps(k)%pressures(i)%element, &
-                                                     model%steps(k)%pressures(i)%face)
+          nodes = a%elements%face_nodes(model%steps(k)%pressures(i)%element, &
+                                        model%steps(k)%pressures(i)%face)
+          a%pressure_nodes = [a%pressure_nodes, nodes]
+          a%pressure_ptr = [a%pressure_ptr, a%pressure_ptr(size(a%pressure_ptr)) + size(nodes)]
         end do
       end do
     end associate
@@ -724,9 +726,9 @@ contains
         case (OUTPUT_NODE_PRINT)
           call run%dat%node_print(model, step%outputs(i), state%time, state%u, state%reaction, err)
         case (OUTPUT_EL_PRINT)
-          call plastic_fields(model, state, run%analysis%materials, peeq, plastic_strain, back_stress)
-          call run%dat%el_print(model, step%outputs(i), state%time, state%stress, state%strain, peeq, &
-                                err)
+          call run%analysis%elements%plastic_fields(state%elements, peeq, plastic_strain, back_stress)
+          call run%dat%el_print(model, step%outputs(i), state%time, state%elements%stress, &
+                                state%elements%strain, peeq, run%analysis%elements%point_counts(), err)
         case (OUTPUT_CONTACT_PRINT)
           call run%dat%contact_print(model, step%outputs(i), state%time, run%analysis%contact, &
                                      state%contact, run%analysis%x_contact, err)
@@ -841,7 +843,7 @@ contains
     if (.not. run%writer) return
     ! Nodal averages, Mises values and the reordered copy of an integration-point field.
     bytes = 8_i8 * (8_i8 * int(model%mesh%n_nodes, i8) + int(model%mesh%n_elements, i8) * &
-      (1_i8 + 6_i8 * int(N_GAUSS_HEX8, i8)))
+      (1_i8 + 6_i8 * int(run%analysis%elements%max_points, i8)))
     call set_activity('writing a results frame to ' // run%job // '.h5', bytes)
     call ensure_memory(bytes, 'writing a results frame to ' // run%job // '.h5', err)
     if (allocated(err)) return
@@ -852,20 +854,22 @@ contains
       if (.not. allocated(err)) call run%results%write_nodal('displacement', state%u, err)
       if (.not. allocated(err)) call run%results%write_nodal('force', state%reaction, err)
       if (allocated(err)) return
-      nodal = nodal_average(model, state%stress)
+      nodal = run%analysis%elements%nodal_average(state%elements%stress, model%mesh%n_nodes)
       allocate (nodal_mises(1, size(nodal, 2)), cell_mises(1, model%mesh%n_elements))
       do q = 1, size(nodal, 2)
         nodal_mises(1, q) = mises_stress(nodal(:, q))
       end do
       do q = 1, model%mesh%n_elements
-        cell_mises(1, q) = element_mean_mises(state%stress(:, :, q))
+        cell_mises(1, q) = element_mean_mises(state%elements%stress(:, 1:run%analysis%elements%n_points(q), q))
       end do
       call run%results%write_nodal('stress', nodal, err)
       if (.not. allocated(err)) call run%results%write_nodal('mises', nodal_mises, err)
       if (.not. allocated(err)) call run%results%write_cell('mises', cell_mises, err)
-      if (.not. allocated(err)) call run%results%write_integration_points('stress', state%stress, err)
-      if (.not. allocated(err)) call run%results%write_integration_points('strain', state%strain, err)
-      if (.not. allocated(err) .and. run%analysis%materials_have_states) &
+      if (.not. allocated(err)) call run%results%write_integration_points('stress', &
+                                                                          state%elements%stress, err)
+      if (.not. allocated(err)) call run%results%write_integration_points('strain', &
+                                                                          state%elements%strain, err)
+      if (.not. allocated(err) .and. run%analysis%elements%has_states()) &
         call write_plastic_fields(run, model, err)
       if (.not. allocated(err)) call write_contact_fields(run, err)
       if (.not. allocated(err)) call run%results%end_frame(err)
@@ -883,22 +887,26 @@ contains
     type(model_t), intent(in) :: model
     type(error_t), allocatable, intent(out) :: err
     real(dp), allocatable :: peeq(:, :), plastic_strain(:, :, :), back_stress(:, :, :), cell(:, :)
-    integer :: e
-    call plastic_fields(model, run%analysis%state, run%analysis%materials, peeq, plastic_strain, &
-                        back_stress)
+    integer :: e, n
+    associate (elements => run%analysis%elements)
+      call elements%plastic_fields(run%analysis%state%elements, peeq, plastic_strain, back_stress)
+      allocate (cell(1, size(peeq, 2)))
+      do e = 1, size(peeq, 2)
+        n = elements%n_points(e)
+        cell(1, e) = sum(peeq(1:n, e)) / n
+      end do
+    end associate
     plastic_strain(4:6, :, :) = 0.5_dp * plastic_strain(4:6, :, :)
-    allocate (cell(1, size(peeq, 2)))
-    do e = 1, size(peeq, 2)
-      cell(1, e) = sum(peeq(:, e)) / size(peeq, 1)
-    end do
     call run%results%write_integration_points('PEEQ', reshape(peeq, [1, shape(peeq)]), err)
     if (.not. allocated(err)) call run%results%write_integration_points('PE', plastic_strain, err)
     if (.not. allocated(err)) call run%results%write_integration_points('ALPHA', back_stress, err)
     if (.not. allocated(err)) call run%results%write_nodal('PEEQ', &
-      nodal_average(model, reshape(peeq, [1, shape(peeq)])), err)
+      run%analysis%elements%nodal_average(reshape(peeq, [1, shape(peeq)]), model%mesh%n_nodes), err)
     if (.not. allocated(err)) call run%results%write_cell('PEEQ', cell, err)
-    if (.not. allocated(err)) call run%results%write_nodal('PE', nodal_average(model, plastic_strain), err)
-    if (.not. allocated(err)) call run%results%write_nodal('ALPHA', nodal_average(model, back_stress), err)
+    if (.not. allocated(err)) call run%results%write_nodal('PE', &
+      run%analysis%elements%nodal_average(plastic_strain, model%mesh%n_nodes), err)
+    if (.not. allocated(err)) call run%results%write_nodal('ALPHA', &
+      run%analysis%elements%nodal_average(back_stress, model%mesh%n_nodes), err)
   end subroutine write_plastic_fields
 
   pure real(dp) function element_mean_mises(stress) result(m)
@@ -910,31 +918,6 @@ contains
     end do
     m = m / size(stress, 2)
   end function element_mean_mises
-
-  !> Nodal values: integration-point values extrapolated to each element's nodes, averaged
-  !> over the elements sharing a node.
-  function nodal_average(model, ip_values) result(nodal)
-    type(model_t), intent(in) :: model
-    real(dp), intent(in) :: ip_values(:, :, :)
-    real(dp), allocatable :: nodal(:, :)
-    real(dp), allocatable :: weight(:)
-    real(dp) :: at_nodes(size(ip_values, 1), 8)
-    integer :: e, a, node
-    allocate (nodal(size(ip_values, 1), model%mesh%n_nodes), weight(model%mesh%n_nodes))
-    nodal = 0.0_dp
-    weight = 0.0_dp
-    do e = 1, model%mesh%n_elements
-      at_nodes = hex8_extrapolate(ip_values(:, :, e))
-      do a = 1, 8
-        node = model%mesh%connectivity(a, e)
-        nodal(:, node) = nodal(:, node) + at_nodes(:, a)
-        weight(node) = weight(node) + 1.0_dp
-      end do
-    end do
-    do node = 1, model%mesh%n_nodes
-      if (weight(node) > 0.0_dp) nodal(:, node) = nodal(:, node) / weight(node)
-    end do
-  end function nodal_average
 
   !> A memory figure in MiB: 4 significant digits below 1000, whole MiB above (no exponent).
   function memory_text(mib) result(text)

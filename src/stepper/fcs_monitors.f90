@@ -6,13 +6,10 @@ module fcs_monitors
   use fcs_model, only: model_t, history_request_t, HISTORY_NSET_U, HISTORY_NSET_RF, &
                        HISTORY_CONTACT, HISTORY_ENERGY, HISTORY_RESIDUAL
   use fcs_static_explicit, only: analysis_t, current_reactions
-  use fcs_assembly, only: plastic_fields
   use fcs_history, only: history_table_t
   use fcs_event_catalog, only: event_catalog_t
   use fcs_contact_system, only: pair_totals_t
   use fcs_contact_element, only: CONTACT_OPEN, CONTACT_TIED
-  use fcs_hex8_element, only: hex8_geometry_t, hex8_geometry
-  use fcs_hex8_shape, only: N_GAUSS_HEX8
   use fcs_log, only: logger_t
   use fcs_strings, only: string_t, str
   use fcs_archive, only: archive_t
@@ -64,7 +61,8 @@ contains
       call this%catalog%init(model%event_threshold, model%event_min_slip, sizes, job // '_events.csv', &
                              err, this%writer)
     end if
-    if (any([(has_energy(model%histories(k)), k = 1, size(model%histories))])) call reference_volumes(this, model)
+    if (any([(has_energy(model%histories(k)), k = 1, size(model%histories))])) &
+      this%volume = a%elements%point_volumes()
   end subroutine monitors_init
 
   !> Write the rows of every history and the event catalog into group /monitors of `archive`.
@@ -160,18 +158,6 @@ contains
     end do
   end function column_names
 
-  subroutine reference_volumes(this, model)
-    type(monitors_t), intent(inout) :: this
-    type(model_t), intent(in) :: model
-    type(hex8_geometry_t) :: geo
-    logical :: ok
-    integer :: e
-    allocate (this%volume(N_GAUSS_HEX8, model%mesh%n_elements))
-    do e = 1, model%mesh%n_elements
-      call hex8_geometry(model%mesh%x(:, model%mesh%connectivity(:, e)), geo, ok)
-      this%volume(:, e) = geo%dv
-    end do
-  end subroutine reference_volumes
 
   !> Sample the histories due now (`due(k)` for history k).
   subroutine monitors_sample(this, model, a, due, err)
@@ -218,7 +204,7 @@ contains
     case (HISTORY_RESIDUAL)
       values = [a%state%residual_norm]
     case default
-      values = [strain_energy(this, model, a), sum(a%state%contact%work)]
+      values = [strain_energy(this, a), sum(a%state%contact%work)]
     end select
   end function item_values
 
@@ -252,18 +238,19 @@ contains
   !> 1/2 sum sigma:eps_e dV over the integration points (reference volumes; the elastic strain
   !> energy at small strains), eps_e = eps - eps_p the elastic part of the strain when a
   !> material is plastic.
-  real(dp) function strain_energy(this, model, a)
+  real(dp) function strain_energy(this, a)
     type(monitors_t), intent(in) :: this
-    type(model_t), intent(in) :: model
     type(analysis_t), intent(in) :: a
     real(dp), allocatable :: peeq(:, :), plastic_strain(:, :, :), back_stress(:, :, :)
-    if (a%materials_have_states) then
-      call plastic_fields(model, a%state, a%materials, peeq, plastic_strain, back_stress)
-      strain_energy = 0.5_dp * sum(sum(a%state%stress * (a%state%strain - plastic_strain), dim=1) * &
-                                   this%volume)
-    else
-      strain_energy = 0.5_dp * sum(sum(a%state%stress * a%state%strain, dim=1) * this%volume)
-    end if
+    associate (fields => a%state%elements)
+      if (a%elements%has_states()) then
+        call a%elements%plastic_fields(fields, peeq, plastic_strain, back_stress)
+        strain_energy = 0.5_dp * sum(sum(fields%stress * (fields%strain - plastic_strain), dim=1) * &
+                                     this%volume)
+      else
+        strain_energy = 0.5_dp * sum(sum(fields%stress * fields%strain, dim=1) * this%volume)
+      end if
+    end associate
   end function strain_energy
 
   !> Feed the event catalog after an increment that started at t_start; log ended events.

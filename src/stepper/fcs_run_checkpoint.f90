@@ -46,7 +46,7 @@ contains
     info%n_nodes = a%state%n_nodes
     info%n_elements = a%state%n_elements
     info%n_slaves = a%contact%n_slaves()
-    info%n_material_state = size(a%state%material_state, 1)
+    info%n_material_state = size(a%state%elements%material_state, 1)
     info%time = a%state%time
     info%step_time = a%state%step_time
     info%step = a%state%step
@@ -67,6 +67,7 @@ contains
     type(monitors_t), intent(in) :: monitors
     type(error_t), allocatable, intent(out) :: err
     call a%state%save(archive, err)
+    if (.not. allocated(err)) call a%state%elements%save(archive, '/state', err)
     if (.not. allocated(err)) call a%state%contact%save(archive, err)
     if (.not. allocated(err)) call a%contact%save(archive, err)
     if (.not. allocated(err)) call monitors%save(archive, err)
@@ -80,6 +81,7 @@ contains
     type(monitors_t), intent(inout) :: monitors
     type(error_t), allocatable, intent(out) :: err
     call state%load(archive, err)
+    if (.not. allocated(err)) call state%elements%load(archive, '/state', err)
     if (.not. allocated(err)) call state%contact%load(archive, err)
     if (.not. allocated(err)) call contact%load(archive, err)
     if (.not. allocated(err)) call monitors%load(archive, err)
