@@ -8,6 +8,7 @@ module fcs_model
   use fcs_strings, only: string_t
   use fcs_friction_factory, only: friction_def_t
   use fcs_material_factory, only: plastic_def_t
+  use fcs_contact_pair, only: contact_pair_def_t
   use fcs_element_catalogue, only: element_catalogue_t
   implicit none
   private
@@ -166,24 +167,9 @@ module fcs_model
     type(source_loc_t) :: loc
   end type interaction_def_t
 
-  !> A node-to-point contact pair (*CONTACT PAIR) or a tied pair (*TIE).
-  type :: contact_pair_def_t
-    character(len=:), allocatable :: name
-    !> Slave: a surface (element-face or node based); master: an element-face surface.
-    integer :: slave_surface = 0
-    integer :: master_surface = 0
-    integer :: interaction = 0
-    logical :: tied = .false.
-    !> *TIE: slave nodes farther than this from the master are not tied (<= 0: default).
-    real(dp) :: position_tolerance = 0.0_dp
-    !> Resolved penalties E_n, E_t [stress/length] and friction coefficient of this pair.
-    real(dp) :: normal_stiffness = 0.0_dp
-    real(dp) :: stick_stiffness = 0.0_dp
-    !> Mean thickness h of the master elements and the modulus E the defaults come from.
-    real(dp) :: master_thickness = 0.0_dp
-    real(dp) :: master_modulus = 0.0_dp
-    type(source_loc_t) :: loc
-  end type contact_pair_def_t
+  !> A node-to-point contact pair (*CONTACT PAIR) or a tied pair (*TIE): contact_pair_def_t of
+  !> fcs_contact_pair (the contact layer owns the type; the model holds the pairs the deck
+  !> defines).
 
   !> One quantity of a history request.
   type :: history_item_t

@@ -16,9 +16,6 @@ module fcs_dat_output
   use fcs_text_file, only: text_file_t
   use fcs_model, only: model_t, output_request_t, TOTALS_NO, TOTALS_ONLY
   use fcs_sort, only: argsort_integers
-  use fcs_contact_system, only: contact_system_t
-  use fcs_contact_state, only: contact_state_t
-  use fcs_contact_element, only: CONTACT_OPEN
   implicit none
   private
   public :: dat_file_t
@@ -185,20 +182,21 @@ contains
   end subroutine ip_rows
 
   !> *CONTACT PRINT: CDIS and/or CSTR of every closed contact node (all pairs), as CalculiX
-  !> prints them ("for all contact elements").
-  subroutine dat_contact_print(this, model, request, time, contact, cstate, x, err)
+  !> prints them ("for all contact elements"): for each slave entry its node index, whether it
+  !> is closed, and its relative displacement and stress in the local frame of its master face
+  !> (the contact system's `print_values`).
+  subroutine dat_contact_print(this, model, request, time, node, closed, displacement, stress, err)
     class(dat_file_t), intent(inout) :: this
     type(model_t), intent(in) :: model
     type(output_request_t), intent(in) :: request
-    real(dp), intent(in) :: time, x(:, :)
-    type(contact_system_t), intent(in) :: contact
-    type(contact_state_t), intent(in) :: cstate
+    real(dp), intent(in) :: time, displacement(:, :), stress(:, :)
+    integer, intent(in) :: node(:)
+    logical, intent(in) :: closed(:)
     type(error_t), allocatable, intent(out) :: err
     integer, allocatable :: order(:)
-    real(dp) :: displacement(3), stress(3)
     character(len=128) :: line
     integer :: v, i, s
-    order = argsort_integers(model%mesh%node_id(contact%slave_node))
+    order = argsort_integers(model%mesh%node_id(node))
     do v = 1, size(request%variables)
       if (request%variables(v)%s == 'CDIS') then
         write (line, '(a,e14.7)') ' relative contact displacement (slave node,normal,tang1,' // &
@@ -213,12 +211,11 @@ contains
       do i = 1, size(order)
         if (allocated(err)) return
         s = order(i)
-        if (cstate%status(s) == CONTACT_OPEN) cycle
-        call contact%local_values(s, x, cstate, displacement, stress)
+        if (.not. closed(s)) cycle
         if (request%variables(v)%s == 'CDIS') then
-          write (line, '(i10,3es14.6)') model%mesh%node_id(contact%slave_node(s)), displacement
+          write (line, '(i10,3es14.6)') model%mesh%node_id(node(s)), displacement(:, s)
         else
-          write (line, '(i10,3es14.6)') model%mesh%node_id(contact%slave_node(s)), stress
+          write (line, '(i10,3es14.6)') model%mesh%node_id(node(s)), stress(:, s)
         end if
         call this%file%write(trim(line), err)
       end do

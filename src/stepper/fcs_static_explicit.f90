@@ -216,7 +216,7 @@ contains
     type(analysis_t), intent(inout) :: a
     type(model_t), intent(in) :: model
     type(error_t), allocatable, intent(out) :: err
-    if (a%contact%pattern_dirty) call build_pattern(a, model)
+    if (a%contact%needs_pattern()) call build_pattern(a, model)
     if (a%ordering_due) then
       call give_global_ordering(a, model, err)
       call a%comm%agree_error(err)
@@ -528,22 +528,23 @@ contains
     type(analysis_t), intent(inout) :: a
     type(step_t), intent(in) :: step
     real(dp), intent(in) :: dt
-    real(dp) :: limits(3), factors(3)
-    integer :: i, worst
+    real(dp) :: limits(3), factors(3), change(3)
+    integer :: i, worst, change_node(3)
     integer, parameter :: kinds(3) = [EVENT_SLIP_RATE_CHANGE, EVENT_FRICTION_CHANGE, EVENT_STATE_CHANGE]
-    if (all(a%contact%change <= 0.0_dp) .or. dt <= 0.0_dp) then
+    call a%contact%friction_changes(change, change_node)
+    if (all(change <= 0.0_dp) .or. dt <= 0.0_dp) then
       a%state%friction_dt = 0.0_dp
       return
     end if
     limits = [step%rmin%max_log_rate_change, step%rmin%max_friction_change, step%rmin%max_state_change]
     factors = 2.0_dp
     do i = 1, 3
-      if (a%contact%change(i) > 0.0_dp) factors(i) = min(2.0_dp, limits(i) / a%contact%change(i))
+      if (change(i) > 0.0_dp) factors(i) = min(2.0_dp, limits(i) / change(i))
     end do
     worst = minloc(factors, 1)
     a%state%friction_dt = dt * factors(worst)
     a%state%friction_kind = kinds(worst)
-    a%state%friction_node = a%contact%change_node(worst)
+    a%state%friction_node = change_node(worst)
   end subroutine friction_step_control
 
   !> K + K_f + load stiffness and the internal, contact forces on the current state. Each
