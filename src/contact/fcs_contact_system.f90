@@ -48,6 +48,11 @@ module fcs_contact_system
   !> fraction); otherwise the corrected solution has moved it away and its state is decided
   !> as for any node.
   real(dp), parameter :: EVENT_BAND = 1.0e-2_dp
+  !> A stick node within this fraction of its cone (|f_t| >= (1 - STICK_BAND) mu f_n) that the
+  !> increment loads slips at its start instead of at an event at a tiny fraction r: round-off
+  !> fluctuations of the normal force no longer cost an increment each (a first slip moves
+  !> earlier by at most the time the load takes to grow by this fraction).
+  real(dp), parameter :: STICK_BAND = 1.0e-4_dp
   !> A node held on its face during equilibrium iterations stays on it up to this distance
   !> (natural coordinates) past a shared edge; farther, the search rule decides again.
   real(dp), parameter :: HOLD_LIMIT = 0.5_dp
