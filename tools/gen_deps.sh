@@ -1,5 +1,6 @@
 #!/bin/sh
-# Generate Makefile dependencies between Fortran objects from their `module` and `use` lines.
+# Generate Makefile dependencies between Fortran objects from their `module`, `submodule` and
+# `use` lines (a submodule depends on its parent module).
 # Usage: tools/gen_deps.sh BUILD_DIR file.f90 ... > deps.mk
 # Each file's object is BUILD_DIR/<basename>.o; a file that uses module m depends on the object
 # of the file that defines m. Only modules defined in the given files count (library modules
@@ -17,6 +18,10 @@ FNR == 1 { file = FILENAME; files[file] = 1 }
   if (match(line, /^[ \t]*module[ \t]+[a-z0-9_]+[ \t]*$/)) {
     split(line, w, /[ \t]+/); name = (w[1] == "" ? w[3] : w[2])
     if (name != "procedure") provider[name] = file
+  }
+  if (match(line, /^[ \t]*submodule[ \t]*\([ \t]*[a-z0-9_]+/)) {
+    parent = line; sub(/^[ \t]*submodule[ \t]*\([ \t]*/, "", parent); sub(/[ \t:)].*$/, "", parent)
+    uses[file] = uses[file] " " parent
   }
   if (match(line, /^[ \t]*use[ \t,]/)) {
     rest = line; sub(/^[ \t]*use[ \t]*(,[ \t]*(non_)?intrinsic[ \t]*::)?[ \t]*/, "", rest)

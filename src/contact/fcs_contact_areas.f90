@@ -1,12 +1,12 @@
 !> Tributary areas of slave nodes: the slave node's share of the slave surface,
 !> A_s = sum over slave faces of the integral of N_s dA (2x2 Gauss on the bilinear face), so
 !> that penalty stiffnesses and frictional stresses per unit area turn into nodal forces.
-!> A node-based slave surface has no faces of its own: the exterior faces of the mesh whose
-!> four nodes all belong to it are used.
+!> A node-based slave surface has no faces of its own: the exterior 4-node faces of the mesh
+!> whose four nodes all belong to it are used.
 module fcs_contact_areas
   use fcs_kinds, only: dp
   use fcs_error, only: error_t, input_error
-  use fcs_mesh, only: mesh_t, hex8_face_nodes, SURFACE_FACES
+  use fcs_mesh, only: mesh_t, SURFACE_FACES
   use fcs_contact_geometry, only: segment_point_t, segment_point
   use fcs_strings, only: str
   implicit none
@@ -24,7 +24,8 @@ contains
     real(dp), allocatable :: nodal(:)
     integer, allocatable :: face_nodes(:, :)
     integer :: i, f
-    call surface_face_nodes(mesh, k, face_nodes)
+    call surface_face_nodes(mesh, k, face_nodes, err)
+    if (allocated(err)) return
     allocate (nodal(mesh%n_nodes))
     nodal = 0.0_dp
     do f = 1, size(face_nodes, 2)
@@ -42,16 +43,28 @@ contains
 
   !> Add the integrals of N_a dA of one face to its nodes.
   !> The faces of surface k (4 node indices each, outward): its element faces, or for a
-  !> node-based surface the exterior faces of the mesh whose four nodes all belong to it.
-  subroutine surface_face_nodes(mesh, k, face_nodes)
+  !> node-based surface the exterior faces of the mesh whose four nodes all belong to it. The
+  !> contact segments are bilinear quadrilaterals: an element face of another shape is an
+  !> input error.
+  subroutine surface_face_nodes(mesh, k, face_nodes, err)
     type(mesh_t), intent(in) :: mesh
     integer, intent(in) :: k
     integer, allocatable, intent(out) :: face_nodes(:, :)
+    type(error_t), allocatable, intent(out) :: err
+    integer, allocatable :: nodes(:)
     integer :: f
     if (mesh%surfaces(k)%kind == SURFACE_FACES) then
       allocate (face_nodes(4, size(mesh%surfaces(k)%element)))
       do f = 1, size(face_nodes, 2)
-        face_nodes(:, f) = hex8_face_nodes(mesh, mesh%surfaces(k)%element(f), mesh%surfaces(k)%face(f))
+        nodes = mesh%face_nodes(mesh%surfaces(k)%element(f), mesh%surfaces(k)%face(f))
+        if (size(nodes) /= 4) then
+          call input_error(err, 'surface ' // mesh%surfaces(k)%name // ': face S' // &
+            str(mesh%surfaces(k)%face(f)) // ' of element ' // &
+            str(mesh%element_id(mesh%surfaces(k)%element(f))) // ' has ' // str(size(nodes)) // &
+            ' nodes; contact and ties need 4-node (quadrilateral) faces')
+          return
+        end if
+        face_nodes(:, f) = nodes
       end do
     else
       call exterior_faces_of_nodes(mesh, mesh%surfaces(k)%nodes, face_nodes)
@@ -79,14 +92,15 @@ contains
     integer, intent(in) :: nodes(:)
     integer, allocatable, intent(out) :: face_nodes(:, :)
     logical, allocatable :: in_set(:)
-    integer, allocatable :: node_ptr(:), node_elements(:), fill(:), found(:, :)
+    integer, allocatable :: node_ptr(:), node_elements(:), fill(:), found(:, :), element(:), face(:)
     integer :: e, a, f, n, quad(4)
     allocate (in_set(mesh%n_nodes), node_ptr(mesh%n_nodes + 1))
     in_set = .false.
     in_set(nodes) = .true.
     node_ptr = 0
     do e = 1, mesh%n_elements
-      node_ptr(mesh%connectivity(:, e) + 1) = node_ptr(mesh%connectivity(:, e) + 1) + 1
+      element = mesh%element_nodes(e)
+      node_ptr(element + 1) = node_ptr(element + 1) + 1
     end do
     node_ptr(1) = 1
     do a = 1, mesh%n_nodes
@@ -95,17 +109,20 @@ contains
     allocate (node_elements(node_ptr(mesh%n_nodes + 1) - 1))
     fill = node_ptr(1:mesh%n_nodes)
     do e = 1, mesh%n_elements
-      do a = 1, 8
-        node_elements(fill(mesh%connectivity(a, e))) = e
-        fill(mesh%connectivity(a, e)) = fill(mesh%connectivity(a, e)) + 1
+      element = mesh%element_nodes(e)
+      do a = 1, size(element)
+        node_elements(fill(element(a))) = e
+        fill(element(a)) = fill(element(a)) + 1
       end do
     end do
     allocate (found(4, 64))
     n = 0
     do e = 1, mesh%n_elements
-      if (count(in_set(mesh%connectivity(:, e))) < 4) cycle
-      do f = 1, 6
-        quad = hex8_face_nodes(mesh, e, f)
+      if (count(in_set(mesh%element_nodes(e))) < 4) cycle
+      do f = 1, mesh%n_faces(e)
+        face = mesh%face_nodes(e, f)
+        if (size(face) /= 4) cycle
+        quad = face
         if (.not. all(in_set(quad))) cycle
         if (shared(quad, e)) cycle
         if (n == size(found, 2)) found = reshape([found, found], [4, 2 * size(found, 2)])
@@ -124,7 +141,7 @@ contains
         if (other == owner) cycle
         shared = .true.
         do j = 2, 4
-          if (.not. any(mesh%connectivity(:, other) == quad(j))) shared = .false.
+          if (.not. any(mesh%element_nodes(other) == quad(j))) shared = .false.
         end do
         if (shared) return
       end do

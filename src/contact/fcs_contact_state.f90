@@ -1,8 +1,12 @@
 !> The contact state of every slave node of every contact pair (part of the run state, so
 !> that checkpoints hold it): status, current master face and natural coordinates, gap,
-!> forces, accumulated slip and slip rate, friction coefficient and friction state.
+!> forces, accumulated slip and slip rate, friction coefficient and friction state. The
+!> friction laws keep no run state of their own: the friction state of every node is here, and
+!> it saves and loads itself with the rest (`save`, `load`, group /contact of a checkpoint).
 module fcs_contact_state
   use fcs_kinds, only: dp
+  use fcs_error, only: error_t
+  use fcs_archive, only: archive_t
   implicit none
   private
   public :: contact_state_t
@@ -37,7 +41,13 @@ module fcs_contact_state
     real(dp), allocatable :: tangential_displacement(:, :)
   contains
     procedure :: init => contact_state_init
+    procedure :: save => contact_state_save
+    procedure :: load => contact_state_load
   end type contact_state_t
+
+  !> The scalar fields of a node, as the columns of /contact/scalars (this type's own layout,
+  !> read back only by `load`).
+  integer, parameter :: N_SCALARS = 9
 
 contains
 
@@ -64,5 +74,51 @@ contains
     this%tangential_displacement = 0.0_dp
     this%work = 0.0_dp
   end subroutine contact_state_init
+
+  !> Write the states into group /contact of `archive` (nothing without slave nodes).
+  subroutine contact_state_save(this, archive, err)
+    class(contact_state_t), intent(in) :: this
+    class(archive_t), intent(inout) :: archive
+    type(error_t), allocatable, intent(out) :: err
+    if (this%n == 0) return
+    call archive%group('/contact', err)
+    if (.not. allocated(err)) call archive%put('/contact/status', this%status, err)
+    if (.not. allocated(err)) call archive%put('/contact/face', this%face, err)
+    if (.not. allocated(err)) call archive%put('/contact/xi', this%xi, err)
+    if (.not. allocated(err)) call archive%put('/contact/friction', this%friction, err)
+    if (.not. allocated(err)) call archive%put('/contact/tangential_displacement', &
+                                               this%tangential_displacement, err)
+    if (.not. allocated(err)) call archive%put('/contact/scalars', reshape([this%gap, &
+      this%normal_force, this%trial_norm, this%slip, this%slip_rate, this%mu, &
+      this%friction_state, this%tied_gap, this%work], [this%n, N_SCALARS]), err)
+  end subroutine contact_state_save
+
+  !> Read what `save` wrote into states set up for the same slave nodes (`init`).
+  subroutine contact_state_load(this, archive, err)
+    class(contact_state_t), intent(inout) :: this
+    class(archive_t), intent(inout) :: archive
+    type(error_t), allocatable, intent(out) :: err
+    real(dp), allocatable :: scalars(:, :)
+    if (this%n == 0) return
+    call archive%get('/contact/status', this%status, err)
+    if (.not. allocated(err)) call archive%get('/contact/face', this%face, err)
+    if (.not. allocated(err)) call archive%get('/contact/xi', this%xi, err)
+    if (.not. allocated(err)) call archive%get('/contact/friction', this%friction, err)
+    if (.not. allocated(err)) call archive%get('/contact/tangential_displacement', &
+                                               this%tangential_displacement, err)
+    if (allocated(err)) return
+    allocate (scalars(this%n, N_SCALARS))
+    call archive%get('/contact/scalars', scalars, err)
+    if (allocated(err)) return
+    this%gap = scalars(:, 1)
+    this%normal_force = scalars(:, 2)
+    this%trial_norm = scalars(:, 3)
+    this%slip = scalars(:, 4)
+    this%slip_rate = scalars(:, 5)
+    this%mu = scalars(:, 6)
+    this%friction_state = scalars(:, 7)
+    this%tied_gap = scalars(:, 8)
+    this%work = scalars(:, 9)
+  end subroutine contact_state_load
 
 end module fcs_contact_state

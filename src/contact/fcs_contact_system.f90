@@ -13,29 +13,31 @@
 module fcs_contact_system
   use fcs_kinds, only: dp
   use fcs_error, only: error_t, fatal_error, input_error
-  use fcs_model, only: model_t, contact_pair_def_t
-  use fcs_mesh, only: mesh_t, hex8_face_nodes, SURFACE_FACES
+  use fcs_mesh, only: mesh_t
   use fcs_contact_geometry, only: segment_point_t, segment_point, project_to_segment, &
                                   calculix_tangents
-  use fcs_contact_search, only: face_grid_t, closest_face, edge_excess, edge_support, XI_TOLERANCE, &
-                                EDGE_EXTENSION
+  use fcs_contact_search, only: edge_excess, edge_support, XI_TOLERANCE, EDGE_EXTENSION
+  use fcs_contact_pair, only: contact_pair_def_t, contact_pair_t, pair_setup, face_coordinates, &
+                              search, follow
   use fcs_contact_element, only: contact_linear_t, contact_linearise, contact_update, &
                                  contact_update_t, contact_node_t, contact_params_t, CONTACT_OPEN, &
                                  CONTACT_STICK, CONTACT_SLIP, CONTACT_TIED
   use fcs_contact_state, only: contact_state_t
   use fcs_contact_areas, only: slave_node_areas, surface_face_nodes
   use fcs_contact_ties, only: tie_set_t
-  use fcs_friction_law, only: friction_law_t, friction_derivatives_t
-  use fcs_friction_factory, only: create_friction_law, friction_def_t
+  use fcs_friction_law, only: friction_derivatives_t
+  use fcs_friction_factory, only: friction_def_t, create_friction_law
   use fcs_sparse, only: sparse_matrix_t
   use fcs_rmin_events, only: rmin_collector_t, EVENT_CONTACT_CLOSE, EVENT_CONTACT_OPEN, &
                              EVENT_STICK_TO_SLIP, EVENT_SEGMENT_CHANGE, &
                              EVENT_NONE
   use fcs_sort, only: unique_sorted, argsort_integers
   use fcs_strings, only: str
+  use fcs_archive, only: archive_t
+  use fcs_field, only: field_t, field, FIELD_SURFACE
   implicit none
   private
-  public :: contact_system_t, contact_pair_t, pair_totals_t
+  public :: contact_system_t, contact_pair_def_t, pair_totals_t
 
   !> Gaps within this fraction of the mean master face size count as touching.
   real(dp), parameter :: GAP_TOLERANCE = 1.0e-8_dp
@@ -62,33 +64,9 @@ module fcs_contact_system
   !> Contact points within this distance (natural coordinates) of a segment edge are on it.
   real(dp), parameter :: SEGMENT_EDGE_TOLERANCE = 1.0e-6_dp
 
-  type :: contact_pair_t
-    character(len=:), allocatable :: name
-    logical :: tied = .false.
-    real(dp) :: normal_stiffness = 0.0_dp
-    real(dp) :: stick_stiffness = 0.0_dp
-    !> Mean master face size; search reach for open nodes; tie position tolerance.
-    real(dp) :: face_size = 0.0_dp
-    real(dp) :: reach = 0.0_dp
-    real(dp) :: position_tolerance = 0.0_dp
-    class(friction_law_t), allocatable :: law
-    !> Master faces (4 global node indices each, outward) and the faces sharing a node with
-    !> each face (itself included): neighbors(neighbor_ptr(f):neighbor_ptr(f+1)-1).
-    integer, allocatable :: face_nodes(:, :)
-    integer, allocatable :: neighbor_ptr(:), neighbors(:)
-    !> free_edge(k, f): edge k of face f (k = 1..4: nodes 1-2, 2-3, 3-4, 4-1, i.e. the edges
-    !> xi_2 = -1, xi_1 = 1, xi_2 = 1, xi_1 = -1) bounds the master surface (no other face
-    !> of the pair shares it).
-    logical, allocatable :: free_edge(:, :)
-    type(face_grid_t) :: grid
-    !> Slave entries of this pair in the contact state: first..last.
-    integer :: first = 1
-    integer :: last = 0
-    !> Slave nodes of the surface left out of this (untied) pair because a tie holds them.
-    integer :: n_held_by_tie = 0
-  end type contact_pair_t
-
-  !> Sums over a pair, for the log and histories.
+  !> Sums over a pair, for the log and histories: total normal and tangential forces, counts
+  !> by state, mean and largest accumulated slip, largest slip rate, and the mean pressure and
+  !> shear traction magnitude of the closed (not open) nodes.
   type :: pair_totals_t
     real(dp) :: normal_force = 0.0_dp
     real(dp) :: tangential_force(3) = 0.0_dp
@@ -96,9 +74,18 @@ module fcs_contact_system
     integer :: n_slip = 0
     integer :: n_open = 0
     integer :: n_tied = 0
+    real(dp) :: slip_mean = 0.0_dp
+    real(dp) :: slip_max = 0.0_dp
+    real(dp) :: rate_max = 0.0_dp
+    real(dp) :: pressure_mean = 0.0_dp
+    real(dp) :: shear_mean = 0.0_dp
   end type pair_totals_t
 
+  !> The contact system. Its components are private: the rest of the code asks it (pairs,
+  !> slave nodes, output fields, totals, events) and hands it the contact states to update,
+  !> so that another discretisation can be put behind the same procedures.
   type :: contact_system_t
+    private
     type(contact_pair_t), allocatable :: pairs(:)
     !> For each slave entry: its node, pair, tributary area.
     integer, allocatable :: slave_node(:), slave_pair(:)
@@ -152,7 +139,166 @@ module fcs_contact_system
     procedure :: hold_states => system_hold_states
     procedure :: check_held => system_check_held
     procedure :: release_states => system_release_states
+    procedure :: save => system_save
+    procedure :: load => system_load
+    procedure :: n_pairs => system_n_pairs
+    procedure :: pair_name => system_pair_name
+    procedure :: pair_is_tied => system_pair_is_tied
+    procedure :: set_pair_friction => system_set_pair_friction
+    procedure :: pair_slave_nodes => system_pair_slave_nodes
+    procedure :: held_by_tie => system_held_by_tie
+    procedure :: needs_pattern => system_needs_pattern
+    procedure :: friction_changes => system_friction_changes
+    procedure :: pair_fields => system_pair_fields
+    procedure :: pair_slip => system_pair_slip
+    procedure :: frictional_work => system_frictional_work
+    procedure :: print_values => system_print_values
   end type contact_system_t
+
+  interface
+    !> Offer the R-minimum events of the trial increment to the collector. The trial path is
+    !> du(r) = du_fixed + r du_scaled (the out-of-balance correction is applied in full, the
+    !> load increment scaled by r); contact quantities are linear in du (their linearisation).
+    module subroutine system_events(this, x, cstate, du_fixed, du_scaled, collector)
+      class(contact_system_t), intent(inout) :: this
+      real(dp), intent(in) :: x(:, :), du_fixed(:), du_scaled(:)
+      type(contact_state_t), intent(in) :: cstate
+      type(rmin_collector_t), intent(inout) :: collector
+    end subroutine system_events
+
+    !> State changes at the very start of the trial increment (r = 0), handled as in
+    !> elastic-plastic unloading (Yamada et al. 1968): a slipping node whose elastic (stick)
+    !> predictor stays inside the Coulomb cone unloads, and a sticking node on the cone whose
+    !> predictor leaves it at once slips; their tangents are switched and the caller solves the
+    !> increment again. Each node switches at most 10 times per increment (no endless flip-flop).
+    !> `n_switched` counts the switches made.
+    module subroutine system_switch_states(this, x, cstate, du, n_switched)
+      class(contact_system_t), intent(inout) :: this
+      real(dp), intent(in) :: x(:, :), du(:)
+      type(contact_state_t), intent(inout) :: cstate
+      integer, intent(out) :: n_switched
+    end subroutine system_switch_states
+
+    !> New contact state on the coordinates x after an increment of duration dt whose
+    !> fraction of the trial increment was r: the return mapping of every closed node (eq. 5),
+    !> segment hand-over, opening, and the search for open nodes. Events whose fractions were
+    !> within r are applied even when round-off leaves the node a hair short of them. The
+    !> events of the increment are kept, so that an equilibrium iteration applying the
+    !> corrected increment again from its start decides the same events.
+    module subroutine system_update(this, x, cstate, dt, r)
+      class(contact_system_t), intent(inout) :: this
+      real(dp), intent(in) :: x(:, :), dt, r
+      type(contact_state_t), intent(inout) :: cstate
+    end subroutine system_update
+
+    !> Hold every node in its open or closed state, and every closed node on its face,
+    !> through the equilibrium iterations that follow (the contact states "held" while the
+    !> forces are corrected; `check_held` then re-evaluates them on the corrected solution).
+    module subroutine system_hold_states(this, cstate)
+      class(contact_system_t), intent(inout) :: this
+      type(contact_state_t), intent(in) :: cstate
+    end subroutine system_hold_states
+
+    !> The held states against the corrected solution: a node held closed whose (bilateral)
+    !> normal force turned tensile is to open, a node held open that penetrates a master face
+    !> is to close. Each node changes at most MAX_HOLD_FLIPS times per increment (no endless
+    !> flip-flop); `n_changed` counts the changes, after which the caller iterates again.
+    module subroutine system_check_held(this, cstate, n_changed)
+      class(contact_system_t), intent(inout) :: this
+      type(contact_state_t), intent(in) :: cstate
+      integer, intent(out) :: n_changed
+    end subroutine system_check_held
+
+    !> End of the equilibrium iterations: the nodes decide their states freely again; a
+    !> closed node left with a tensile force below the force floor carries none.
+    module subroutine system_release_states(this, cstate)
+      class(contact_system_t), intent(inout) :: this
+      type(contact_state_t), intent(inout) :: cstate
+    end subroutine system_release_states
+
+    !> The state a node closes in: stick, or slip on a frictionless interface (mu = 0), whose
+    !> cone has no interior (a stick node there would reach the cone at once, an R-minimum
+    !> event at r = 0 that costs one increment at the minimum size per closing node).
+    pure module function closing_status(mu) result(status)
+      real(dp), intent(in) :: mu
+      integer :: status
+    end function closing_status
+
+    !> The kernel's view of slave s (status as given).
+    pure module function node_of(cstate, s, status) result(node)
+      type(contact_state_t), intent(in) :: cstate
+      integer, intent(in) :: s, status
+      type(contact_node_t) :: node
+    end function node_of
+
+    !> The friction coefficient of slave s's cone in the coming increment: the one in use, or
+    !> for a law with an explicit rate mu at the slip rate of the last increment (during the
+    !> equilibrium iterations, the one of the increment's return mapping).
+    module function cone_mu(this, s, cstate) result(mu)
+      type(contact_system_t), intent(in) :: this
+      integer, intent(in) :: s
+      type(contact_state_t), intent(in) :: cstate
+      real(dp) :: mu
+    end function cone_mu
+
+    !> Area and penalties of slave s, and the support of its master segment `face` at natural
+    !> point xi (1 when not given: tied nodes).
+    pure module function params_of(this, s, face, xi) result(params)
+      type(contact_system_t), intent(in) :: this
+      integer, intent(in) :: s
+      integer, intent(in), optional :: face
+      real(dp), intent(in), optional :: xi(2)
+      type(contact_params_t) :: params
+    end function params_of
+
+    !> Linearisation of closed node s on coordinates x; dt is the trial time increment the
+    !> rate term of the friction law refers to.
+    module subroutine linearise(this, s, x, cstate, dt, lin)
+      type(contact_system_t), intent(in) :: this
+      integer, intent(in) :: s
+      real(dp), intent(in) :: x(:, :), dt
+      type(contact_state_t), intent(in) :: cstate
+      type(contact_linear_t), intent(out) :: lin
+    end subroutine linearise
+
+    !> The 5 nodes of slave s's contact element.
+    pure module function element_nodes(this, s, cstate) result(nodes)
+      class(contact_system_t), intent(in) :: this
+      integer, intent(in) :: s
+      type(contact_state_t), intent(in) :: cstate
+      integer :: nodes(5)
+    end function element_nodes
+
+    !> n.(du_s - sum N_I du_I): the gap change for nodal increments due(15).
+    pure module function relative_normal(p, due) result(change)
+      type(segment_point_t), intent(in) :: p
+      real(dp), intent(in) :: due(15)
+      real(dp) :: change
+    end function relative_normal
+
+    !> How slave s is held now: HOLD_NONE outside the equilibrium iterations.
+    pure module function hold_mode(this, s) result(mode)
+      type(contact_system_t), intent(in) :: this
+      integer, intent(in) :: s
+      integer :: mode
+    end function hold_mode
+
+    !> The normal force of slave s below which it counts as zero: the penalty force of a
+    !> penetration of GAP_TOLERANCE times the pair's mean master face size.
+    pure module function normal_force_floor(this, s) result(floor)
+      type(contact_system_t), intent(in) :: this
+      integer, intent(in) :: s
+      real(dp) :: floor
+    end function normal_force_floor
+
+    !> Open slave s: no forces, on `face` (0: none in reach) at point p with gap `gap`.
+    module subroutine open_node(cstate, s, face, p, gap)
+      type(contact_state_t), intent(inout) :: cstate
+      integer, intent(in) :: s, face
+      type(segment_point_t), intent(in) :: p
+      real(dp), intent(in) :: gap
+    end subroutine open_node
+  end interface
 
 contains
 
@@ -162,10 +308,53 @@ contains
     if (allocated(this%slave_node)) system_n_slaves = size(this%slave_node)
   end function system_n_slaves
 
-  !> Set up every pair of the model on coordinates x and find the initial contact state.
-  subroutine system_init(this, model, x, cstate, err)
+  !> Write the search and pattern bookkeeping that a restart needs to continue exactly into
+  !> group /contact_system of `archive`: the face each slave's pattern clique was built
+  !> around, whether the pattern is due for a rebuild, and the coordinates each pair's search
+  !> grid was built on (the grid is rebuilt from them, as it was). Nothing without slaves.
+  subroutine system_save(this, archive, err)
+    class(contact_system_t), intent(in) :: this
+    class(archive_t), intent(inout) :: archive
+    type(error_t), allocatable, intent(out) :: err
+    integer :: k
+    if (this%n_slaves() == 0) return
+    call archive%group('/contact_system', err)
+    if (.not. allocated(err)) call archive%put('/contact_system/pattern_face', this%pattern_face, err)
+    do k = 1, size(this%pairs)
+      if (allocated(err)) return
+      call archive%put('/contact_system/grid_' // str(k), this%pairs(k)%grid%built_x, err)
+    end do
+    if (.not. allocated(err)) call archive%put_flag('/contact_system', 'pattern_dirty', &
+                                                    this%pattern_dirty, err)
+  end subroutine system_save
+
+  !> Read what `save` wrote into a system set up for the same model (`init`).
+  subroutine system_load(this, archive, err)
     class(contact_system_t), intent(inout) :: this
-    type(model_t), intent(in) :: model
+    class(archive_t), intent(inout) :: archive
+    type(error_t), allocatable, intent(out) :: err
+    real(dp), allocatable :: grid(:, :, :)
+    integer :: k
+    if (this%n_slaves() == 0) return
+    call archive%get('/contact_system/pattern_face', this%pattern_face, err)
+    do k = 1, size(this%pairs)
+      if (allocated(err)) return
+      allocate (grid, mold=this%pairs(k)%grid%built_x)
+      call archive%get('/contact_system/grid_' // str(k), grid, err)
+      if (.not. allocated(err)) call this%pairs(k)%grid%build(grid, this%pairs(k)%reach)
+      deallocate (grid)
+    end do
+    if (.not. allocated(err)) call archive%get_flag('/contact_system', 'pattern_dirty', &
+                                                    this%pattern_dirty, err)
+  end subroutine system_load
+
+  !> Set up the pairs `defs` on `mesh`, pair k with the friction law `frictions(k)`, on
+  !> coordinates x, and find the initial contact state.
+  subroutine system_init(this, defs, frictions, mesh, x, cstate, err)
+    class(contact_system_t), intent(inout) :: this
+    type(contact_pair_def_t), intent(in) :: defs(:)
+    type(friction_def_t), intent(in) :: frictions(:)
+    type(mesh_t), intent(in) :: mesh
     real(dp), intent(in) :: x(:, :)
     type(contact_state_t), intent(inout) :: cstate
     type(error_t), allocatable, intent(out) :: err
@@ -173,30 +362,30 @@ contains
     integer, allocatable :: slaves(:), slave_faces(:, :)
     real(dp), allocatable :: areas(:)
     logical, allocatable :: tied(:)
-    allocate (this%pairs(size(model%contact_pairs)), this%slave_node(0), this%slave_pair(0), &
-              this%area(0))
-    do k = 1, size(model%contact_pairs)
-      call setup_pair(this%pairs(k), model, model%contact_pairs(k), x, err)
+    allocate (this%pairs(size(defs)), this%slave_node(0), this%slave_pair(0), this%area(0))
+    do k = 1, size(defs)
+      call pair_setup(this%pairs(k), defs(k), frictions(k), mesh, x, err)
       if (allocated(err)) return
     end do
-    call tied_nodes(this, model, x, tied)
-    this%reference = model%mesh%x
-    do k = 1, size(model%contact_pairs)
+    call tied_nodes(this, defs, mesh, x, tied)
+    this%reference = mesh%x
+    do k = 1, size(defs)
       if (.not. this%pairs(k)%tied) cycle
-      call surface_face_nodes(model%mesh, model%contact_pairs(k)%slave_surface, slave_faces)
+      call surface_face_nodes(mesh, defs(k)%slave_surface, slave_faces, err)
+      if (allocated(err)) return
       call this%ties%add(slave_faces, this%pairs(k)%face_nodes, x, this%pairs(k)%normal_stiffness, &
                          this%pairs(k)%position_tolerance)
     end do
     n_total = 0
-    do k = 1, size(model%contact_pairs)
-      call slave_nodes_of(model, model%contact_pairs(k), this%pairs(k), slaves)
+    do k = 1, size(defs)
+      call slave_nodes_of(mesh, defs(k), this%pairs(k), slaves)
       if (.not. this%pairs(k)%tied) then
         this%pairs(k)%n_held_by_tie = count(tied(slaves))
         slaves = pack(slaves, .not. tied(slaves))
       end if
-      call slave_node_areas(model%mesh, model%contact_pairs(k)%slave_surface, slaves, areas, err)
+      call slave_node_areas(mesh, defs(k)%slave_surface, slaves, areas, err)
       if (allocated(err)) then
-        err%message = 'contact pair ' // model%contact_pairs(k)%name // ': ' // err%message
+        err%message = 'contact pair ' // defs(k)%name // ': ' // err%message
         return
       end if
       this%pairs(k)%first = n_total + 1
@@ -218,140 +407,27 @@ contains
     this%pattern_face = cstate%face
   end subroutine system_init
 
-  !> Faces, neighbours, penalties, friction law and search grid of one pair.
-  subroutine setup_pair(pair, model, def, x, err)
-    type(contact_pair_t), intent(inout) :: pair
-    type(model_t), intent(in) :: model
-    type(contact_pair_def_t), intent(in) :: def
-    real(dp), intent(in) :: x(:, :)
-    type(error_t), allocatable, intent(out) :: err
-    type(friction_def_t) :: frictionless
-    integer :: f, nf
-    pair%name = def%name
-    pair%tied = def%tied
-    pair%normal_stiffness = def%normal_stiffness
-    pair%stick_stiffness = def%stick_stiffness
-    pair%position_tolerance = def%position_tolerance
-    associate (surface => model%mesh%surfaces(def%master_surface))
-      nf = size(surface%element)
-      allocate (pair%face_nodes(4, nf))
-      do f = 1, nf
-        pair%face_nodes(:, f) = hex8_face_nodes(model%mesh, surface%element(f), surface%face(f))
-      end do
-    end associate
-    pair%face_size = 0.0_dp
-    do f = 1, nf
-      pair%face_size = pair%face_size + 0.5_dp * (norm2(x(:, pair%face_nodes(3, f)) - &
-        x(:, pair%face_nodes(1, f))) + norm2(x(:, pair%face_nodes(4, f)) - x(:, pair%face_nodes(2, f))))
-    end do
-    pair%face_size = pair%face_size / (sqrt(2.0_dp) * nf)
-    pair%reach = pair%face_size
-    call face_neighbours(pair, model%mesh%n_nodes)
-    call free_edges(pair)
-    call pair%grid%build(face_coordinates(pair, x), pair%reach)
-    frictionless%law = 'COULOMB'
-    frictionless%mu0 = 0.0_dp
-    if (def%interaction > 0) then
-      if (model%interactions(def%interaction)%has_friction) then
-        call create_friction_law(model%interactions(def%interaction)%friction, pair%law, err)
-        if (allocated(err)) return
-      end if
-    end if
-    if (.not. allocated(pair%law)) call create_friction_law(frictionless, pair%law, err)
-  end subroutine setup_pair
-
-  !> Node coordinates of every master face of a pair, (3, 4, n_faces).
-  pure function face_coordinates(pair, x) result(face_x)
-    type(contact_pair_t), intent(in) :: pair
-    real(dp), intent(in) :: x(:, :)
-    real(dp) :: face_x(3, 4, size(pair%face_nodes, 2))
-    integer :: f
-    do f = 1, size(pair%face_nodes, 2)
-      face_x(:, :, f) = x(:, pair%face_nodes(:, f))
-    end do
-  end function face_coordinates
-
-  !> For every face, the faces sharing at least one node with it (itself included).
-  subroutine face_neighbours(pair, n_nodes)
-    type(contact_pair_t), intent(inout) :: pair
-    integer, intent(in) :: n_nodes
-    integer, allocatable :: node_ptr(:), node_faces(:), fill(:), found(:)
-    integer :: f, i, nf, node, j
-    nf = size(pair%face_nodes, 2)
-    allocate (node_ptr(n_nodes + 1))
-    node_ptr = 0
-    do f = 1, nf
-      node_ptr(pair%face_nodes(:, f) + 1) = node_ptr(pair%face_nodes(:, f) + 1) + 1
-    end do
-    node_ptr(1) = 1
-    do i = 1, n_nodes
-      node_ptr(i + 1) = node_ptr(i + 1) + node_ptr(i)
-    end do
-    allocate (node_faces(node_ptr(n_nodes + 1) - 1))
-    fill = node_ptr(1:n_nodes)
-    do f = 1, nf
-      do i = 1, 4
-        node = pair%face_nodes(i, f)
-        node_faces(fill(node)) = f
-        fill(node) = fill(node) + 1
-      end do
-    end do
-    allocate (pair%neighbor_ptr(nf + 1), pair%neighbors(0))
-    pair%neighbor_ptr(1) = 1
-    do f = 1, nf
-      allocate (found(0))
-      do i = 1, 4
-        node = pair%face_nodes(i, f)
-        found = [found, (node_faces(j), j = node_ptr(node), node_ptr(node + 1) - 1)]
-      end do
-      found = unique_sorted(found)
-      pair%neighbors = [pair%neighbors, found]
-      pair%neighbor_ptr(f + 1) = pair%neighbor_ptr(f) + size(found)
-      deallocate (found)
-    end do
-  end subroutine face_neighbours
-
-  !> Which face edges bound the master surface: an edge is free when no other face of the
-  !> pair has both its nodes (faces sharing a node are the only candidates).
-  pure subroutine free_edges(pair)
-    type(contact_pair_t), intent(inout) :: pair
-    integer :: f, k, j, other, a, b
-    allocate (pair%free_edge(4, size(pair%face_nodes, 2)))
-    pair%free_edge = .true.
-    do f = 1, size(pair%face_nodes, 2)
-      do k = 1, 4
-        a = pair%face_nodes(k, f)
-        b = pair%face_nodes(mod(k, 4) + 1, f)
-        do j = pair%neighbor_ptr(f), pair%neighbor_ptr(f + 1) - 1
-          other = pair%neighbors(j)
-          if (other == f) cycle
-          if (any(pair%face_nodes(:, other) == a) .and. any(pair%face_nodes(:, other) == b)) &
-            pair%free_edge(k, f) = .false.
-        end do
-      end do
-    end do
-  end subroutine free_edges
-
   !> The nodes a tie holds: slave nodes of a tied pair within its position tolerance of its
   !> master surface (those `initial_state` ties). A node both tied and a slave of a contact
   !> pair (the end of a fault segment next to a tied segment) is left to the tie and taken
   !> out of the contact pair, as Abaqus does with such overconstraints: two penalty elements
   !> on one node, the tie's and a frictional one, would otherwise both act on it and the
   !> frictional one would record a slip the tie does not allow.
-  subroutine tied_nodes(this, model, x, tied)
+  subroutine tied_nodes(this, defs, mesh, x, tied)
     type(contact_system_t), intent(in) :: this
-    type(model_t), intent(in) :: model
+    type(contact_pair_def_t), intent(in) :: defs(:)
+    type(mesh_t), intent(in) :: mesh
     real(dp), intent(in) :: x(:, :)
     logical, allocatable, intent(out) :: tied(:)
     type(segment_point_t) :: p
     integer, allocatable :: slaves(:)
     integer :: k, i, face
     real(dp) :: gap
-    allocate (tied(model%mesh%n_nodes))
+    allocate (tied(mesh%n_nodes))
     tied = .false.
     do k = 1, size(this%pairs)
       if (.not. this%pairs(k)%tied) cycle
-      call slave_nodes_of(model, model%contact_pairs(k), this%pairs(k), slaves)
+      call slave_nodes_of(mesh, defs(k), this%pairs(k), slaves)
       do i = 1, size(slaves)
         call search(this%pairs(k), x, x(:, slaves(i)), face, p, gap)
         if (face /= 0) tied(slaves(i)) = tied(slaves(i)) .or. &
@@ -361,17 +437,17 @@ contains
   end subroutine tied_nodes
 
   !> Slave nodes of a pair: the slave surface's nodes, less those on the master surface.
-  subroutine slave_nodes_of(model, def, pair, slaves)
-    type(model_t), intent(in) :: model
+  subroutine slave_nodes_of(mesh, def, pair, slaves)
+    type(mesh_t), intent(in) :: mesh
     type(contact_pair_def_t), intent(in) :: def
     type(contact_pair_t), intent(in) :: pair
     integer, allocatable, intent(out) :: slaves(:)
     integer, allocatable :: all(:), master(:)
     logical, allocatable :: on_master(:)
     integer :: i
-    all = model%mesh%surface_node_list(def%slave_surface)
+    all = mesh%surface_node_list(def%slave_surface)
     master = unique_sorted(reshape(pair%face_nodes, [size(pair%face_nodes)]))
-    allocate (on_master(model%mesh%n_nodes))
+    allocate (on_master(mesh%n_nodes))
     on_master = .false.
     on_master(master) = .true.
     slaves = pack(all, [(.not. on_master(all(i)), i = 1, size(all))])
@@ -415,75 +491,9 @@ contains
     end do
   end subroutine initial_state
 
-  !> The state a node closes in: stick, or slip on a frictionless interface (mu = 0), whose
-  !> cone has no interior (a stick node there would reach the cone at once, an R-minimum
-  !> event at r = 0 that costs one increment at the minimum size per closing node).
-  pure integer function closing_status(mu) result(status)
-    real(dp), intent(in) :: mu
-    status = CONTACT_STICK
-    if (mu <= 0.0_dp) status = CONTACT_SLIP
-  end function closing_status
 
-  !> The kernel's view of slave s (status as given).
-  pure function node_of(cstate, s, status) result(node)
-    type(contact_state_t), intent(in) :: cstate
-    integer, intent(in) :: s, status
-    type(contact_node_t) :: node
-    node%status = status
-    node%normal_force = cstate%normal_force(s)
-    node%friction = cstate%friction(:, s)
-    node%trial_norm = max(cstate%trial_norm(s), norm2(cstate%friction(:, s)))
-    node%friction_state = cstate%friction_state(s)
-    node%tied_gap = cstate%tied_gap(s)
-    node%slip_rate = cstate%slip_rate(s)
-  end function node_of
 
-  !> The friction coefficient of slave s's cone in the coming increment: the one in use, or
-  !> for a law with an explicit rate mu at the slip rate of the last increment (during the
-  !> equilibrium iterations, the one of the increment's return mapping).
-  real(dp) function cone_mu(this, s, cstate) result(mu)
-    type(contact_system_t), intent(in) :: this
-    integer, intent(in) :: s
-    type(contact_state_t), intent(in) :: cstate
-    associate (law => this%pairs(this%slave_pair(s))%law)
-      ! During the equilibrium iterations of an increment the state is an iterate whose
-      ! slip rate is the increment's own: its cone is the one its return mapping used.
-      if (law%explicit_rate .and. .not. this%holding) then
-        mu = law%mu(cstate%normal_force(s) / this%area(s), cstate%slip_rate(s), &
-                    cstate%friction_state(s))
-      else
-        mu = cstate%mu(s)
-      end if
-    end associate
-  end function cone_mu
 
-  !> Area and penalties of slave s, and the support of its master segment `face` at natural
-  !> point xi (1 when not given: tied nodes).
-  pure function params_of(this, s, face, xi) result(params)
-    type(contact_system_t), intent(in) :: this
-    integer, intent(in) :: s
-    integer, intent(in), optional :: face
-    real(dp), intent(in), optional :: xi(2)
-    type(contact_params_t) :: params
-    params%area = this%area(s)
-    params%normal_stiffness = this%pairs(this%slave_pair(s))%normal_stiffness
-    params%stick_stiffness = this%pairs(this%slave_pair(s))%stick_stiffness
-    if (present(face) .and. present(xi)) call edge_support(xi, &
-      this%pairs(this%slave_pair(s))%free_edge(:, face), params%support, params%dsupport)
-  end function params_of
-
-  !> Global search of one point: grid candidates, then the projection rule.
-  subroutine search(pair, x, xs, face, point, gap)
-    type(contact_pair_t), intent(in) :: pair
-    real(dp), intent(in) :: x(:, :), xs(3)
-    integer, intent(out) :: face
-    type(segment_point_t), intent(out) :: point
-    real(dp), intent(out) :: gap
-    integer, allocatable :: candidates(:)
-    call pair%grid%candidates(xs, candidates)
-    call closest_face(pair%face_nodes, x, candidates, xs, pair%reach, face, point, gap, pair%free_edge, &
-                      extend=.true.)
-  end subroutine search
 
   !> Cliques for the sparse pattern: each slave with a face, with the nodes of that face and
   !> of its neighbours. Appended to clique_ptr/clique_nodes. The faces are the current ones,
@@ -532,59 +542,7 @@ contains
     if (size(owned) > 0) owns_ties = owned(1)
   end function owns_ties
 
-  !> Linearisation of closed node s on coordinates x; dt is the trial time increment the
-  !> rate term of the friction law refers to.
-  subroutine linearise(this, s, x, cstate, dt, lin)
-    type(contact_system_t), intent(in) :: this
-    integer, intent(in) :: s
-    real(dp), intent(in) :: x(:, :), dt
-    type(contact_state_t), intent(in) :: cstate
-    type(contact_linear_t), intent(out) :: lin
-    type(segment_point_t) :: p, p_start
-    type(friction_derivatives_t) :: fr
-    type(contact_node_t) :: node
-    type(contact_params_t) :: params
-    real(dp) :: x5(3, 5), dt_rate
-    integer :: start_face
-    associate (pair => this%pairs(this%slave_pair(s)))
-      x5(:, 1) = x(:, this%slave_node(s))
-      x5(:, 2:5) = x(:, pair%face_nodes(:, cstate%face(s)))
-      p = segment_point(x5(:, 2:5), cstate%xi(:, s))
-      fr = pair%law%evaluate(cstate%normal_force(s) / this%area(s), cstate%slip_rate(s), &
-                             cstate%friction_state(s))
-      fr%mu = cone_mu(this, s, cstate)
-      node = node_of(cstate, s, cstate%status(s))
-      node%bilateral = hold_mode(this, s) == HOLD_CLOSED
-      params = params_of(this, s, cstate%face(s), cstate%xi(:, s))
-      ! An explicit rate is known at the start of the increment: no rate term in the tangent.
-      dt_rate = merge(0.0_dp, dt, pair%law%explicit_rate)
-      start_face = 0
-      if (this%holding) start_face = this%start_face(s)
-      if (start_face == 0) then
-        call contact_linearise(x5, p, cstate%gap(s), node, params, fr, dt_rate, lin)
-      else
-        ! An iterate of the equilibrium iterations: it has slipped since the start point.
-        p_start = segment_point(x(:, pair%face_nodes(:, start_face)), this%start_xi(:, s))
-        if (start_face == cstate%face(s)) then
-          call contact_linearise(x5, p, cstate%gap(s), node, params, fr, dt_rate, lin, &
-                                 p%x - p_start%x, p_start%shape)
-        else
-          call contact_linearise(x5, p, cstate%gap(s), node, params, fr, dt_rate, lin, &
-                                 p%x - p_start%x)
-        end if
-      end if
-    end associate
-  end subroutine linearise
 
-  !> The 5 nodes of slave s's contact element.
-  pure function element_nodes(this, s, cstate) result(nodes)
-    class(contact_system_t), intent(in) :: this
-    integer, intent(in) :: s
-    type(contact_state_t), intent(in) :: cstate
-    integer :: nodes(5)
-    nodes(1) = this%slave_node(s)
-    nodes(2:5) = this%pairs(this%slave_pair(s))%face_nodes(:, cstate%face(s))
-  end function element_nodes
 
   !> Add K_f of every closed node to `matrix` and its forces R f to f_contact (3*n_nodes).
   subroutine system_assemble(this, x, cstate, dt, matrix, f_contact, err, owned)
@@ -625,297 +583,7 @@ contains
     end do
   end subroutine system_assemble
 
-  !> Offer the R-minimum events of the trial increment to the collector. The trial path is
-  !> du(r) = du_fixed + r du_scaled (the out-of-balance correction is applied in full, the
-  !> load increment scaled by r); contact quantities are linear in du (their linearisation).
-  subroutine system_events(this, x, cstate, du_fixed, du_scaled, collector)
-    class(contact_system_t), intent(inout) :: this
-    real(dp), intent(in) :: x(:, :), du_fixed(:), du_scaled(:)
-    type(contact_state_t), intent(in) :: cstate
-    type(rmin_collector_t), intent(inout) :: collector
-    type(contact_linear_t) :: lin
-    type(segment_point_t) :: p
-    real(dp) :: due_fixed(15), due_scaled(15), g_start, g_end
-    integer :: s, a, nodes(5)
-    this%event_r = huge(1.0_dp)
-    this%event_kind = EVENT_NONE
-    ! The switch passes of this increment are over: the next increment's start afresh.
-    this%switches = 0
-    do s = 1, size(this%slave_node)
-      if (cstate%face(s) == 0 .or. cstate%status(s) == CONTACT_TIED) cycle
-      nodes = element_nodes(this, s, cstate)
-      do a = 1, 5
-        due_fixed(3 * a - 2:3 * a) = du_fixed(3 * nodes(a) - 2:3 * nodes(a))
-        due_scaled(3 * a - 2:3 * a) = du_scaled(3 * nodes(a) - 2:3 * nodes(a))
-      end do
-      if (cstate%status(s) == CONTACT_OPEN) then
-        p = segment_point(x(:, nodes(2:5)), cstate%xi(:, s))
-        g_start = cstate%gap(s) + relative_normal(p, due_fixed)
-        g_end = g_start + relative_normal(p, due_scaled)
-        if (cstate%gap(s) > 0.0_dp .and. g_end < 0.0_dp) &
-          call offer(this, collector, s, crossing(g_start, g_end), EVENT_CONTACT_CLOSE)
-        cycle
-      end if
-      call linearise(this, s, x, cstate, 0.0_dp, lin)
-      p = segment_point(x(:, nodes(2:5)), cstate%xi(:, s))
-      call closed_node_events(this, s, p, cstate, lin, due_fixed, due_scaled, collector)
-    end do
-  end subroutine system_events
 
-  !> n.(du_s - sum N_I du_I): the gap change for nodal increments due(15).
-  pure real(dp) function relative_normal(p, due)
-    type(segment_point_t), intent(in) :: p
-    real(dp), intent(in) :: due(15)
-    relative_normal = dot_product(p%normal, due(1:3) - matmul(reshape(due(4:15), [3, 4]), p%shape))
-  end function relative_normal
-
-  !> Fraction at which a quantity going linearly from v_start (r = 0) to v_end (r = 1)
-  !> reaches zero (0 if it starts at or beyond zero).
-  pure real(dp) function crossing(v_start, v_end) result(r)
-    real(dp), intent(in) :: v_start, v_end
-    if (v_start * v_end >= 0.0_dp .and. abs(v_start) <= abs(v_end)) then
-      r = 0.0_dp
-    else
-      r = v_start / (v_start - v_end)
-    end if
-  end function crossing
-
-  !> State changes at the very start of the trial increment (r = 0), handled as in
-  !> elastic-plastic unloading (Yamada et al. 1968): a slipping node whose elastic (stick)
-  !> predictor stays inside the Coulomb cone unloads, and a sticking node on the cone whose
-  !> predictor leaves it at once slips; their tangents are switched and the caller solves the
-  !> increment again. Each node switches at most 10 times per increment (no endless flip-flop).
-  !> `n_switched` counts the switches made.
-  subroutine system_switch_states(this, x, cstate, du, n_switched)
-    class(contact_system_t), intent(inout) :: this
-    real(dp), intent(in) :: x(:, :), du(:)
-    type(contact_state_t), intent(inout) :: cstate
-    integer, intent(out) :: n_switched
-    type(contact_linear_t) :: lin
-    type(segment_point_t) :: p
-    real(dp) :: due(15), fn, dfn, ft(3), dft(3), mu, qa, qb, qc, tolerance
-    integer :: s, a, nodes(5)
-    logical :: on_cone
-    n_switched = 0
-    do s = 1, size(this%slave_node)
-      if (cstate%status(s) /= CONTACT_STICK .and. cstate%status(s) /= CONTACT_SLIP) cycle
-      if (this%switches(s) >= 10) cycle
-      nodes = element_nodes(this, s, cstate)
-      do a = 1, 5
-        due(3 * a - 2:3 * a) = du(3 * nodes(a) - 2:3 * nodes(a))
-      end do
-      call linearise(this, s, x, cstate, 0.0_dp, lin)
-      p = segment_point(x(:, nodes(2:5)), cstate%xi(:, s))
-      fn = cstate%normal_force(s)
-      dfn = dot_product(lin%dfn, due)
-      ! A node closed at (numerically) zero normal force that the trial increment pulls into
-      ! tension separates now: closed_node_events offers no opening event below the force
-      ! floor, so its penalty spring would otherwise hold the bodies together in tension for
-      ! the whole increment.
-      if (fn <= normal_force_floor(this, s) .and. fn + dfn < 0.0_dp) then
-        call open_node(cstate, s, cstate%face(s), p, cstate%gap(s))
-        this%switches(s) = this%switches(s) + 1
-        n_switched = n_switched + 1
-        cycle
-      end if
-      ft = cstate%friction(1, s) * p%e(:, 1) + cstate%friction(2, s) * p%e(:, 2)
-      if (norm2(ft) <= 0.0_dp) cycle
-      mu = cone_mu(this, s, cstate)
-      dft = matmul(lin%dft_stick, due)
-      qa = dot_product(dft, dft) - mu**2 * dfn**2
-      qb = 2.0_dp * (dot_product(ft, dft) - mu**2 * fn * dfn)
-      qc = dot_product(ft, ft) - mu**2 * fn**2
-      tolerance = cone_tolerance(fn, ft, dfn, dft, mu)
-      ! A slip node counts as on the cone down to the event band (|f_t| >= (1 - EVENT_BAND)
-      ! mu f_n): one that a small rise of its normal force has left a hair inside keeps
-      ! slipping unless the increment unloads it (hysteresis: no slip->stick->slip chatter of
-      ! nodes that sit on the cone while their normal force fluctuates, e.g. in a rigid
-      ! rotation). A stick node must come within the much narrower STICK_BAND: otherwise its
-      ! stick->slip change is an event at the crossing (closed_node_events), so first slips
-      ! keep their times (a 1 % band moved the fault-bend run's first slip by 2 %).
-      if (cstate%status(s) == CONTACT_SLIP) then
-        on_cone = qc >= -max(tolerance, (1.0_dp - (1.0_dp - EVENT_BAND)**2) * (mu * fn)**2)
-      else
-        on_cone = qc >= -max(tolerance, (1.0_dp - (1.0_dp - STICK_BAND)**2) * (mu * fn)**2)
-      end if
-      if (cstate%status(s) == CONTACT_SLIP) then
-        if (.not. on_cone .or. (qb < -tolerance .or. (abs(qb) <= tolerance .and. qa < 0.0_dp))) then
-          cstate%status(s) = CONTACT_STICK
-          this%switches(s) = this%switches(s) + 1
-          n_switched = n_switched + 1
-        end if
-      else if (on_cone .and. (qb > tolerance .or. (abs(qb) <= tolerance .and. qa > 0.0_dp))) then
-        cstate%status(s) = CONTACT_SLIP
-        cstate%trial_norm(s) = norm2(ft)
-        this%switches(s) = this%switches(s) + 1
-        n_switched = n_switched + 1
-      end if
-    end do
-  end subroutine system_switch_states
-
-  !> The normal force of slave s below which it counts as zero: the penalty force of a
-  !> penetration of GAP_TOLERANCE times the pair's mean master face size.
-  pure real(dp) function normal_force_floor(this, s) result(floor)
-    type(contact_system_t), intent(in) :: this
-    integer, intent(in) :: s
-    associate (pair => this%pairs(this%slave_pair(s)))
-      floor = GAP_TOLERANCE * pair%normal_stiffness * this%area(s) * pair%face_size
-    end associate
-  end function normal_force_floor
-
-  !> Opening, stick-to-slip (the quadratic F(r) = 0 of eq. 3), segment exit, along the
-  !> path du_fixed + r du_scaled.
-  subroutine closed_node_events(this, s, p, cstate, lin, due_fixed, due_scaled, collector)
-    type(contact_system_t), intent(inout) :: this
-    integer, intent(in) :: s
-    type(segment_point_t), intent(in) :: p
-    type(contact_state_t), intent(in) :: cstate
-    type(contact_linear_t), intent(in) :: lin
-    real(dp), intent(in) :: due_fixed(15), due_scaled(15)
-    type(rmin_collector_t), intent(inout) :: collector
-    real(dp) :: fn, dfn, ft(3), dft(3), mu, qa, qb, qc, xi_start(2), dxi(2), r, fn_floor, bound
-    integer :: alpha, edge
-    associate (pair => this%pairs(this%slave_pair(s)))
-      fn = cstate%normal_force(s) + dot_product(lin%dfn, due_fixed)
-      dfn = dot_product(lin%dfn, due_scaled)
-      fn_floor = normal_force_floor(this, s)
-      if (cstate%normal_force(s) > fn_floor .and. fn + dfn < 0.0_dp) &
-        call offer(this, collector, s, crossing(fn, fn + dfn), EVENT_CONTACT_OPEN)
-      ft = cstate%friction(1, s) * p%e(:, 1) + cstate%friction(2, s) * p%e(:, 2) + &
-           matmul(lin%dft_stick, due_fixed)
-      mu = cone_mu(this, s, cstate)
-      if (cstate%status(s) == CONTACT_STICK) then
-        dft = matmul(lin%dft_stick, due_scaled)
-        qa = dot_product(dft, dft) - mu**2 * dfn**2
-        qb = 2.0_dp * (dot_product(ft, dft) - mu**2 * fn * dfn)
-        qc = dot_product(ft, ft) - mu**2 * fn**2
-        r = cone_crossing(qa, qb, qc, cone_tolerance(fn, ft, dfn, dft, mu))
-        if (r <= 1.0_dp) call offer(this, collector, s, r, EVENT_STICK_TO_SLIP)
-      end if
-      xi_start = cstate%xi(:, s) + matmul(lin%dxi, due_fixed)
-      dxi = matmul(lin%dxi, due_scaled)
-      do alpha = 1, 2
-        ! Reaching a shared edge (hand-over to the next segment), or the end of the extension
-        ! past a free edge (the node leaves the master surface). A node already on a shared
-        ! edge (nodes on master nodes or edges) changes segment by the hand-over rule in the
-        ! update; no event is needed.
-        if (alpha == 1) then
-          edge = merge(4, 2, xi_start(alpha) + dxi(alpha) < 0.0_dp)
-        else
-          edge = merge(1, 3, xi_start(alpha) + dxi(alpha) < 0.0_dp)
-        end if
-        bound = 1.0_dp
-        if (pair%free_edge(edge, cstate%face(s))) bound = 1.0_dp + EDGE_EXTENSION
-        if (abs(cstate%xi(alpha, s)) < bound - SEGMENT_EDGE_TOLERANCE .and. &
-            abs(xi_start(alpha) + dxi(alpha)) > bound) &
-          call offer(this, collector, s, crossing(abs(xi_start(alpha)) - bound, &
-                     abs(xi_start(alpha) + dxi(alpha)) - bound), EVENT_SEGMENT_CHANGE)
-      end do
-    end associate
-  end subroutine closed_node_events
-
-  !> New contact state on the coordinates x after an increment of duration dt whose
-  !> fraction of the trial increment was r: the return mapping of every closed node (eq. 5),
-  !> segment hand-over, opening, and the search for open nodes. Events whose fractions were
-  !> within r are applied even when round-off leaves the node a hair short of them. The
-  !> events of the increment are kept, so that an equilibrium iteration applying the
-  !> corrected increment again from its start decides the same events.
-  subroutine system_update(this, x, cstate, dt, r)
-    class(contact_system_t), intent(inout) :: this
-    real(dp), intent(in) :: x(:, :), dt, r
-    type(contact_state_t), intent(inout) :: cstate
-    integer :: k, s, kind
-    real(dp), allocatable :: tie_force(:)
-    real(dp) :: old_rate, old_mu, old_state
-    logical :: was_slipping
-    do k = 1, size(this%pairs)
-      if (this%pairs(k)%grid%needs_rebuild(this%pairs(k)%face_nodes, x)) &
-        call this%pairs(k)%grid%build(face_coordinates(this%pairs(k), x), this%pairs(k)%reach)
-    end do
-    this%change = 0.0_dp
-    this%change_node = 0
-    ! Where every node starts the increment (each application of an increment starts from the
-    ! same state): the equilibrium iterations linearise about the slip since then.
-    this%start_face = cstate%face
-    this%start_xi = cstate%xi
-    allocate (tie_force(size(x)))
-    tie_force = 0.0_dp
-    call this%ties%forces(x - this%reference, tie_force)
-    do s = 1, size(this%slave_node)
-      was_slipping = cstate%status(s) == CONTACT_SLIP .and. cstate%slip_rate(s) > 0.0_dp
-      old_rate = cstate%slip_rate(s)
-      old_mu = cstate%mu(s)
-      old_state = cstate%friction_state(s)
-      kind = EVENT_NONE
-      if (this%event_r(s) <= r * (1.0_dp + 1.0e-9_dp)) kind = this%event_kind(s)
-      select case (cstate%status(s))
-      case (CONTACT_TIED)
-        call update_tied(this, s, x, cstate, tie_force)
-      case (CONTACT_STICK, CONTACT_SLIP)
-        call update_closed(this, s, x, cstate, dt, kind)
-      case default
-        call update_open(this, s, x, cstate, kind)
-      end select
-      if (cstate%face(s) /= 0) then
-        if (.not. in_pattern(this, s, cstate%face(s))) this%pattern_dirty = .true.
-      end if
-      if (was_slipping .and. cstate%status(s) == CONTACT_SLIP .and. cstate%slip_rate(s) > 0.0_dp) &
-        call record_friction_changes(this, s, old_rate, old_mu, old_state, cstate)
-    end do
-    call leave_to_twins(this, cstate)
-  end subroutine system_update
-
-  !> A node that is a slave of several pairs (one slave surface against master bodies side by
-  !> side) touches one master at a time: an entry whose contact point lies in the extension
-  !> past a free edge of its master opens when another entry of the same node is closed
-  !> strictly on its own master (the node has crossed the joint), so that the joint does not
-  !> carry it twice.
-  subroutine leave_to_twins(this, cstate)
-    type(contact_system_t), intent(in) :: this
-    type(contact_state_t), intent(inout) :: cstate
-    type(segment_point_t) :: p
-    integer :: s
-    if (.not. allocated(this%twin)) return
-    do s = 1, size(this%slave_node)
-      if (this%twin(s) == 0) cycle
-      if (.not. in_extension(this, s, cstate)) cycle
-      if (.not. twin_inside(this, s, cstate)) cycle
-      p%xi = cstate%xi(:, s)
-      call open_node(cstate, s, cstate%face(s), p, cstate%gap(s))
-    end do
-  end subroutine leave_to_twins
-
-  !> Closed entry s has its contact point past a free edge of its face (in the extension).
-  pure logical function in_extension(this, s, cstate)
-    type(contact_system_t), intent(in) :: this
-    integer, intent(in) :: s
-    type(contact_state_t), intent(in) :: cstate
-    in_extension = .false.
-    if (cstate%status(s) /= CONTACT_STICK .and. cstate%status(s) /= CONTACT_SLIP) return
-    if (cstate%face(s) == 0) return
-    in_extension = any(this%pairs(this%slave_pair(s))%free_edge(:, cstate%face(s)) .and. &
-                       edge_excess(cstate%xi(:, s)) > XI_TOLERANCE)
-  end function in_extension
-
-  !> Another entry of slave s's node is closed strictly on its master face.
-  pure logical function twin_inside(this, s, cstate)
-    type(contact_system_t), intent(in) :: this
-    integer, intent(in) :: s
-    type(contact_state_t), intent(in) :: cstate
-    integer :: t
-    twin_inside = .false.
-    t = this%twin(s)
-    do while (t /= s .and. t /= 0)
-      if ((cstate%status(t) == CONTACT_STICK .or. cstate%status(t) == CONTACT_SLIP) .and. &
-          cstate%face(t) /= 0) then
-        if (all(edge_excess(cstate%xi(:, t)) <= XI_TOLERANCE)) then
-          twin_inside = .true.
-          return
-        end if
-      end if
-      t = this%twin(t)
-    end do
-  end function twin_inside
 
   !> twin(s): the next entry of the same node in another pair (a cycle through all of them),
   !> 0 for a node that is a slave of one pair only.
@@ -944,342 +612,7 @@ contains
     end do
   end subroutine find_twins
 
-  !> The changes of slipping node s over the increment that matter to its friction law: ln V
-  !> for rate-dependent laws, mu, and the law's own state measure.
-  subroutine record_friction_changes(this, s, old_rate, old_mu, old_state, cstate)
-    type(contact_system_t), intent(inout) :: this
-    integer, intent(in) :: s
-    real(dp), intent(in) :: old_rate, old_mu, old_state
-    type(contact_state_t), intent(in) :: cstate
-    real(dp) :: log_rate
-    associate (law => this%pairs(this%slave_pair(s))%law)
-      log_rate = 0.0_dp
-      if (law%rate_dependent()) log_rate = abs(log(cstate%slip_rate(s) / old_rate))
-      call record_changes(this, s, [log_rate, abs(cstate%mu(s) - old_mu), &
-                                    law%state_change(old_state, cstate%friction_state(s))])
-    end associate
-  end subroutine record_friction_changes
 
-  !> Keep the largest changes of ln V, mu, ln(state) and where they happened.
-  subroutine record_changes(this, s, changes)
-    type(contact_system_t), intent(inout) :: this
-    integer, intent(in) :: s
-    real(dp), intent(in) :: changes(3)
-    integer :: i
-    do i = 1, 3
-      if (changes(i) > this%change(i)) then
-        this%change(i) = changes(i)
-        this%change_node(i) = this%slave_node(s)
-      end if
-    end do
-  end subroutine record_changes
-
-  !> True when face f is the face of slave s's pattern clique or one of its neighbours.
-  logical function in_pattern(this, s, f)
-    type(contact_system_t), intent(in) :: this
-    integer, intent(in) :: s, f
-    integer :: centre
-    centre = this%pattern_face(s)
-    in_pattern = .false.
-    if (centre == 0) return
-    associate (pair => this%pairs(this%slave_pair(s)))
-      in_pattern = any(pair%neighbors(pair%neighbor_ptr(centre):pair%neighbor_ptr(centre + 1) - 1) == f)
-    end associate
-  end function in_pattern
-
-  !> A tied node: where it is on its master face, and the force the tie puts on it
-  !> (`tie_force`, 3 * n_nodes: the segment-to-segment tie's nodal forces), split into the
-  !> normal force and the tangential components in the face's frame, for the outputs.
-  subroutine update_tied(this, s, x, cstate, tie_force)
-    type(contact_system_t), intent(in) :: this
-    integer, intent(in) :: s
-    real(dp), intent(in) :: x(:, :), tie_force(:)
-    type(contact_state_t), intent(inout) :: cstate
-    type(segment_point_t) :: p, p_old
-    real(dp) :: xm(3, 4), gap, f(3)
-    logical :: converged
-    associate (pair => this%pairs(this%slave_pair(s)), node => this%slave_node(s))
-      xm = x(:, pair%face_nodes(:, cstate%face(s)))
-      call project_to_segment(xm, x(:, node), cstate%xi(:, s), p, gap, converged)
-      if (.not. converged) p = segment_point(xm, cstate%xi(:, s))
-      p_old = segment_point(xm, cstate%xi(:, s))
-      f = tie_force(3 * node - 2:3 * node)
-      cstate%xi(:, s) = p%xi
-      cstate%gap(s) = gap
-      cstate%normal_force(s) = dot_product(f, p%normal)
-      cstate%friction(:, s) = matmul(f - cstate%normal_force(s) * p%normal, p%e)
-      cstate%tangential_displacement(:, s) = cstate%tangential_displacement(:, s) + p%x - p_old%x
-    end associate
-  end subroutine update_tied
-
-  !> A closed node: follow its contact point (hand-over to a neighbouring face by the search
-  !> rule when it leaves its face), return-map the friction, open it if it separated.
-  subroutine update_closed(this, s, x, cstate, dt, kind)
-    type(contact_system_t), intent(inout) :: this
-    integer, intent(in) :: s, kind
-    real(dp), intent(in) :: x(:, :), dt
-    type(contact_state_t), intent(inout) :: cstate
-    type(segment_point_t) :: p, p_old
-    type(contact_update_t) :: u
-    type(contact_node_t) :: node
-    type(contact_params_t) :: params
-    real(dp) :: xs(3), gap, friction(2), force(3)
-    integer :: face, old_face, mode
-    associate (pair => this%pairs(this%slave_pair(s)))
-      xs = x(:, this%slave_node(s))
-      old_face = cstate%face(s)
-      p_old = segment_point(x(:, pair%face_nodes(:, old_face)), cstate%xi(:, s))
-      mode = hold_mode(this, s)
-      face = 0
-      if (mode == HOLD_CLOSED) call held_point(this, s, pair, x, xs, old_face, cstate%xi(:, s), face, p, gap)
-      if (face == 0) call follow(pair, x, xs, old_face, cstate%xi(:, s), face, p, gap)
-      if (mode == HOLD_OPEN .or. face == 0 .or. &
-          (mode == HOLD_NONE .and. gap > GAP_TOLERANCE * pair%face_size)) then
-        call open_node(cstate, s, face, p, gap)
-        return
-      end if
-      ! The opening event of the increment was taken: the node opens if its normal force
-      ! has (up to the linearisation error) come down to zero.
-      params = params_of(this, s, face, p%xi)
-      if (mode == HOLD_NONE .and. kind == EVENT_CONTACT_OPEN .and. &
-          params%support * pair%normal_stiffness * this%area(s) * (-gap) <= EVENT_BAND * cstate%normal_force(s)) then
-        call open_node(cstate, s, face, p, gap)
-        return
-      end if
-      friction = cstate%friction(:, s)
-      if (face /= old_face) then
-        ! Hand-over: keep the friction force vector, expressed in the new face's frame.
-        force = friction(1) * p_old%e(:, 1) + friction(2) * p_old%e(:, 2)
-        friction = matmul(force, p%e)
-        if (norm2(friction) > 0.0_dp) friction = friction * norm2(force) / norm2(friction)
-      end if
-      node = node_of(cstate, s, cstate%status(s))
-      node%friction = friction
-      node%bilateral = mode == HOLD_CLOSED
-      u = contact_update(p, gap, p_old, node, params, pair%law, dt)
-      ! A node whose stick-to-slip event was taken and whose trial force has reached the
-      ! cone up to the linearisation error slips from now on, its force on the cone (the
-      ! state its slip tangent describes); so does any node without friction.
-      if (kind == EVENT_STICK_TO_SLIP .and. u%status == CONTACT_STICK .and. &
-          u%trial_norm >= (1.0_dp - EVENT_BAND) * u%mu * u%normal_force .and. u%trial_norm > 0.0_dp) then
-        u%status = CONTACT_SLIP
-        u%friction = u%friction * (u%mu * u%normal_force / u%trial_norm)
-      end if
-      if (u%status == CONTACT_STICK) u%status = closing_status(u%mu)
-      cstate%face(s) = face
-      cstate%xi(:, s) = p%xi
-      cstate%gap(s) = gap
-      call store_update(cstate, s, u)
-    end associate
-  end subroutine update_closed
-
-  !> The result of a return mapping of slave s into its state.
-  pure subroutine store_update(cstate, s, u)
-    type(contact_state_t), intent(inout) :: cstate
-    integer, intent(in) :: s
-    type(contact_update_t), intent(in) :: u
-    cstate%status(s) = u%status
-    cstate%normal_force(s) = u%normal_force
-    cstate%friction(:, s) = u%friction
-    cstate%trial_norm(s) = u%trial_norm
-    cstate%slip(s) = cstate%slip(s) + u%plastic_slip
-    cstate%work(s) = cstate%work(s) + norm2(u%friction) * u%plastic_slip
-    cstate%tangential_displacement(:, s) = cstate%tangential_displacement(:, s) + u%slip_vector
-    cstate%slip_rate(s) = u%slip_rate
-    cstate%mu(s) = u%mu
-    cstate%friction_state(s) = u%friction_state
-  end subroutine store_update
-
-  !> Where a closed node's contact point is now: its face if the projection stays on it (or
-  !> within the extension past a free edge), else the face chosen by the search rule among
-  !> the faces sharing a node with it and those the search grid holds near the node (a
-  !> neighbouring master body that shares no node with it); face = 0: nothing in reach, or
-  !> the node has slid off the master surface.
-  subroutine follow(pair, x, xs, face_old, xi_old, face, p, gap)
-    type(contact_pair_t), intent(in) :: pair
-    real(dp), intent(in) :: x(:, :), xs(3), xi_old(2)
-    integer, intent(in) :: face_old
-    integer, intent(out) :: face
-    type(segment_point_t), intent(out) :: p
-    real(dp), intent(out) :: gap
-    integer, allocatable :: candidates(:)
-    real(dp) :: excess(4)
-    logical :: converged
-    call project_to_segment(x(:, pair%face_nodes(:, face_old)), xs, xi_old, p, gap, converged)
-    face = face_old
-    if (converged) then
-      excess = edge_excess(p%xi)
-      if (all(excess <= XI_TOLERANCE)) return
-    end if
-    call pair%grid%candidates(xs, candidates)
-    candidates = unique_sorted([candidates, pair%neighbors(pair%neighbor_ptr(face_old): &
-                                                           pair%neighbor_ptr(face_old + 1) - 1)])
-    call closest_face(pair%face_nodes, x, candidates, xs, pair%reach, face, p, gap, pair%free_edge, &
-                      extend=.true.)
-  end subroutine follow
-
-  !> The contact point of slave s on the face held for it (face = 0: none held, or the node
-  !> has moved more than HOLD_LIMIT past one of its shared edges, or past the extension of a
-  !> free edge). xi_old on face_old is the start of the projection when it is that face.
-  subroutine held_point(this, s, pair, x, xs, face_old, xi_old, face, p, gap)
-    type(contact_system_t), intent(in) :: this
-    integer, intent(in) :: s, face_old
-    type(contact_pair_t), intent(in) :: pair
-    real(dp), intent(in) :: x(:, :), xs(3), xi_old(2)
-    integer, intent(out) :: face
-    type(segment_point_t), intent(out) :: p
-    real(dp), intent(out) :: gap
-    real(dp) :: start(2), excess(4)
-    logical :: converged
-    integer :: held
-    face = 0
-    held = this%held_face(s)
-    if (held == 0) return
-    start = 0.0_dp
-    if (held == face_old) start = xi_old
-    call project_to_segment(x(:, pair%face_nodes(:, held)), xs, start, p, gap, converged)
-    if (.not. converged) return
-    excess = edge_excess(p%xi)
-    if (any(excess > merge(EDGE_EXTENSION, HOLD_LIMIT, pair%free_edge(:, held)))) return
-    if (abs(gap) > pair%reach) return
-    face = held
-  end subroutine held_point
-
-  !> Hold every node in its open or closed state, and every closed node on its face,
-  !> through the equilibrium iterations that follow (the contact states "held" while the
-  !> forces are corrected; `check_held` then re-evaluates them on the corrected solution).
-  subroutine system_hold_states(this, cstate)
-    class(contact_system_t), intent(inout) :: this
-    type(contact_state_t), intent(in) :: cstate
-    logical, allocatable :: closed(:)
-    closed = cstate%status == CONTACT_STICK .or. cstate%status == CONTACT_SLIP
-    this%held_face = merge(cstate%face, 0, closed)
-    this%hold_status = merge(HOLD_CLOSED, HOLD_OPEN, closed)
-    where (cstate%status == CONTACT_TIED) this%hold_status = HOLD_NONE
-    ! The entries of a node in several pairs are decided together by the twin rule
-    ! (leave_to_twins) in every application, not held one by one.
-    where (this%twin /= 0) this%hold_status = HOLD_NONE
-    if (.not. allocated(this%flips)) allocate (this%flips(size(this%slave_node)))
-    this%flips = 0
-    this%holding = .true.
-  end subroutine system_hold_states
-
-  !> The held states against the corrected solution: a node held closed whose (bilateral)
-  !> normal force turned tensile is to open, a node held open that penetrates a master face
-  !> is to close. Each node changes at most MAX_HOLD_FLIPS times per increment (no endless
-  !> flip-flop); `n_changed` counts the changes, after which the caller iterates again.
-  subroutine system_check_held(this, cstate, n_changed)
-    class(contact_system_t), intent(inout) :: this
-    type(contact_state_t), intent(in) :: cstate
-    integer, intent(out) :: n_changed
-    type(contact_params_t) :: params
-    integer :: s
-    n_changed = 0
-    if (.not. this%holding) return
-    do s = 1, size(this%slave_node)
-      if (this%flips(s) >= MAX_HOLD_FLIPS) cycle
-      select case (this%hold_status(s))
-      case (HOLD_CLOSED)
-        if (cstate%normal_force(s) >= -normal_force_floor(this, s)) cycle
-        this%hold_status(s) = HOLD_OPEN
-        this%held_face(s) = 0
-      case (HOLD_OPEN)
-        if (cstate%face(s) == 0) cycle
-        if (this%twin(s) /= 0) then
-          if (twin_inside(this, s, cstate)) cycle
-        end if
-        if (cstate%gap(s) >= -GAP_TOLERANCE * this%pairs(this%slave_pair(s))%face_size) cycle
-        params = params_of(this, s, cstate%face(s), cstate%xi(:, s))
-        if (params%support <= 0.0_dp) cycle
-        this%hold_status(s) = HOLD_CLOSED
-        this%held_face(s) = cstate%face(s)
-      case default
-        cycle
-      end select
-      this%flips(s) = this%flips(s) + 1
-      n_changed = n_changed + 1
-    end do
-  end subroutine system_check_held
-
-  !> End of the equilibrium iterations: the nodes decide their states freely again; a
-  !> closed node left with a tensile force below the force floor carries none.
-  subroutine system_release_states(this, cstate)
-    class(contact_system_t), intent(inout) :: this
-    type(contact_state_t), intent(inout) :: cstate
-    integer :: s
-    this%holding = .false.
-    do s = 1, size(this%slave_node)
-      if (cstate%status(s) /= CONTACT_STICK .and. cstate%status(s) /= CONTACT_SLIP) cycle
-      if (cstate%normal_force(s) >= 0.0_dp) cycle
-      cstate%normal_force(s) = 0.0_dp
-      cstate%friction(:, s) = 0.0_dp
-    end do
-  end subroutine system_release_states
-
-  !> How slave s is held now: HOLD_NONE outside the equilibrium iterations.
-  pure integer function hold_mode(this, s) result(mode)
-    type(contact_system_t), intent(in) :: this
-    integer, intent(in) :: s
-    mode = HOLD_NONE
-    if (this%holding) mode = this%hold_status(s)
-  end function hold_mode
-
-  subroutine open_node(cstate, s, face, p, gap)
-    type(contact_state_t), intent(inout) :: cstate
-    integer, intent(in) :: s, face
-    type(segment_point_t), intent(in) :: p
-    real(dp), intent(in) :: gap
-    cstate%status(s) = CONTACT_OPEN
-    cstate%face(s) = face
-    cstate%normal_force(s) = 0.0_dp
-    cstate%friction(:, s) = 0.0_dp
-    cstate%trial_norm(s) = 0.0_dp
-    cstate%slip_rate(s) = 0.0_dp
-    cstate%tangential_displacement(:, s) = 0.0_dp
-    if (face == 0) return
-    cstate%xi(:, s) = p%xi
-    cstate%gap(s) = gap
-  end subroutine open_node
-
-  !> An open node: search; it closes if it penetrates or its closing event was taken. A
-  !> node that closes measures its tangential motion from its projection at the start of the
-  !> increment (on the same face), so that its stick force follows the stick tangent it
-  !> gets (the R-minimum closing event makes that motion small: the node touches at the end
-  !> of the increment).
-  subroutine update_open(this, s, x, cstate, kind)
-    type(contact_system_t), intent(in) :: this
-    integer, intent(in) :: s, kind
-    real(dp), intent(in) :: x(:, :)
-    type(contact_state_t), intent(inout) :: cstate
-    type(segment_point_t) :: p, p_start
-    type(contact_update_t) :: u
-    real(dp) :: gap
-    integer :: face, start_face, mode
-    real(dp) :: start_xi(2), start_gap
-    type(contact_node_t) :: node
-    associate (pair => this%pairs(this%slave_pair(s)))
-      start_face = cstate%face(s)
-      start_xi = cstate%xi(:, s)
-      start_gap = cstate%gap(s)
-      mode = hold_mode(this, s)
-      face = 0
-      if (mode == HOLD_CLOSED) call held_point(this, s, pair, x, x(:, this%slave_node(s)), start_face, &
-                                               start_xi, face, p, gap)
-      if (face == 0) call search(pair, x, x(:, this%slave_node(s)), face, p, gap)
-      call open_node(cstate, s, face, p, gap)
-      if (face == 0 .or. mode == HOLD_OPEN) return
-      if (mode == HOLD_CLOSED .or. gap < -GAP_TOLERANCE * pair%face_size .or. &
-          (kind == EVENT_CONTACT_CLOSE .and. gap <= EVENT_BAND * start_gap)) then
-        p_start = p
-        if (start_face == face) p_start = segment_point(x(:, pair%face_nodes(:, face)), start_xi)
-        node = node_of(cstate, s, CONTACT_STICK)
-        node%bilateral = mode == HOLD_CLOSED
-        u = contact_update(p, gap, p_start, node, params_of(this, s, face, p%xi), pair%law, 0.0_dp)
-        if (u%status == CONTACT_STICK) u%status = closing_status(u%mu)
-        call store_update(cstate, s, u)
-      end if
-    end associate
-  end subroutine update_open
 
   !> Before an increment du is applied: no contact node may end up deeper in its master
   !> than PENETRATION_LIMIT times the mean master face size (gaps predicted linearly). A
@@ -1394,9 +727,14 @@ contains
     real(dp), intent(in) :: x(:, :)
     type(contact_state_t), intent(in) :: cstate
     type(pair_totals_t) :: t
-    real(dp) :: traction(3), normal(3), pressure, shear(3)
-    integer :: s
-    do s = this%pairs(k)%first, this%pairs(k)%last
+    real(dp) :: traction(3), normal(3), pressure, shear(3), sum_pressure, sum_shear
+    integer :: s, first, last, n_closed
+    first = this%pairs(k)%first
+    last = this%pairs(k)%last
+    sum_pressure = 0.0_dp
+    sum_shear = 0.0_dp
+    n_closed = 0
+    do s = first, last
       select case (cstate%status(s))
       case (CONTACT_STICK)
         t%n_stick = t%n_stick + 1
@@ -1411,8 +749,196 @@ contains
       traction = shear
       t%normal_force = t%normal_force + pressure * this%area(s)
       t%tangential_force = t%tangential_force + traction * this%area(s)
+      if (cstate%status(s) == CONTACT_OPEN) cycle
+      sum_pressure = sum_pressure + pressure
+      sum_shear = sum_shear + norm2(shear)
+      n_closed = n_closed + 1
     end do
+    t%slip_mean = sum(cstate%slip(first:last)) / max(1, last - first + 1)
+    t%slip_max = maxval(cstate%slip(first:last))
+    t%rate_max = maxval(cstate%slip_rate(first:last))
+    t%pressure_mean = sum_pressure / max(1, n_closed)
+    t%shear_mean = sum_shear / max(1, n_closed)
   end function system_totals
+
+  !> Number of contact pairs.
+  pure integer function system_n_pairs(this) result(n)
+    class(contact_system_t), intent(in) :: this
+    n = 0
+    if (allocated(this%pairs)) n = size(this%pairs)
+  end function system_n_pairs
+
+  !> Name of pair k (as in the deck).
+  pure function system_pair_name(this, k) result(name)
+    class(contact_system_t), intent(in) :: this
+    integer, intent(in) :: k
+    character(len=:), allocatable :: name
+    name = this%pairs(k)%name
+  end function system_pair_name
+
+  !> Whether pair k is tied (*TIE).
+  pure logical function system_pair_is_tied(this, k) result(tied)
+    class(contact_system_t), intent(in) :: this
+    integer, intent(in) :: k
+    tied = this%pairs(k)%tied
+  end function system_pair_is_tied
+
+  !> *CHANGE FRICTION (CalculiX's meaning): pair k takes the friction law `friction` (and the
+  !> stick slope `stick_stiffness` when positive) and its closed nodes are brought onto the new
+  !> cone: a friction force beyond it is scaled back onto it and the node slips, the return
+  !> mapping of the paper's friction-as-plasticity treatment (eqs. 2-6) applied to the stored
+  !> force; a slipping node on the cone (within CHANGE_CONE_TOLERANCE) keeps slipping; any other
+  !> closed node sticks; on a frictionless interface a closed node slips with f_t = 0.
+  !> Idempotent, so a run resuming within a step applies it again without effect.
+  subroutine system_set_pair_friction(this, k, friction, stick_stiffness, cstate, err)
+    class(contact_system_t), intent(inout) :: this
+    integer, intent(in) :: k
+    type(friction_def_t), intent(in) :: friction
+    real(dp), intent(in) :: stick_stiffness
+    type(contact_state_t), intent(inout) :: cstate
+    type(error_t), allocatable, intent(out) :: err
+    real(dp), parameter :: CHANGE_CONE_TOLERANCE = 1.0e-9_dp
+    real(dp) :: mu, limit, magnitude
+    integer :: s
+    associate (pair => this%pairs(k))
+      if (allocated(pair%law)) deallocate (pair%law)
+      call create_friction_law(friction, pair%law, err)
+      if (allocated(err)) return
+      if (stick_stiffness > 0.0_dp) pair%stick_stiffness = stick_stiffness
+      mu = pair%law%mu(0.0_dp, 0.0_dp, pair%law%initial_state())
+      do s = pair%first, pair%last
+        if (cstate%status(s) /= CONTACT_STICK .and. cstate%status(s) /= CONTACT_SLIP) cycle
+        cstate%mu(s) = mu
+        limit = mu * max(cstate%normal_force(s), 0.0_dp)
+        magnitude = norm2(cstate%friction(:, s))
+        if (mu <= 0.0_dp .or. magnitude > limit * (1.0_dp + CHANGE_CONE_TOLERANCE)) then
+          if (magnitude > 0.0_dp) cstate%friction(:, s) = cstate%friction(:, s) * (limit / magnitude)
+          cstate%trial_norm(s) = max(magnitude, limit)
+          cstate%status(s) = CONTACT_SLIP
+        else if (cstate%status(s) /= CONTACT_SLIP .or. &
+                 magnitude < limit * (1.0_dp - CHANGE_CONE_TOLERANCE)) then
+          cstate%status(s) = CONTACT_STICK
+        end if
+      end do
+    end associate
+  end subroutine system_set_pair_friction
+
+  !> The node (index) of each slave entry of pair k, in the pair's order (the order of its
+  !> output fields and of `pair_slip`).
+  pure function system_pair_slave_nodes(this, k) result(nodes)
+    class(contact_system_t), intent(in) :: this
+    integer, intent(in) :: k
+    integer, allocatable :: nodes(:)
+    nodes = this%slave_node(this%pairs(k)%first:this%pairs(k)%last)
+  end function system_pair_slave_nodes
+
+  !> Slave nodes of the surface of pair k left out of it because a tie holds them.
+  pure integer function system_held_by_tie(this, k) result(n)
+    class(contact_system_t), intent(in) :: this
+    integer, intent(in) :: k
+    n = this%pairs(k)%n_held_by_tie
+  end function system_held_by_tie
+
+  !> Whether the contact elements have moved out of the sparse pattern (`cliques` rebuilds it).
+  pure logical function system_needs_pattern(this) result(dirty)
+    class(contact_system_t), intent(in) :: this
+    dirty = this%pattern_dirty
+  end function system_needs_pattern
+
+  !> The largest changes over the last increment at nodes slipping before and after it, of
+  !> ln V, of mu and of the friction law's state measure (0: none), and the node of each.
+  pure subroutine system_friction_changes(this, change, node)
+    class(contact_system_t), intent(in) :: this
+    real(dp), intent(out) :: change(3)
+    integer, intent(out) :: node(3)
+    change = this%change
+    node = this%change_node
+  end subroutine system_friction_changes
+
+  !> The output fields of pair k on coordinates x, on the surface grid `grid` (its slave
+  !> nodes in the pair's order): status (CONTACT_OPEN/STICK/SLIP/TIED), gap (0 without a
+  !> master face in reach), pressure and shear traction magnitude, accumulated slip, slip rate,
+  !> friction coefficient, the friction law's state variable (theta [time] of the
+  !> rate-and-state laws, the accumulated slip [length] of SLIP WEAKENING, 0 for laws without
+  !> state), and the shear traction vector.
+  function system_pair_fields(this, k, x, cstate, grid) result(fields)
+    class(contact_system_t), intent(in) :: this
+    integer, intent(in) :: k
+    real(dp), intent(in) :: x(:, :)
+    type(contact_state_t), intent(in) :: cstate
+    character(len=*), intent(in) :: grid
+    type(field_t), allocatable :: fields(:)
+    character(len=*), parameter :: NAMES(8) = [character(len=15) :: 'status', 'gap', 'pressure', &
+      'shear_magnitude', 'slip', 'slip_rate', 'mu', 'friction_state']
+    real(dp), allocatable :: values(:, :), shear(:, :)
+    real(dp) :: normal(3), pressure, traction(3)
+    integer :: s, j, first, last
+    first = this%pairs(k)%first
+    last = this%pairs(k)%last
+    allocate (values(8, last - first + 1), shear(3, last - first + 1))
+    do s = first, last
+      j = s - first + 1
+      call this%traction(s, x, cstate, normal, pressure, traction)
+      values(:, j) = [real(cstate%status(s), dp), cstate%gap(s), pressure, norm2(traction), &
+                      cstate%slip(s), cstate%slip_rate(s), cstate%mu(s), cstate%friction_state(s)]
+      if (cstate%face(s) == 0) values(2, j) = 0.0_dp
+      shear(:, j) = traction
+    end do
+    allocate (fields(9))
+    do j = 1, 8
+      fields(j) = field(trim(NAMES(j)), FIELD_SURFACE, values(j:j, :), grid)
+    end do
+    fields(9) = field('shear', FIELD_SURFACE, shear, grid)
+  end function system_pair_fields
+
+  !> Slip rate, accumulated slip and shear traction magnitude of the slave entries of pair k
+  !> (the event catalog's view).
+  subroutine system_pair_slip(this, k, x, cstate, rate, slip, shear)
+    class(contact_system_t), intent(in) :: this
+    integer, intent(in) :: k
+    real(dp), intent(in) :: x(:, :)
+    type(contact_state_t), intent(in) :: cstate
+    real(dp), allocatable, intent(out) :: rate(:), slip(:), shear(:)
+    real(dp) :: normal(3), pressure, traction(3)
+    integer :: s, first, last
+    first = this%pairs(k)%first
+    last = this%pairs(k)%last
+    rate = cstate%slip_rate(first:last)
+    slip = cstate%slip(first:last)
+    allocate (shear(last - first + 1))
+    do s = first, last
+      call this%traction(s, x, cstate, normal, pressure, traction)
+      shear(s - first + 1) = norm2(traction)
+    end do
+  end subroutine system_pair_slip
+
+  !> Frictional work dissipated at all slave nodes so far [force x length].
+  pure real(dp) function system_frictional_work(this, cstate) result(work)
+    class(contact_system_t), intent(in) :: this
+    type(contact_state_t), intent(in) :: cstate
+    work = sum(cstate%work)
+  end function system_frictional_work
+
+  !> For every slave entry: its node, whether it is closed (not open), and its values in the
+  !> local frame of its master face as CalculiX prints them (`local_values`: relative
+  !> displacement and stresses).
+  subroutine system_print_values(this, x, cstate, node, closed, displacement, stress)
+    class(contact_system_t), intent(in) :: this
+    real(dp), intent(in) :: x(:, :)
+    type(contact_state_t), intent(in) :: cstate
+    integer, allocatable, intent(out) :: node(:)
+    logical, allocatable, intent(out) :: closed(:)
+    real(dp), allocatable, intent(out) :: displacement(:, :), stress(:, :)
+    integer :: s
+    node = this%slave_node
+    closed = cstate%status /= CONTACT_OPEN
+    allocate (displacement(3, size(node)), stress(3, size(node)))
+    displacement = 0.0_dp
+    stress = 0.0_dp
+    do s = 1, size(node)
+      if (closed(s)) call this%local_values(s, x, cstate, displacement(:, s), stress(:, s))
+    end do
+  end subroutine system_print_values
 
   !> Contact tractions of slave s: master normal, pressure f_n/A (positive in compression)
   !> and shear traction vector f_t/A on the slave node.
@@ -1433,60 +959,5 @@ contains
     pressure = cstate%normal_force(s) / this%area(s)
     shear = (cstate%friction(1, s) * p%e(:, 1) + cstate%friction(2, s) * p%e(:, 2)) / this%area(s)
   end subroutine system_traction
-
-  !> Round-off level [force^2] of the cone function F(r) = |f_t + r df_t|^2 -
-  !> mu^2 (f_n + r df_n)^2 and of its coefficients: 1e-10 of the square of the largest force
-  !> involved, the increments included. A node closed at zero force (f_n and f_t zero up to
-  !> round-off) is then judged by how its forces grow (the sign of a), not by the signs of
-  !> round-off residues in b and c, which otherwise put a spurious root near r = 0.
-  pure real(dp) function cone_tolerance(fn, ft, dfn, dft, mu) result(tolerance)
-    real(dp), intent(in) :: fn, ft(3), dfn, dft(3), mu
-    tolerance = 1.0e-10_dp * max(mu * abs(fn), norm2(ft), mu * abs(dfn), norm2(dft))**2
-  end function cone_tolerance
-
-  !> First r in [0, 1] where the friction force reaches the Coulomb cone,
-  !> F(r) = |f_t + r df_t|^2 - mu^2 (f_n + r df_n)^2 = a r^2 + b r + c = 0 (eq. 3), for a
-  !> stick node (c <= 0 inside the cone). A node on the cone (|c| <= tolerance) slips now if
-  !> F grows (b > 0), otherwise only where F comes back to zero. > 1: no crossing.
-  pure real(dp) function cone_crossing(a, b, c, tolerance) result(r)
-    real(dp), intent(in) :: a, b, c, tolerance
-    real(dp) :: disc, r1, r2, q
-    r = 2.0_dp
-    if (abs(c) <= tolerance .or. c > 0.0_dp) then
-      if (b > tolerance .or. (abs(b) <= tolerance .and. a > 0.0_dp)) then
-        r = 0.0_dp
-      else if (a > 0.0_dp) then
-        r = -b / a
-      end if
-      return
-    end if
-    if (abs(a) <= tiny(1.0_dp)) then
-      if (b > 0.0_dp) r = -c / b
-      return
-    end if
-    disc = b * b - 4.0_dp * a * c
-    if (disc < 0.0_dp) return
-    q = -0.5_dp * (b + sign(sqrt(disc), b))
-    r1 = q / a
-    r2 = huge(1.0_dp)
-    if (q /= 0.0_dp) r2 = c / q
-    if (r1 >= 0.0_dp) r = min(r, r1)
-    if (r2 >= 0.0_dp) r = min(r, r2)
-  end function cone_crossing
-
-  subroutine offer(this, collector, s, r, kind)
-    type(contact_system_t), intent(inout) :: this
-    type(rmin_collector_t), intent(inout) :: collector
-    integer, intent(in) :: s, kind
-    real(dp), intent(in) :: r
-    real(dp) :: rr
-    rr = max(0.0_dp, r)
-    if (rr > 1.0_dp) return
-    call collector%offer(rr, kind, this%slave_node(s), s)
-    if (rr < this%event_r(s)) then
-      this%event_r(s) = rr
-      this%event_kind(s) = kind
-    end if
-  end subroutine offer
 
 end module fcs_contact_system

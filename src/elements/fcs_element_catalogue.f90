@@ -11,7 +11,7 @@
 module fcs_element_catalogue
   use fcs_error, only: error_t, fatal_error, input_error
   use fcs_strings, only: to_upper
-  use fcs_element_kind, only: element_kind_t, kind_definition_t
+  use fcs_element_kind, only: element_kind_t, kind_definition_t, KERNEL_HEX8
   use fcs_hexahedra, only: c3d8_definition, c3d8r_definition, c3d8i_definition, &
     c3d20_definition, c3d20r_definition
   use fcs_tetrahedra, only: c3d4_definition, c3d10_definition
@@ -87,6 +87,9 @@ contains
       end if
       call this%add(def, err)
       if (allocated(err)) return
+      ! C3D8 runs on the hand-written kernels of the 8-node hexahedron (the same floating-point
+      ! operations as before the element interface); every other kind on the tables.
+      if (trim(ELEMENT_KIND_NAMES(k)) == 'C3D8') this%kinds(size(this%kinds))%kernel = KERNEL_HEX8
     end do
   end subroutine catalogue_init
 

@@ -41,6 +41,7 @@ module fcs_element_kind
   public :: TOPOLOGY_HEXAHEDRON, TOPOLOGY_TETRAHEDRON, TOPOLOGY_WEDGE, TOPOLOGY_NAMES
   public :: FORMULATION_STANDARD, FORMULATION_HOURGLASS, FORMULATION_INCOMPATIBLE_MODES
   public :: EXTRAPOLATE_FROM_CORNERS, EXTRAPOLATE_FROM_ALL_NODES
+  public :: KERNEL_TABLES, KERNEL_HEX8
   public :: MAX_NODES, MAX_POINTS, MAX_FACES, MAX_FACE_POINTS, MAX_CHECK_POINTS
 
   !> Upper bounds over all kinds, for fixed-size work arrays in the element loops.
@@ -71,6 +72,13 @@ module fcs_element_kind
   !> EXTRAPOLATE_FROM_ALL_NODES: least-squares fit of the full basis (C3D20, 27 points to 20
   !> nodes: CalculiX's a27 table).
   integer, parameter :: EXTRAPOLATE_FROM_CORNERS = 1, EXTRAPOLATE_FROM_ALL_NODES = 2
+
+  !> How the element loops (fcs_element_loops) compute a kind: KERNEL_TABLES, from this
+  !> type's tables (any kind); KERNEL_HEX8, with the hand-written kernels of the 8-node
+  !> hexahedron (fcs_hex8_element, fcs_hex8_shape, fcs_hex8_face: C3D8, the results of the
+  !> code before the element interface bit for bit, its face node lists starting at node 1 as
+  !> fcs_hex8_face's HEX8_FACE_LOCAL_NODES).
+  integer, parameter :: KERNEL_TABLES = 1, KERNEL_HEX8 = 2
 
   !> A face of a kind as data: its face kind, its element nodes (CalculiX order) and the rule
   !> CalculiX integrates loads on it with.
@@ -132,6 +140,9 @@ module fcs_element_kind
     integer :: n_faces = 0
     integer :: formulation = 0
     integer :: extrapolation_method = 0
+    !> The element loops' implementation: KERNEL_TABLES, or KERNEL_HEX8 for the catalogue's
+    !> C3D8 (set by element_catalogue_t%init).
+    integer :: kernel = KERNEL_TABLES
     !> Volume of the reference domain (8, 1/6, 1).
     real(dp) :: reference_volume = 0.0_dp
     character(len=:), allocatable :: rule_name

@@ -15,7 +15,7 @@ module fcs_hex8_element
   private
   public :: hex8_geometry_t, hex8_geometry, hex8_tangent, hex8_internal_force
   public :: hex8_strain_increments, hex8_rotate_stress, voigt_to_tensor, tensor_to_voigt
-  public :: mises_stress, hex8_extrapolate
+  public :: mises_stress, hex8_extrapolate, point_strain_increment
 
   !> Nonzeros of the strain-displacement matrix B (Voigt order 11,22,33,12,13,23, engineering
   !> shear): column (a, i) has dN_a/dx_B_GRADIENT(n,i) in row B_ROW(n,i), n = 1..3.
@@ -255,7 +255,7 @@ contains
     logical, intent(in) :: bbar
     real(dp), intent(out) :: strain(6, N_GAUSS_HEX8), spin(3, 3, N_GAUSS_HEX8)
     real(dp), intent(out) :: equivalent(N_GAUSS_HEX8), angle(N_GAUSS_HEX8)
-    real(dp) :: h(3, 3), e(3, 3), mean_volumetric
+    real(dp) :: mean_volumetric
     integer :: q, i
     mean_volumetric = 0.0_dp
     if (bbar) then
@@ -264,19 +264,32 @@ contains
       end do
     end if
     do q = 1, N_GAUSS_HEX8
-      h = matmul(du, transpose(geo%grad(:, :, q)))
-      e = 0.5_dp * (h + transpose(h))
-      spin(:, :, q) = 0.5_dp * (h - transpose(h))
-      if (bbar) then
-        do i = 1, 3
-          e(i, i) = e(i, i) + (mean_volumetric - (h(1, 1) + h(2, 2) + h(3, 3))) / 3.0_dp
-        end do
-      end if
-      strain(:, q) = [e(1, 1), e(2, 2), e(3, 3), 2.0_dp * e(1, 2), 2.0_dp * e(1, 3), 2.0_dp * e(2, 3)]
-      equivalent(q) = sqrt(2.0_dp / 3.0_dp * sum(e * e))
-      angle(q) = sqrt(0.5_dp * sum(spin(:, :, q)**2))
+      call point_strain_increment(matmul(du, transpose(geo%grad(:, :, q))), bbar, mean_volumetric, &
+                                  strain(:, q), spin(:, :, q), equivalent(q), angle(q))
     end do
   end subroutine hex8_strain_increments
+
+  !> At one point with displacement-increment gradient h = d(du)/dx: the strain increment
+  !> (Voigt, engineering shear; with B-bar its volumetric part replaced by the element mean
+  !> `mean_volumetric`), the spin increment (skew part of h), the equivalent strain
+  !> sqrt(2/3 e:e) and the rotation angle |w| (doc/theory.md 1.4 and 6.4).
+  pure subroutine point_strain_increment(h, bbar, mean_volumetric, strain, spin, equivalent, angle)
+    real(dp), intent(in) :: h(3, 3), mean_volumetric
+    logical, intent(in) :: bbar
+    real(dp), intent(out) :: strain(6), spin(3, 3), equivalent, angle
+    real(dp) :: e(3, 3)
+    integer :: i
+    e = 0.5_dp * (h + transpose(h))
+    spin = 0.5_dp * (h - transpose(h))
+    if (bbar) then
+      do i = 1, 3
+        e(i, i) = e(i, i) + (mean_volumetric - (h(1, 1) + h(2, 2) + h(3, 3))) / 3.0_dp
+      end do
+    end if
+    strain = [e(1, 1), e(2, 2), e(3, 3), 2.0_dp * e(1, 2), 2.0_dp * e(1, 3), 2.0_dp * e(2, 3)]
+    equivalent = sqrt(2.0_dp / 3.0_dp * sum(e * e))
+    angle = sqrt(0.5_dp * sum(spin**2))
+  end subroutine point_strain_increment
 
   !> Rotate a stress objectively over an increment with spin increment w (skew):
   !> sigma <- Q sigma Q^T, Q = (I - w/2)^-1 (I + w/2) (Hughes & Winget 1980, IJNME 15, 1862),

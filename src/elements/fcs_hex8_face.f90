@@ -11,6 +11,19 @@ module fcs_hex8_face
   implicit none
   private
   public :: face_pressure_load, quad_shape, quad_shape_derivatives, quad_area_vector
+  public :: HEX8_FACE_LOCAL_NODES, cross, skew
+
+  !> Local node numbers of faces S1..S6 of the 8-node hexahedron (columns), ordered so that
+  !> the right-hand rule gives the outward normal. The node sets are those of the
+  !> Abaqus/CalculiX C3D8 faces (S1: 1-2-3-4, S2: 5-8-7-6, S3: 1-5-6-2, S4: 2-6-7-3, S5: 3-7-8-4,
+  !> S6: 4-8-5-1); the C3D8 kernel's faces (fcs_element_kernels).
+  integer, parameter :: HEX8_FACE_LOCAL_NODES(4, 6) = reshape([ &
+    1, 4, 3, 2, &
+    5, 6, 7, 8, &
+    1, 2, 6, 5, &
+    2, 3, 7, 6, &
+    3, 4, 8, 7, &
+    4, 1, 5, 8], [4, 6])
 
   real(dp), parameter :: XI_NODE(2, 4) = reshape([-1.0_dp, -1.0_dp, 1.0_dp, -1.0_dp, &
                                                    1.0_dp, 1.0_dp, -1.0_dp, 1.0_dp], [2, 4])
@@ -76,6 +89,7 @@ contains
     end do
   end subroutine face_pressure_load
 
+  !> Cross product a x b.
   pure function cross(a, b) result(c)
     real(dp), intent(in) :: a(3), b(3)
     real(dp) :: c(3)

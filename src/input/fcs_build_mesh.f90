@@ -9,6 +9,7 @@ module fcs_build_mesh
   use fcs_diagnostics, only: diagnostics_t, format_location
   use fcs_mesh, only: mesh_t, SURFACE_FACES
   use fcs_gmsh_reader, only: read_gmsh
+  use fcs_model_checks, only: check_mesh_file_orientation
   use fcs_model, only: model_t
   use fcs_strings, only: to_upper, str, dirname, join_path, parse_int
   implicit none
@@ -124,7 +125,7 @@ contains
                            '(degenerate hexahedra are not supported)')
           cycle
         end if
-        call model%mesh%add_element(id, nodes, duplicate)
+        call model%mesh%add_element(id, nodes, duplicate, model%mesh%find_kind('C3D8'))
         if (duplicate) then
           call diag%report(line%loc, '*ELEMENT: element ' // str(id) // ' is defined twice')
           cycle
@@ -347,8 +348,12 @@ contains
     type(diagnostics_t), intent(inout) :: diag
     type(error_t), allocatable :: err
     character(len=:), allocatable :: path
+    integer, allocatable :: lines(:)
+    integer :: first
     path = join_path(dirname(card%loc%file), param_value(card, 'FILE'))
-    call read_gmsh(path, model%mesh, err)
+    first = model%mesh%n_elements + 1
+    call read_gmsh(path, model%mesh, err, lines)
+    if (.not. allocated(err)) call check_mesh_file_orientation(path, model, first, lines, err)
     if (allocated(err)) call diag%report(card%loc, '*MESH: ' // err%message)
   end subroutine handle_mesh
 

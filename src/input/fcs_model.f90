@@ -8,6 +8,8 @@ module fcs_model
   use fcs_strings, only: string_t
   use fcs_friction_factory, only: friction_def_t
   use fcs_material_factory, only: plastic_def_t
+  use fcs_contact_pair, only: contact_pair_def_t
+  use fcs_element_catalogue, only: element_catalogue_t
   implicit none
   private
   public :: model_t, material_def_t, section_t, amplitude_t, time_points_t, dof_condition_t
@@ -182,27 +184,9 @@ module fcs_model
     type(source_loc_t) :: loc
   end type interaction_def_t
 
-  !> A node-to-point contact pair (*CONTACT PAIR) or a tied pair (*TIE).
-  type :: contact_pair_def_t
-    character(len=:), allocatable :: name
-    !> Slave: a surface (element-face or node based); master: an element-face surface.
-    integer :: slave_surface = 0
-    integer :: master_surface = 0
-    !> The *SURFACE INTERACTION, which may come after the pair (as CalculiX allows): its name
-    !> is resolved after the last card.
-    integer :: interaction = 0
-    character(len=:), allocatable :: interaction_name
-    logical :: tied = .false.
-    !> *TIE: slave nodes farther than this from the master are not tied (<= 0: default).
-    real(dp) :: position_tolerance = 0.0_dp
-    !> Resolved penalties E_n, E_t [stress/length] and friction coefficient of this pair.
-    real(dp) :: normal_stiffness = 0.0_dp
-    real(dp) :: stick_stiffness = 0.0_dp
-    !> Mean thickness h of the master elements and the modulus E the defaults come from.
-    real(dp) :: master_thickness = 0.0_dp
-    real(dp) :: master_modulus = 0.0_dp
-    type(source_loc_t) :: loc
-  end type contact_pair_def_t
+  !> A node-to-point contact pair (*CONTACT PAIR) or a tied pair (*TIE): contact_pair_def_t of
+  !> fcs_contact_pair (the contact layer owns the type; the model holds the pairs the deck
+  !> defines).
 
   !> One quantity of a history request.
   type :: history_item_t
@@ -235,6 +219,8 @@ module fcs_model
     character(len=:), allocatable :: title
     character(len=:), allocatable :: deck_path
     type(mesh_t) :: mesh
+    !> The element kinds the mesh's elements are of (mesh%element_kind(e) indexes them).
+    type(element_catalogue_t) :: element_kinds
     type(material_def_t), allocatable :: materials(:)
     type(section_t), allocatable :: sections(:)
     !> Section index of every element (0 = none, an error after building).

@@ -32,6 +32,7 @@ module fcs_model_builder
                                handle_friction, handle_contact_pair, handle_tie, &
                                resolve_pair_interactions, handle_change_friction
   use fcs_model, only: model_t, step_t
+  use fcs_element_loops, only: mesh_kinds
   use fcs_model_checks, only: check_model
   use fcs_deck_hash, only: hash_deck
   use fcs_strings, only: string_t, to_upper, parse_int, parse_real, join_strings, str
@@ -56,7 +57,8 @@ contains
       call diag%to_error(err)
       return
     end if
-    call init_model(model, path)
+    call init_model(model, path, err)
+    if (allocated(err)) return
     allocate (state%steps(0))
     call state%boundary%clear()
     call state%loads%clear()
@@ -154,13 +156,16 @@ contains
       'TIME POINTS', 'RESTART'])
   end function allowed_between_steps
 
-  subroutine init_model(model, path)
+  subroutine init_model(model, path, err)
     type(model_t), intent(inout) :: model
     character(len=*), intent(in) :: path
+    type(error_t), allocatable, intent(out) :: err
     model%title = ''
     model%deck_path = path
     model%solver_name = 'UMFPACK'
-    call model%mesh%init()
+    call model%element_kinds%init(err)
+    if (allocated(err)) return
+    call model%mesh%init(mesh_kinds(model%element_kinds))
     allocate (model%materials(0), model%sections(0), model%amplitudes(0), &
               model%time_points(0), model%steps(0), model%interactions(0), model%contact_pairs(0), &
               model%histories(0), model%warnings(0))

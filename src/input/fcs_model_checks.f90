@@ -5,17 +5,20 @@ module fcs_model_checks
   use fcs_kinds, only: dp
   use fcs_diagnostics, only: diagnostics_t, source_loc_t
   use fcs_deck_lexer, only: deck_t
-  use fcs_hex8_shape, only: hex8_min_jacobian_ratio
+  use fcs_error, only: error_t, input_error
+  use fcs_element_loops, only: element_jacobian_ratio, element_volume_of, element_face_area_of
   use fcs_model, only: model_t
   use fcs_model_supports, only: check_supports
   use fcs_build_plasticity, only: check_plasticity
   use fcs_strings, only: str, parse_int
   implicit none
   private
-  public :: check_model
+  public :: check_model, check_mesh_file_orientation
 
   !> How many offending entities are named in one message.
   integer, parameter :: MAX_NAMED = 5
+  !> Inverted elements of a mesh file named one by one in the error.
+  integer, parameter :: MAX_INVERTED_NAMED = 5
   !> Default normal penalty E_n = DEFAULT_PENALTY_FACTOR * E / h.
   real(dp), parameter :: DEFAULT_PENALTY_FACTOR = 10.0_dp
 
@@ -194,29 +197,12 @@ contains
 
   !> Volume of element e and area of its face f (reference configuration).
   subroutine element_volume_and_face_area(model, e, f, volume, area)
-    use fcs_mesh, only: hex8_face_nodes
-    use fcs_hex8_shape, only: hex8_jacobian, det3, hex8_gauss_points, N_GAUSS_HEX8
     type(model_t), intent(in) :: model
     integer, intent(in) :: e, f
     real(dp), intent(out) :: volume, area
-    real(dp) :: x(3, 8), points(3, N_GAUSS_HEX8), weights(N_GAUSS_HEX8), xf(3, 4), c(3)
-    integer :: q
-    x = model%mesh%x(:, model%mesh%connectivity(:, e))
-    call hex8_gauss_points(points, weights)
-    volume = 0.0_dp
-    do q = 1, N_GAUSS_HEX8
-      volume = volume + det3(hex8_jacobian(x, points(:, q))) * weights(q)
-    end do
-    xf = model%mesh%x(:, hex8_face_nodes(model%mesh, e, f))
-    c = cross(xf(:, 3) - xf(:, 1), xf(:, 4) - xf(:, 2))
-    area = 0.5_dp * norm2(c)
+    volume = element_volume_of(model%element_kinds, model%mesh, e)
+    area = element_face_area_of(model%element_kinds, model%mesh, e, f)
   end subroutine element_volume_and_face_area
-
-  pure function cross(a, b) result(c)
-    real(dp), intent(in) :: a(3), b(3)
-    real(dp) :: c(3)
-    c = [a(2) * b(3) - a(3) * b(2), a(3) * b(1) - a(1) * b(3), a(1) * b(2) - a(2) * b(1)]
-  end function cross
 
   !> Inverted or degenerate elements (det J <= 0 at a Gauss point or node).
   !> Inverted or degenerate elements (det J <= 0 at a Gauss point or node), each reported at its
@@ -229,7 +215,7 @@ contains
     real(dp) :: ratio
     n_bad = 0
     do e = 1, model%mesh%n_elements
-      ratio = hex8_min_jacobian_ratio(model%mesh%x(:, model%mesh%connectivity(:, e)))
+      ratio = element_jacobian_ratio(model%element_kinds, model%mesh, e)
       if (ratio > 0.0_dp) cycle
       n_bad = n_bad + 1
       if (n_bad > MAX_NAMED) cycle
@@ -241,5 +227,38 @@ contains
     if (n_bad > MAX_NAMED) call diag%report_plain(model%deck_path // ': ' // &
       str(n_bad - MAX_NAMED) // ' more inverted or degenerate element(s)')
   end subroutine check_jacobians
+
+  !> Every element read from the mesh file `path` (elements first.. of the mesh, element k of
+  !> them on line lines(k) of the file, 0 in a binary file) must have a positive Jacobian: an
+  !> inverted or degenerate one is an error at its line of the file (the first
+  !> MAX_INVERTED_NAMED are named).
+  subroutine check_mesh_file_orientation(path, model, first, lines, err)
+    character(len=*), intent(in) :: path
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: first, lines(:)
+    type(error_t), allocatable, intent(out) :: err
+    integer :: k, e, n_bad
+    character(len=:), allocatable :: text
+    n_bad = 0
+    text = ''
+    do k = 1, size(lines)
+      e = first + k - 1
+      if (element_jacobian_ratio(model%element_kinds, model%mesh, e) > 0.0_dp) cycle
+      n_bad = n_bad + 1
+      if (n_bad > MAX_INVERTED_NAMED) cycle
+      if (n_bad > 1) text = text // new_line('a')
+      text = text // path
+      if (lines(k) > 0) text = text // ':' // str(lines(k))
+      text = text // ': element ' // str(model%mesh%element_id(e)) // ' is inverted or ' // &
+        'degenerate (Jacobian determinant <= 0)'
+    end do
+    if (n_bad == 0) return
+    if (n_bad > MAX_INVERTED_NAMED) text = text // new_line('a') // path // ': ' // &
+      str(n_bad - MAX_INVERTED_NAMED) // ' more inverted or degenerate element(s)'
+    call input_error(err, text // new_line('a') // 'gmsh numbering of a hexahedron: nodes 0-3 ' // &
+      'counter-clockwise on one face seen from the opposite face, 4-7 above them; a volume ' // &
+      'meshed with the reverse orientation gives inverted elements (reverse the surface loop ' // &
+      'of the volume in the .geo file)')
+  end subroutine check_mesh_file_orientation
 
 end module fcs_model_checks

@@ -64,7 +64,7 @@ contains
     allocate (model%free_node(model%mesh%n_nodes))
     model%free_node = .true.
     do e = 1, model%mesh%n_elements
-      model%free_node(model%mesh%connectivity(:, e)) = .false.
+      model%free_node(model%mesh%element_nodes(e)) = .false.
     end do
   end subroutine mark_free_nodes
 
@@ -90,13 +90,15 @@ contains
     type(model_t), intent(in) :: model
     integer, allocatable, intent(out) :: assembly(:)
     integer, allocatable :: parent(:), slaves(:)
+    integer, allocatable :: nodes(:)
     integer :: e, j, k, n, master_node
     n = model%mesh%n_nodes
     allocate (parent(n))
     parent = [(j, j = 1, n)]
     do e = 1, model%mesh%n_elements
-      do j = 2, 8
-        call unite(parent, model%mesh%connectivity(1, e), model%mesh%connectivity(j, e))
+      nodes = model%mesh%element_nodes(e)
+      do j = 2, size(nodes)
+        call unite(parent, nodes(1), nodes(j))
       end do
     end do
     do k = 1, size(model%contact_pairs)

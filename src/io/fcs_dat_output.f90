@@ -16,10 +16,6 @@ module fcs_dat_output
   use fcs_text_file, only: text_file_t
   use fcs_model, only: model_t, output_request_t, TOTALS_NO, TOTALS_ONLY
   use fcs_sort, only: argsort_integers
-  use fcs_hex8_shape, only: N_GAUSS_HEX8
-  use fcs_contact_system, only: contact_system_t
-  use fcs_contact_state, only: contact_state_t
-  use fcs_contact_element, only: CONTACT_OPEN
   implicit none
   private
   public :: dat_file_t
@@ -104,12 +100,13 @@ contains
   end subroutine node_block
 
   !> *EL PRINT: S, E and/or PEEQ (PE) at the integration points of the request's element set;
-  !> peeq(q, e) is the equivalent plastic strain.
-  subroutine dat_el_print(this, model, request, time, stress, strain, peeq, err)
+  !> peeq(q, e) is the equivalent plastic strain; element e has n_points(e) integration points.
+  subroutine dat_el_print(this, model, request, time, stress, strain, peeq, n_points, err)
     class(dat_file_t), intent(inout) :: this
     type(model_t), intent(in) :: model
     type(output_request_t), intent(in) :: request
     real(dp), intent(in) :: time, stress(:, :, :), strain(:, :, :), peeq(:, :)
+    integer, intent(in) :: n_points(:)
     type(error_t), allocatable, intent(out) :: err
     character(len=32) :: stamp
     integer :: v
@@ -121,11 +118,11 @@ contains
         case ('S')
           call header(this%file, 'stresses (elem, integ.pnt.,sxx,syy,szz,sxy,sxz,syz)', &
                       set%name, time, err)
-          if (.not. allocated(err)) call ip_rows(this%file, model, elements, stress, .false., err)
+          if (.not. allocated(err)) call ip_rows(this%file, model, elements, n_points, stress, .false., err)
         case ('E')
           call header(this%file, 'strains (elem, integ.pnt.,exx,eyy,ezz,exy,exz,eyz)', &
                       set%name, time, err)
-          if (.not. allocated(err)) call ip_rows(this%file, model, elements, strain, .true., err)
+          if (.not. allocated(err)) call ip_rows(this%file, model, elements, n_points, strain, .true., err)
         case ('PEEQ', 'PE')
           ! ccx 2.20 writes this header without a blank before "for".
           write (stamp, '(e14.7)') time
@@ -133,7 +130,7 @@ contains
           if (.not. allocated(err)) call this%file%write(' equivalent plastic strain (elem, ' // &
             'integ.pnt.,pe)for set ' // set%name // ' and time ' // trim(stamp), err)
           if (.not. allocated(err)) call this%file%write('', err)
-          if (.not. allocated(err)) call peeq_rows(this%file, model, elements, peeq, err)
+          if (.not. allocated(err)) call peeq_rows(this%file, model, elements, n_points, peeq, err)
         end select
         if (allocated(err)) return
       end do
@@ -142,17 +139,17 @@ contains
   end subroutine dat_el_print
 
   !> One row per integration point of `elements`: the equivalent plastic strain.
-  subroutine peeq_rows(file, model, elements, peeq, err)
+  subroutine peeq_rows(file, model, elements, n_points, peeq, err)
     type(text_file_t), intent(inout) :: file
     type(model_t), intent(in) :: model
-    integer, intent(in) :: elements(:)
+    integer, intent(in) :: elements(:), n_points(:)
     real(dp), intent(in) :: peeq(:, :)
     type(error_t), allocatable, intent(out) :: err
     character(len=64) :: line
     integer :: i, q, e
     do i = 1, size(elements)
       e = elements(i)
-      do q = 1, N_GAUSS_HEX8
+      do q = 1, n_points(e)
         write (line, '(i10,i4,es14.6)') model%mesh%element_id(e), q, peeq(q, e)
         call file%write(trim(line), err)
         if (allocated(err)) return
@@ -162,10 +159,10 @@ contains
 
   !> One row per integration point of `elements`; `tensor_shear` halves the shear components
   !> (engineering to tensor strains).
-  subroutine ip_rows(file, model, elements, values, tensor_shear, err)
+  subroutine ip_rows(file, model, elements, n_points, values, tensor_shear, err)
     type(text_file_t), intent(inout) :: file
     type(model_t), intent(in) :: model
-    integer, intent(in) :: elements(:)
+    integer, intent(in) :: elements(:), n_points(:)
     real(dp), intent(in) :: values(:, :, :)
     logical, intent(in) :: tensor_shear
     type(error_t), allocatable, intent(out) :: err
@@ -174,7 +171,7 @@ contains
     integer :: i, q, e
     do i = 1, size(elements)
       e = elements(i)
-      do q = 1, N_GAUSS_HEX8
+      do q = 1, n_points(e)
         row = values(:, q, e)
         if (tensor_shear) row(4:6) = 0.5_dp * row(4:6)
         write (line, '(i10,i4,6es14.6)') model%mesh%element_id(e), q, row
@@ -185,20 +182,21 @@ contains
   end subroutine ip_rows
 
   !> *CONTACT PRINT: CDIS and/or CSTR of every closed contact node (all pairs), as CalculiX
-  !> prints them ("for all contact elements").
-  subroutine dat_contact_print(this, model, request, time, contact, cstate, x, err)
+  !> prints them ("for all contact elements"): for each slave entry its node index, whether it
+  !> is closed, and its relative displacement and stress in the local frame of its master face
+  !> (the contact system's `print_values`).
+  subroutine dat_contact_print(this, model, request, time, node, closed, displacement, stress, err)
     class(dat_file_t), intent(inout) :: this
     type(model_t), intent(in) :: model
     type(output_request_t), intent(in) :: request
-    real(dp), intent(in) :: time, x(:, :)
-    type(contact_system_t), intent(in) :: contact
-    type(contact_state_t), intent(in) :: cstate
+    real(dp), intent(in) :: time, displacement(:, :), stress(:, :)
+    integer, intent(in) :: node(:)
+    logical, intent(in) :: closed(:)
     type(error_t), allocatable, intent(out) :: err
     integer, allocatable :: order(:)
-    real(dp) :: displacement(3), stress(3)
     character(len=128) :: line
     integer :: v, i, s
-    order = argsort_integers(model%mesh%node_id(contact%slave_node))
+    order = argsort_integers(model%mesh%node_id(node))
     do v = 1, size(request%variables)
       if (request%variables(v)%s == 'CDIS') then
         write (line, '(a,e14.7)') ' relative contact displacement (slave node,normal,tang1,' // &
@@ -213,12 +211,11 @@ contains
       do i = 1, size(order)
         if (allocated(err)) return
         s = order(i)
-        if (cstate%status(s) == CONTACT_OPEN) cycle
-        call contact%local_values(s, x, cstate, displacement, stress)
+        if (.not. closed(s)) cycle
         if (request%variables(v)%s == 'CDIS') then
-          write (line, '(i10,3es14.6)') model%mesh%node_id(contact%slave_node(s)), displacement
+          write (line, '(i10,3es14.6)') model%mesh%node_id(node(s)), displacement(:, s)
         else
-          write (line, '(i10,3es14.6)') model%mesh%node_id(contact%slave_node(s)), stress
+          write (line, '(i10,3es14.6)') model%mesh%node_id(node(s)), stress(:, s)
         end if
         call this%file%write(trim(line), err)
       end do

@@ -8,9 +8,10 @@
 !> whole-file rewrite replaces the file atomically.
 module fcs_event_catalog
   use fcs_kinds, only: dp
-  use fcs_error, only: error_t
-  use fcs_strings, only: string_t
+  use fcs_error, only: error_t, input_error
+  use fcs_strings, only: string_t, str
   use fcs_text_file, only: text_file_t
+  use fcs_archive, only: archive_t
   implicit none
   private
   public :: event_catalog_t, slip_event_t, pair_watch_t, EVENT_COLUMNS
@@ -57,7 +58,14 @@ module fcs_event_catalog
     procedure :: update => catalog_update
     procedure :: table => catalog_table
     procedure :: rewrite_csv => catalog_rewrite_csv
+    procedure :: save => catalog_save
+    procedure :: load => catalog_load
   end type event_catalog_t
+
+  !> Values per event and per watched node in the archive (this type's own layout, read
+  !> back only by `load`): the slip_event_t fields in order, and the five per-node arrays of
+  !> a pair_watch_t then its active flag and event.
+  integer, parameter :: N_EVENT_VALUES = 12, N_WATCH_ARRAYS = 5
 
 contains
 
@@ -222,5 +230,94 @@ contains
       err%message = 'event catalog: ' // err%message
     end if
   end subroutine catalog_rewrite_csv
+
+  !> Write the events so far and the watch of every pair into group `group` of `archive`
+  !> (records `events` and `watch_<k>`); nothing when the catalog is off.
+  subroutine catalog_save(this, archive, group, err)
+    class(event_catalog_t), intent(in) :: this
+    class(archive_t), intent(inout) :: archive
+    character(len=*), intent(in) :: group
+    type(error_t), allocatable, intent(out) :: err
+    real(dp), allocatable :: table(:, :)
+    integer :: i, k
+    if (.not. allocated(this%watch)) return
+    allocate (table(N_EVENT_VALUES, this%n_events))
+    do i = 1, this%n_events
+      table(:, i) = event_values(this%events(i))
+    end do
+    call archive%put(group // '/events', table, err)
+    do k = 1, size(this%watch)
+      if (allocated(err)) return
+      call archive%put(group // '/watch_' // str(k), watch_values(this%watch(k)), err)
+    end do
+  end subroutine catalog_save
+
+  !> Read what `save` wrote into a catalog set up for the same pairs (`init`).
+  subroutine catalog_load(this, archive, group, err)
+    class(event_catalog_t), intent(inout) :: this
+    class(archive_t), intent(inout) :: archive
+    character(len=*), intent(in) :: group
+    type(error_t), allocatable, intent(out) :: err
+    real(dp), allocatable :: rows(:, :), table(:, :)
+    integer :: i, k, n
+    if (.not. allocated(this%watch)) return
+    if (.not. archive%exists(group // '/events')) then
+      call input_error(err, 'the checkpoint has no event catalog (was *EVENT CATALOG added?)')
+      return
+    end if
+    call archive%get_columns(group // '/events', N_EVENT_VALUES, rows, err)
+    if (allocated(err)) return
+    n = size(rows, 2)
+    deallocate (this%events)
+    allocate (this%events(max(16, n)))
+    do i = 1, n
+      this%events(i) = values_event(rows(:, i))
+    end do
+    this%n_events = n
+    do k = 1, size(this%watch)
+      allocate (table(N_WATCH_ARRAYS * size(this%watch(k)%involved) + 1 + N_EVENT_VALUES, 1))
+      call archive%get(group // '/watch_' // str(k), table, err)
+      if (allocated(err)) return
+      call set_watch(this%watch(k), table(:, 1))
+      deallocate (table)
+    end do
+  end subroutine catalog_load
+
+  pure function event_values(e) result(v)
+    type(slip_event_t), intent(in) :: e
+    real(dp) :: v(N_EVENT_VALUES)
+    v = [real(e%pair, dp), e%onset, e%finish, real(e%n_nodes, dp), e%peak_rate, e%max_slip, &
+         e%mean_slip, e%stress_drop, real(e%hypocentre, dp), e%location]
+  end function event_values
+
+  pure function values_event(v) result(e)
+    real(dp), intent(in) :: v(N_EVENT_VALUES)
+    type(slip_event_t) :: e
+    e = slip_event_t(nint(v(1)), v(2), v(3), nint(v(4)), v(5), v(6), v(7), v(8), nint(v(9)), v(10:12))
+  end function values_event
+
+  !> A watch as one column: per-node involved flags, slip and shear at onset, last slip and
+  !> shear (5 n values), then the active flag and the event under way (13).
+  pure function watch_values(w) result(table)
+    type(pair_watch_t), intent(in) :: w
+    real(dp), allocatable :: table(:, :)
+    table = reshape([merge(1.0_dp, 0.0_dp, w%involved), w%slip_start, w%shear_start, &
+                     w%last_slip, w%last_shear, merge(1.0_dp, 0.0_dp, w%active), &
+                     event_values(w%event)], [N_WATCH_ARRAYS * size(w%involved) + 1 + N_EVENT_VALUES, 1])
+  end function watch_values
+
+  pure subroutine set_watch(w, flat)
+    type(pair_watch_t), intent(inout) :: w
+    real(dp), intent(in) :: flat(:)
+    integer :: n
+    n = size(w%involved)
+    w%involved = flat(1:n) > 0.5_dp
+    w%slip_start = flat(n + 1:2 * n)
+    w%shear_start = flat(2 * n + 1:3 * n)
+    w%last_slip = flat(3 * n + 1:4 * n)
+    w%last_shear = flat(4 * n + 1:5 * n)
+    w%active = flat(5 * n + 1) > 0.5_dp
+    w%event = values_event(flat(5 * n + 2:5 * n + 13))
+  end subroutine set_watch
 
 end module fcs_event_catalog

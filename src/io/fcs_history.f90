@@ -9,9 +9,10 @@
 !> the CSV always ends with complete rows; the whole-file rewrite replaces the file atomically.
 module fcs_history
   use fcs_kinds, only: dp
-  use fcs_error, only: error_t
+  use fcs_error, only: error_t, input_error
   use fcs_strings, only: string_t, join_strings
   use fcs_text_file, only: text_file_t
+  use fcs_archive, only: archive_t
   implicit none
   private
   public :: history_table_t
@@ -31,6 +32,8 @@ module fcs_history
     procedure :: rewrite_csv => table_rewrite_csv
     procedure :: values => table_values
     procedure :: set_rows => table_set_rows
+    procedure :: save => table_save
+    procedure :: load => table_load
   end type history_table_t
 
 contains
@@ -122,5 +125,30 @@ contains
     this%rows(:, 1:size(values, 2)) = values
     this%n_rows = size(values, 2)
   end subroutine table_set_rows
+
+  !> Write the rows so far as the record `path` of `archive`.
+  subroutine table_save(this, archive, path, err)
+    class(history_table_t), intent(in) :: this
+    class(archive_t), intent(inout) :: archive
+    character(len=*), intent(in) :: path
+    type(error_t), allocatable, intent(out) :: err
+    call archive%put(path, this%values(), err)
+  end subroutine table_save
+
+  !> Replace the rows by the record `path` of `archive` (the CSV is rewritten by the caller);
+  !> a checkpoint without it was written for a deck without this history.
+  subroutine table_load(this, archive, path, err)
+    class(history_table_t), intent(inout) :: this
+    class(archive_t), intent(inout) :: archive
+    character(len=*), intent(in) :: path
+    type(error_t), allocatable, intent(out) :: err
+    real(dp), allocatable :: rows(:, :)
+    if (.not. archive%exists(path)) then
+      call input_error(err, 'the checkpoint has no history ' // this%name // ' (was *HISTORY added?)')
+      return
+    end if
+    call archive%get_columns(path, size(this%columns), rows, err)
+    if (.not. allocated(err)) call this%set_rows(rows, err)
+  end subroutine table_load
 
 end module fcs_history

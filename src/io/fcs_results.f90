@@ -57,6 +57,7 @@ module fcs_results
     XDMF_SCALAR, XDMF_VECTOR, XDMF_TENSOR6, XDMF_MATRIX
   use fcs_version, only: FCS3D_IDENTITY
   use fcs_memory, only: allocation_failed
+  use fcs_field, only: field_t, FIELD_NODES, FIELD_CELLS, FIELD_POINTS, FIELD_SURFACE
   implicit none
   private
   public :: results_file_t, GRID_POINTS, GRID_QUADS
@@ -121,6 +122,7 @@ module fcs_results
     procedure :: write_integration_points => results_write_integration_points
     procedure :: write_surface_coordinates => results_write_surface_coordinates
     procedure :: write_surface_field => results_write_surface_field
+    procedure :: write_field => results_write_field
     procedure :: end_frame => results_end_frame
     procedure :: close => results_close
     procedure :: n_frames => results_n_frames
@@ -776,6 +778,26 @@ contains
     end if
     call record_surface_coordinates(this, k, path)
   end subroutine results_write_surface_coordinates
+
+  !> Write field `f` of the current frame where it lives (fcs_field): nodal, cell,
+  !> integration-point or surface-grid values.
+  subroutine results_write_field(this, f, err)
+    class(results_file_t), intent(inout) :: this
+    type(field_t), intent(in) :: f
+    type(error_t), allocatable, intent(out) :: err
+    select case (f%location)
+    case (FIELD_NODES)
+      call this%write_nodal(f%name, f%values, err)
+    case (FIELD_CELLS)
+      call this%write_cell(f%name, f%values, err)
+    case (FIELD_POINTS)
+      call this%write_integration_points(f%name, f%point_values, err)
+    case (FIELD_SURFACE)
+      call this%write_surface_field(f%grid, f%name, f%values, err)
+    case default
+      call fail(this, 'field "' // f%name // '": unknown location', err)
+    end select
+  end subroutine results_write_field
 
   !> Nodal field `values(k, m)` on surface grid `grid_name` (k = 1, 3 or 6, as `write_nodal`);
   !> the grid's coordinates must have been written in this frame.

@@ -18,7 +18,7 @@ module fcs_material
   use fcs_kinds, only: dp
   implicit none
   private
-  public :: material_t, isotropic_elastic_matrix, YIELD_TOLERANCE, UNLOADING_COSINE
+  public :: material_t, material_slot_t, isotropic_elastic_matrix, YIELD_TOLERANCE, UNLOADING_COSINE
 
   !> A point whose yield function f lies within YIELD_TOLERANCE times the current yield
   !> stress of the surface counts as on it: its tangent is elastoplastic (unless the increment
@@ -65,6 +65,11 @@ module fcs_material
     procedure :: unloads => material_unloads
     procedure :: on_surface => material_on_surface
   end type material_t
+
+  !> One material object (of any law), e.g. one per *MATERIAL of a model.
+  type :: material_slot_t
+    class(material_t), allocatable :: m
+  end type material_slot_t
 
   abstract interface
     !> Tangent modulus C (6x6, engineering strain to stress) for the current state of one

@@ -27,12 +27,16 @@
 !>   group gives a node set. Groups without elements give no set. Sets that already exist in
 !>   the mesh under the same name are extended (the mesh convention for repeated definitions).
 !> - 4-node quadrangles (type 3) of surface groups are not elements: each is matched to the
-!>   hexahedron face with the same four nodes, giving (element, face S1..S6 as numbered by
-!>   `HEX8_FACE_LOCAL_NODES`). A quad on a face shared by two hexahedra takes the face of the
+!>   hexahedron face with the same four nodes, giving (element, face S1..S6 as the mesh's kind
+!>   for gmsh type 5 numbers them, fcs_mesh). A quad on a face shared by two hexahedra takes the face of the
 !>   hexahedron out of which the quad's own normal (right-hand rule) points.
 !> - Points (15) and 2-node lines (1) outside physical groups are ignored, and so is any other
 !>   element type outside physical groups unless it is three-dimensional. Any other element type
 !>   in a physical group, and any 3D element other than the 8-node hexahedron, is an error.
+!>
+!> The hexahedra become elements of the mesh's kind for gmsh type 5 (`find_gmsh_kind`: C3D8).
+!> Their Jacobians are the caller's to check (fcs_model_checks, `check_mesh_file_orientation`),
+!> with the line of each element in the file that `read_gmsh` returns.
 !>
 !> Errors are input errors: "path:line: message" for text files, "path: $Section (byte N):
 !> message" for binary ones, "path: message" for what concerns the whole file.
@@ -44,7 +48,6 @@ module fcs_gmsh_reader
   use fcs_int_map, only: int_map_t
   use fcs_mesh, only: mesh_t
   use fcs_hex_face_match, only: match_quads_to_hex_faces
-  use fcs_hex8_shape, only: hex8_min_jacobian_ratio
   use fcs_gmsh_stream, only: msh_stream_t, is_finite_bits
   implicit none
   private
@@ -61,8 +64,6 @@ module fcs_gmsh_reader
   integer, parameter :: BLOCK_SKIP = 0, BLOCK_HEXAHEDRA = 1, BLOCK_QUADS = 2, BLOCK_NODES = 3
   !> Largest tag that fits a mesh id.
   integer(i8), parameter :: MAX_TAG = int(huge(1), i8)
-  !> Inverted hexahedra named one by one in the error.
-  integer, parameter :: MAX_INVERTED_NAMED = 5
   !> Elements per read in a binary element block (bounds the temporary buffer).
   integer, parameter :: BINARY_BATCH = 65536
   !> Fewest bytes a node, an entity and a block header take in text and binary files, used to
@@ -144,10 +145,12 @@ contains
   !> and may already hold nodes, elements and sets (ids must not clash with the file's tags).
   !> The whole file is read and checked before the mesh is touched, except for id clashes and
   !> quads on no hexahedron face: after such an error the mesh holds part of the file.
-  subroutine read_gmsh(path, mesh, err)
+  subroutine read_gmsh(path, mesh, err, element_lines)
     character(len=*), intent(in) :: path
     type(mesh_t), intent(inout) :: mesh
     type(error_t), allocatable, intent(out) :: err
+    !> For each element added (in mesh order), its line in the file (0 in a binary file).
+    integer, allocatable, intent(out), optional :: element_lines(:)
     type(msh_stream_t) :: stream
     type(msh_content_t) :: content
     call stream%open(path, err)
@@ -156,6 +159,7 @@ contains
     call stream%close()
     if (allocated(err)) return
     call build_mesh(path, content, mesh, err)
+    if (present(element_lines)) element_lines = content%hexahedra%line(1:content%hexahedra%n)
   end subroutine read_gmsh
 
   ! ------------------------------------------------------------------------------------------
@@ -1093,6 +1097,12 @@ contains
     type(error_t), allocatable, intent(out) :: err
     integer, allocatable :: node_index(:), element_index(:)
     type(quad_faces_t) :: quad_faces
+    integer :: kind
+    kind = mesh%find_gmsh_kind(GMSH_HEXAHEDRON)
+    if (kind == 0) then
+      call input_error(err, path // ': the mesh has no element kind for gmsh hexahedra (type 5)')
+      return
+    end if
     if (content%hexahedra%n == 0) then
       call input_error(err, path // ': no 8-node hexahedra (gmsh element type 5) to read. gmsh saves &
         &only the elements of physical groups when there are any: put the meshed volumes in a Physical &
@@ -1101,9 +1111,10 @@ contains
     end if
     call add_nodes(path, content, mesh, node_index, err)
     if (allocated(err)) return
-    call add_hexahedra(path, content, mesh, node_index, element_index, err)
+    call add_hexahedra(path, content, mesh, kind, node_index, element_index, err)
     if (allocated(err)) return
-    call match_quads(path, content, quad_faces, err)
+    call match_quads(path, content, mesh%kinds(kind)%face_local(1:4, 1:mesh%kinds(kind)%n_faces), &
+                     quad_faces, err)
     if (allocated(err)) return
     call add_groups(path, content, mesh, node_index, element_index, quad_faces, err)
   end subroutine build_mesh
@@ -1149,11 +1160,11 @@ contains
   end subroutine mark_nodes
 
   !> Add the hexahedra; `element_index` maps their position in the file's list to mesh indices.
-  subroutine add_hexahedra(path, content, mesh, node_index, element_index, err)
+  subroutine add_hexahedra(path, content, mesh, kind, node_index, element_index, err)
     character(len=*), intent(in) :: path
     type(msh_content_t), intent(in) :: content
     type(mesh_t), intent(inout) :: mesh
-    integer, intent(in) :: node_index(:)
+    integer, intent(in) :: kind, node_index(:)
     integer, allocatable, intent(out) :: element_index(:)
     type(error_t), allocatable, intent(out) :: err
     integer :: k, n_before
@@ -1161,7 +1172,8 @@ contains
     n_before = mesh%n_elements
     allocate (element_index(content%hexahedra%n))
     do k = 1, content%hexahedra%n
-      call mesh%add_element(content%hexahedra%tag(k), node_index(content%hexahedra%nodes(:, k)), duplicate)
+      call mesh%add_element(content%hexahedra%tag(k), node_index(content%hexahedra%nodes(:, k)), &
+                            duplicate, kind)
       if (duplicate) then
         if (mesh%element_index(content%hexahedra%tag(k)) > n_before) then
           call input_error(err, path // ': element ' // str(content%hexahedra%tag(k)) // &
@@ -1174,51 +1186,20 @@ contains
       end if
       element_index(k) = mesh%n_elements
     end do
-    call check_orientation(path, content, mesh, element_index, err)
   end subroutine add_hexahedra
 
-  !> Every hexahedron read must have a positive Jacobian: an inverted or degenerate one is an
-  !> error at its line of the file (the first MAX_INVERTED_NAMED are named).
-  subroutine check_orientation(path, content, mesh, element_index, err)
-    character(len=*), intent(in) :: path
-    type(msh_content_t), intent(in) :: content
-    type(mesh_t), intent(in) :: mesh
-    integer, intent(in) :: element_index(:)
-    type(error_t), allocatable, intent(out) :: err
-    integer :: k, e, n_bad
-    character(len=:), allocatable :: text
-    n_bad = 0
-    text = ''
-    do k = 1, content%hexahedra%n
-      e = element_index(k)
-      if (hex8_min_jacobian_ratio(mesh%x(:, mesh%connectivity(:, e))) > 0.0_dp) cycle
-      n_bad = n_bad + 1
-      if (n_bad > MAX_INVERTED_NAMED) cycle
-      if (n_bad > 1) text = text // new_line('a')
-      text = text // path
-      if (content%hexahedra%line(k) > 0) text = text // ':' // str(content%hexahedra%line(k))
-      text = text // ': element ' // str(content%hexahedra%tag(k)) // ' is inverted or ' // &
-        'degenerate (Jacobian determinant <= 0)'
-    end do
-    if (n_bad == 0) return
-    if (n_bad > MAX_INVERTED_NAMED) text = text // new_line('a') // path // ': ' // &
-      str(n_bad - MAX_INVERTED_NAMED) // ' more inverted or degenerate element(s)'
-    call input_error(err, text // new_line('a') // 'gmsh numbering of a hexahedron: nodes 0-3 ' // &
-      'counter-clockwise on one face seen from the opposite face, 4-7 above them; a volume ' // &
-      'meshed with the reverse orientation gives inverted elements (reverse the surface loop ' // &
-      'of the volume in the .geo file)')
-  end subroutine check_orientation
 
   !> Match every kept quad to the hexahedron face with the same four nodes; a quad on no face
   !> (or, in a non-conforming mesh, on more than two) is an error.
-  subroutine match_quads(path, content, quad_faces, err)
+  subroutine match_quads(path, content, faces, quad_faces, err)
     character(len=*), intent(in) :: path
     type(msh_content_t), intent(in) :: content
+    integer, intent(in) :: faces(:, :)
     type(quad_faces_t), intent(out) :: quad_faces
     type(error_t), allocatable, intent(out) :: err
     integer, allocatable :: matches(:)
     integer :: q
-    call match_quads_to_hex_faces(content%hexahedra%nodes(:, 1:content%hexahedra%n), &
+    call match_quads_to_hex_faces(faces, content%hexahedra%nodes(:, 1:content%hexahedra%n), &
       content%quads%nodes(:, 1:content%quads%n), quad_faces%hexahedron, quad_faces%face, matches)
     do q = 1, content%quads%n
       if (matches(q) == 1 .or. matches(q) == 2) cycle

@@ -1,11 +1,11 @@
 !> Matching of quadrilaterals (given by their four nodes) to the faces of 8-node hexahedra, as
-!> needed to turn the boundary quads of a mesh generator into element-face surfaces.
+!> needed to turn the boundary quads of a mesh generator into element-face surfaces. The faces
+!> of the hexahedron are data the caller gives (the mesh's kind, fcs_mesh).
 !>
 !> A hash table of the quads, keyed by their sorted node numbers, is built once and probed with
 !> each of the six faces of every hexahedron: O(n_quads + n_hexahedra) time, O(n_quads) memory.
 module fcs_hex_face_match
   use fcs_kinds, only: i8
-  use fcs_mesh, only: HEX8_FACE_LOCAL_NODES
   implicit none
   private
   public :: match_quads_to_hex_faces
@@ -14,12 +14,13 @@ contains
 
   !> For each quad `quads(:, q)` (four node numbers), find the hexahedron `hexahedra(:, k)`
   !> (eight node numbers in C3D8 order) having a face with the same four nodes, and that face
-  !> (1..6, numbered as `HEX8_FACE_LOCAL_NODES`). `matches(q)` counts the faces found: 1 on the
+  !> (1..6, face f having the local nodes `faces(:, f)`, outward by the right-hand rule).
+  !> `matches(q)` counts the faces found: 1 on the
   !> boundary; 2 on a face shared by two hexahedra, where the face of the hexahedron out of which
   !> the quad's own normal (right-hand rule on its node order) points is chosen; 0 if none, with
   !> `hexahedron(q)` = `face(q)` = 0. Node numbers must be positive.
-  subroutine match_quads_to_hex_faces(hexahedra, quads, hexahedron, face, matches)
-    integer, intent(in) :: hexahedra(:, :), quads(:, :)
+  subroutine match_quads_to_hex_faces(faces, hexahedra, quads, hexahedron, face, matches)
+    integer, intent(in) :: faces(:, :), hexahedra(:, :), quads(:, :)
     integer, allocatable, intent(out) :: hexahedron(:), face(:), matches(:)
     integer, allocatable :: keys(:, :), slots(:), next_same(:)
     integer :: q, k, f, n, capacity, face_nodes(4)
@@ -41,8 +42,8 @@ contains
       call insert_quad(keys, slots, next_same, q)
     end do
     do k = 1, size(hexahedra, 2)
-      do f = 1, 6
-        face_nodes = hexahedra(HEX8_FACE_LOCAL_NODES(:, f), k)
+      do f = 1, size(faces, 2)
+        face_nodes = hexahedra(faces(:, f), k)
         q = find_quad(keys, slots, sorted4(face_nodes))
         do while (q /= 0)
           matches(q) = matches(q) + 1

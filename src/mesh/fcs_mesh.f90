@@ -1,30 +1,38 @@
-!> The finite element mesh: nodes, 8-node hexahedra, node and element sets, surfaces.
+!> The finite element mesh: nodes, elements of any kind (mixed), node and element sets,
+!> surfaces.
 !>
 !> Nodes and elements carry the user's ids; everything else refers to them by index (1..n).
-!> Face numbering of the hexahedron follows Abaqus/CalculiX (S1..S6); `hex8_face_nodes`
-!> returns a face's nodes ordered so that the right-hand rule gives the outward normal.
+!> Each element has a kind, an index into the mesh's `kinds`: what the mesh knows of an element
+!> kind - its name, its number of nodes and the local nodes of its faces S1..Sn - is data the
+!> element layer gives it (fcs_element_loops, `mesh_kinds`); the mesh does not interpolate.
+!> `connectivity` has as many rows as the largest element, shorter elements padded with 0.
+!> `face_nodes(e, f)` returns the nodes of face f of element e, corners first, ordered so that
+!> the right-hand rule gives the outward normal.
 module fcs_mesh
   use fcs_kinds, only: dp
   use fcs_int_map, only: int_map_t
   use fcs_sort, only: unique_sorted
   implicit none
   private
-  public :: mesh_t, named_set_t, surface_t, hex8_face_nodes, hex8_face_local, HEX8_FACE_LOCAL_NODES
-  public :: SURFACE_FACES, SURFACE_NODES, merge_sorted_unique
+  public :: mesh_t, mesh_kind_t, named_set_t, surface_t
+  public :: SURFACE_FACES, SURFACE_NODES, merge_sorted_unique, MESH_MAX_FACES, MESH_MAX_FACE_NODES
 
   !> Surface kinds.
   integer, parameter :: SURFACE_FACES = 1, SURFACE_NODES = 2
+  !> Most faces of an element kind and most nodes of a face.
+  integer, parameter :: MESH_MAX_FACES = 6, MESH_MAX_FACE_NODES = 8
 
-  !> Local node numbers of faces S1..S6 (columns), ordered so that the right-hand rule gives the
-  !> outward normal. The node sets are those of the Abaqus/CalculiX C3D8 faces
-  !> (S1: 1-2-3-4, S2: 5-8-7-6, S3: 1-5-6-2, S4: 2-6-7-3, S5: 3-7-8-4, S6: 4-8-5-1).
-  integer, parameter :: HEX8_FACE_LOCAL_NODES(4, 6) = reshape([ &
-    1, 4, 3, 2, &
-    5, 6, 7, 8, &
-    1, 2, 6, 5, &
-    2, 3, 7, 6, &
-    3, 4, 8, 7, &
-    4, 1, 5, 8], [4, 6])
+  !> What the mesh knows of an element kind (given by the element layer).
+  type :: mesh_kind_t
+    character(len=:), allocatable :: name
+    integer :: n_nodes = 0
+    !> gmsh MSH element type read as this kind (0: none).
+    integer :: gmsh_type = 0
+    integer :: n_faces = 0
+    !> face_size(f) nodes of face f: face_local(1:face_size(f), f), corners first, outward.
+    integer :: face_size(MESH_MAX_FACES) = 0
+    integer :: face_local(MESH_MAX_FACE_NODES, MESH_MAX_FACES) = 0
+  end type mesh_kind_t
 
   !> A named set of node or element indices, sorted and unique.
   type :: named_set_t
@@ -49,6 +57,9 @@ module fcs_mesh
     integer :: n_elements = 0
     integer, allocatable :: element_id(:)
     integer, allocatable :: connectivity(:, :)
+    !> The kind of each element (index into `kinds`), and the kinds.
+    integer, allocatable :: element_kind(:)
+    type(mesh_kind_t), allocatable :: kinds(:)
     type(named_set_t), allocatable :: node_sets(:)
     type(named_set_t), allocatable :: element_sets(:)
     type(surface_t), allocatable :: surfaces(:)
@@ -70,16 +81,23 @@ module fcs_mesh
     procedure :: add_nodes_to_surface => mesh_add_nodes_to_surface
     procedure :: surface_node_list => mesh_surface_node_list
     procedure :: compact => mesh_compact
+    procedure :: find_kind => mesh_find_kind
+    procedure :: find_gmsh_kind => mesh_find_gmsh_kind
+    procedure :: element_nodes => mesh_element_nodes
+    procedure :: n_faces => mesh_n_faces
+    procedure :: face_nodes => mesh_face_nodes
   end type mesh_t
 
 contains
 
-  !> Empty mesh.
-  subroutine mesh_init(this)
+  !> Empty mesh whose elements may be of the given kinds.
+  subroutine mesh_init(this, kinds)
     class(mesh_t), intent(inout) :: this
+    type(mesh_kind_t), intent(in) :: kinds(:)
     call this%free()
+    this%kinds = kinds
     allocate (this%node_id(1024), this%x(3, 1024))
-    allocate (this%element_id(1024), this%connectivity(8, 1024))
+    allocate (this%element_id(1024), this%connectivity(0, 1024), this%element_kind(1024))
     allocate (this%node_sets(0), this%element_sets(0), this%surfaces(0))
     call this%node_map%init(1024)
     call this%element_map%init(1024)
@@ -94,6 +112,8 @@ contains
     if (allocated(this%x)) deallocate (this%x)
     if (allocated(this%element_id)) deallocate (this%element_id)
     if (allocated(this%connectivity)) deallocate (this%connectivity)
+    if (allocated(this%element_kind)) deallocate (this%element_kind)
+    if (allocated(this%kinds)) deallocate (this%kinds)
     if (allocated(this%node_sets)) deallocate (this%node_sets)
     if (allocated(this%element_sets)) deallocate (this%element_sets)
     if (allocated(this%surfaces)) deallocate (this%surfaces)
@@ -124,27 +144,83 @@ contains
     call this%node_map%set(id, this%n_nodes)
   end subroutine mesh_add_node
 
-  !> Add element `id` with node indices `nodes(8)`. `duplicate` is true if the id exists.
-  subroutine mesh_add_element(this, id, nodes, duplicate)
+  !> Add element `id` of kind `kind` (index into `kinds`) with node indices `nodes` (as many
+  !> as the kind has). `duplicate` is true if the id exists.
+  subroutine mesh_add_element(this, id, nodes, duplicate, kind)
     class(mesh_t), intent(inout) :: this
     integer, intent(in) :: id
-    integer, intent(in) :: nodes(8)
+    integer, intent(in) :: nodes(:)
     logical, intent(out) :: duplicate
-    integer, allocatable :: ids(:), conn(:, :)
+    integer, intent(in) :: kind
+    integer, allocatable :: ids(:), conn(:, :), kinds(:)
+    integer :: rows, capacity
     duplicate = this%element_map%get(id) /= 0
     if (duplicate) return
-    if (this%n_elements == size(this%element_id)) then
-      allocate (ids(2 * size(this%element_id)), conn(8, 2 * size(this%element_id)))
+    rows = max(size(this%connectivity, 1), size(nodes))
+    capacity = size(this%element_id)
+    if (this%n_elements == capacity) capacity = 2 * capacity
+    if (rows > size(this%connectivity, 1) .or. capacity > size(this%element_id)) then
+      allocate (ids(capacity), conn(rows, capacity), kinds(capacity))
+      conn = 0
       ids(1:this%n_elements) = this%element_id(1:this%n_elements)
-      conn(:, 1:this%n_elements) = this%connectivity(:, 1:this%n_elements)
+      conn(1:size(this%connectivity, 1), 1:this%n_elements) = this%connectivity(:, 1:this%n_elements)
+      kinds(1:this%n_elements) = this%element_kind(1:this%n_elements)
       call move_alloc(ids, this%element_id)
       call move_alloc(conn, this%connectivity)
+      call move_alloc(kinds, this%element_kind)
     end if
     this%n_elements = this%n_elements + 1
     this%element_id(this%n_elements) = id
-    this%connectivity(:, this%n_elements) = nodes
+    this%connectivity(:, this%n_elements) = 0
+    this%connectivity(1:size(nodes), this%n_elements) = nodes
+    this%element_kind(this%n_elements) = kind
     call this%element_map%set(id, this%n_elements)
   end subroutine mesh_add_element
+
+  !> Index of the kind called `name`, 0 if none.
+  pure integer function mesh_find_kind(this, name) result(k)
+    class(mesh_t), intent(in) :: this
+    character(len=*), intent(in) :: name
+    do k = 1, size(this%kinds)
+      if (this%kinds(k)%name == name) return
+    end do
+    k = 0
+  end function mesh_find_kind
+
+  !> Index of the first kind read from gmsh element type `gmsh_type`, 0 if none.
+  pure integer function mesh_find_gmsh_kind(this, gmsh_type) result(k)
+    class(mesh_t), intent(in) :: this
+    integer, intent(in) :: gmsh_type
+    do k = 1, size(this%kinds)
+      if (this%kinds(k)%gmsh_type == gmsh_type) return
+    end do
+    k = 0
+  end function mesh_find_gmsh_kind
+
+  !> Node indices of element e (as many as its kind has).
+  pure function mesh_element_nodes(this, e) result(nodes)
+    class(mesh_t), intent(in) :: this
+    integer, intent(in) :: e
+    integer, allocatable :: nodes(:)
+    nodes = this%connectivity(1:this%kinds(this%element_kind(e))%n_nodes, e)
+  end function mesh_element_nodes
+
+  !> Number of faces of element e.
+  pure integer function mesh_n_faces(this, e) result(n)
+    class(mesh_t), intent(in) :: this
+    integer, intent(in) :: e
+    n = this%kinds(this%element_kind(e))%n_faces
+  end function mesh_n_faces
+
+  !> Global node indices of face f of element e, corners first, outward by the right-hand rule.
+  pure function mesh_face_nodes(this, e, f) result(nodes)
+    class(mesh_t), intent(in) :: this
+    integer, intent(in) :: e, f
+    integer, allocatable :: nodes(:)
+    associate (kind => this%kinds(this%element_kind(e)))
+      nodes = this%connectivity(kind%face_local(1:kind%face_size(f), f), e)
+    end associate
+  end function mesh_face_nodes
 
   !> Index of node `id`, 0 if undefined.
   pure integer function mesh_node_index(this, id)
@@ -273,43 +349,37 @@ contains
     integer, intent(in) :: k
     integer, allocatable :: nodes(:)
     integer, allocatable :: all(:)
-    integer :: f, n
+    integer :: f, n, used
     if (this%surfaces(k)%kind == SURFACE_NODES) then
       nodes = this%surfaces(k)%nodes
       return
     end if
     n = size(this%surfaces(k)%element)
-    allocate (all(4 * n))
+    allocate (all(MESH_MAX_FACE_NODES * n))
+    used = 0
     do f = 1, n
-      all(4 * f - 3:4 * f) = hex8_face_nodes(this, this%surfaces(k)%element(f), this%surfaces(k)%face(f))
+      associate (face => this%face_nodes(this%surfaces(k)%element(f), this%surfaces(k)%face(f)))
+        all(used + 1:used + size(face)) = face
+        used = used + size(face)
+      end associate
     end do
     allocate (nodes(0))
-    nodes = merge_sorted_unique(nodes, all)
+    nodes = merge_sorted_unique(nodes, all(1:used))
   end function mesh_surface_node_list
 
-  !> Trim the growable arrays to their used size.
+  !> Trim the growable arrays to their used size (connectivity to the rows of the largest
+  !> element).
   subroutine mesh_compact(this)
     class(mesh_t), intent(inout) :: this
+    integer :: rows
+    rows = 0
+    if (this%n_elements > 0) rows = maxval(this%kinds(this%element_kind(1:this%n_elements))%n_nodes)
     this%node_id = this%node_id(1:this%n_nodes)
     this%x = this%x(:, 1:this%n_nodes)
     this%element_id = this%element_id(1:this%n_elements)
-    this%connectivity = this%connectivity(:, 1:this%n_elements)
+    this%connectivity = this%connectivity(1:rows, 1:this%n_elements)
+    this%element_kind = this%element_kind(1:this%n_elements)
   end subroutine mesh_compact
-
-  !> Global node indices of face `face` (1..6) of element `element`, outward by right-hand rule.
-  pure function hex8_face_nodes(mesh, element, face) result(nodes)
-    type(mesh_t), intent(in) :: mesh
-    integer, intent(in) :: element, face
-    integer :: nodes(4)
-    nodes = mesh%connectivity(HEX8_FACE_LOCAL_NODES(:, face), element)
-  end function hex8_face_nodes
-
-  !> Local node numbers (1..8) of face `face`.
-  pure function hex8_face_local(face) result(local)
-    integer, intent(in) :: face
-    integer :: local(4)
-    local = HEX8_FACE_LOCAL_NODES(:, face)
-  end function hex8_face_local
 
   !> Sorted union of a sorted unique list and arbitrary extra values.
   pure function merge_sorted_unique(sorted, extra) result(out)

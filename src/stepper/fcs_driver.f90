@@ -3,15 +3,14 @@
 module fcs_driver
   use fcs_kinds, only: dp, i8
   use fcs_error, only: error_t, fatal_error, input_error, add_context, EXIT_INTERRUPTED, EXIT_INPUT
-  use fcs_mesh, only: hex8_face_nodes
   use fcs_deck_lexer, only: deck_t
-  use fcs_model, only: model_t, step_t, output_request_t, OUTPUT_NODE_PRINT, OUTPUT_EL_PRINT, &
-                       OUTPUT_NODE_FILE, OUTPUT_EL_FILE, OUTPUT_CONTACT_PRINT, OUTPUT_CONTACT_FILE
+  use fcs_model, only: model_t, friction_def_t, FORMULATION_BBAR
+  use fcs_material, only: material_slot_t
   use fcs_model_builder, only: build_model
   use fcs_run_options, only: run_options_t
   use fcs_state, only: state_t
   use fcs_loading, only: build_step_loading
-  use fcs_assembly, only: make_materials, plastic_fields
+  use fcs_assembly, only: make_materials
   use fcs_static_explicit, only: analysis_t, take_increment, increment_record_t, build_pattern, &
                                  contact_positions, current_reactions, gather_element_fields
   use fcs_comm, only: comm_t
@@ -20,26 +19,21 @@ module fcs_driver
   use fcs_solver_factory, only: create_linear_solver
   use fcs_linear_solver, only: solver_stats_t
   use fcs_factor_reuse, only: reuse_settings_t
-  use fcs_results, only: results_file_t, GRID_POINTS
-  use fcs_contact_system, only: pair_totals_t
   use fcs_contact_friction_change, only: apply_friction_changes
-  use fcs_dat_output, only: dat_file_t
+  use fcs_run_outputs, only: run_outputs_t, log_contact_totals
+  use fcs_output_schedule, only: histories_due
   use fcs_echo, only: write_echo
   use fcs_log, only: logger_t, format_duration
   use fcs_timer, only: wall_time, peak_memory_mib
   use fcs_rmin_events, only: event_kind_name, EVENT_FULL_INCREMENT, EVENT_STRAIN_LIMIT, &
                              EVENT_ROTATION_LIMIT, EVENT_YIELD, EVENT_PLASTIC_STRAIN_LIMIT
-  use fcs_hex8_element, only: mises_stress, hex8_extrapolate
-  use fcs_hex8_shape, only: N_GAUSS_HEX8
-  use fcs_strings, only: str, to_upper, to_lower, join_strings
+  use fcs_strings, only: str, to_upper
   use fcs_signals, only: install_signal_handlers, signal_received
   use fcs_heap_policy, only: keep_freed_memory
   use fcs_memory, only: prepare_memory, ensure_memory, set_activity, set_failure_log
   use fcs_run_checkpoint, only: save_checkpoint, restore_checkpoint
   use fcs_checkpoint, only: checkpoint_info_t
-  use fcs_files, only: truncate_file, file_size
   use fcs_monitors, only: monitors_t
-  use fcs_event_catalog, only: EVENT_COLUMNS
   use fcs_version, only: FCS3D_IDENTITY
   use fcs_job_lock, only: job_lock_t
   implicit none
@@ -50,8 +44,7 @@ module fcs_driver
   type :: run_t
     type(analysis_t) :: analysis
     type(logger_t) :: log
-    type(results_file_t) :: results
-    type(dat_file_t) :: dat
+    type(run_outputs_t) :: outputs
     real(dp) :: started = 0.0_dp
     real(dp) :: total_time = 0.0_dp
     !> Path stem of the outputs, and wall time of the last checkpoint.
@@ -168,6 +161,8 @@ contains
     end if
     run%started = t_start
     run%job = options%job
+    run%outputs%job = options%job
+    run%outputs%writer = run%writer
     call setup(run, model, err)
     if (.not. allocated(err)) then
       if (len(options%restart_file) > 0) then
@@ -213,18 +208,24 @@ contains
     type(run_t), intent(inout) :: run
     type(model_t), intent(in) :: model
     type(error_t), allocatable, intent(out) :: err
+    type(material_slot_t), allocatable :: materials(:)
     integer :: n_state, n
     associate (a => run%analysis)
-      call make_materials(model, a%materials, n_state, err)
+      call make_materials(model, materials, err)
+      if (.not. allocated(err)) call a%elements%init(model%element_kinds, model%mesh, &
+        model%sections(model%element_section)%material, &
+        model%sections(model%element_section)%formulation == FORMULATION_BBAR, materials, err)
       if (allocated(err)) return
-      call set_activity('setting up the analysis', setup_bytes(model, n_state))
-      call ensure_memory(setup_bytes(model, n_state), 'setting up the analysis', err)
+      n_state = a%elements%n_material_state()
+      call set_activity('setting up the analysis', setup_bytes(model, a%elements%max_points, n_state))
+      call ensure_memory(setup_bytes(model, a%elements%max_points, n_state), &
+                         'setting up the analysis', err)
       if (allocated(err)) return
-      a%materials_have_states = n_state > 0
-      call a%state%init(model%mesh%x, model%mesh%n_elements, n_state)
+      call a%state%init(model%mesh%x, model%mesh%n_elements, a%elements%max_points, n_state)
       call contact_positions(a, model)
       if (size(model%contact_pairs) > 0) then
-        call a%contact%init(model, a%x_contact, a%state%contact, err)
+        call a%contact%init(model%contact_pairs, pair_frictions(model), model%mesh, a%x_contact, &
+                            a%state%contact, err)
         if (allocated(err)) return
         call note_tied_slaves(run)
       end if
@@ -257,17 +258,36 @@ contains
     run%total_time = sum(model%steps(:)%period)
   end subroutine setup
 
-  !> About the memory the set-up allocates [bytes]: state and force vectors, integration-point
-  !> arrays, element cliques, and the sparse pattern (about 27 neighbours per node of a
-  !> hexahedral mesh, 3 x 3 entries of 12 bytes each).
-  pure integer(i8) function setup_bytes(model, n_state) result(bytes)
+  !> The friction law of each contact pair: its interaction's *FRICTION, or frictionless
+  !> Coulomb (mu = 0) when it has none.
+  function pair_frictions(model) result(frictions)
     type(model_t), intent(in) :: model
-    integer, intent(in) :: n_state
+    type(friction_def_t), allocatable :: frictions(:)
+    integer :: k
+    allocate (frictions(size(model%contact_pairs)))
+    do k = 1, size(model%contact_pairs)
+      frictions(k)%law = 'COULOMB'
+      frictions(k)%mu0 = 0.0_dp
+      associate (interaction => model%contact_pairs(k)%interaction)
+        if (interaction > 0) then
+          if (model%interactions(interaction)%has_friction) frictions(k) = model%interactions(interaction)%friction
+        end if
+      end associate
+    end do
+  end function pair_frictions
+
+  !> About the memory the set-up allocates [bytes]: state and force vectors, integration-point
+  !> arrays (max_points per element), element cliques, and the sparse pattern (about 27
+  !> neighbours per node of a hexahedral mesh, 3 x 3 entries of 12 bytes each).
+  pure integer(i8) function setup_bytes(model, max_points, n_state) result(bytes)
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: max_points, n_state
     integer(i8) :: nodes, elements
     nodes = int(model%mesh%n_nodes, i8)
     elements = int(model%mesh%n_elements, i8)
-    bytes = 8_i8 * 3_i8 * nodes * 15_i8 + 8_i8 * int(N_GAUSS_HEX8, i8) * elements * &
-      (12_i8 + int(n_state, i8)) + 4_i8 * 8_i8 * elements + 9_i8 * 27_i8 * 12_i8 * nodes
+    bytes = 8_i8 * 3_i8 * nodes * 15_i8 + 8_i8 * int(max_points, i8) * elements * &
+      (12_i8 + int(n_state, i8)) + 4_i8 * int(size(model%mesh%connectivity, 1), i8) * elements + &
+      9_i8 * 27_i8 * 12_i8 * nodes
   end function setup_bytes
 
   !> This process's share of the work: its elements (METIS partition), its contact slaves
@@ -276,26 +296,23 @@ contains
     type(run_t), intent(inout) :: run
     type(model_t), intent(in) :: model
     type(error_t), allocatable, intent(out) :: err
-    integer, allocatable :: owner(:)
-    integer :: e, n, k, i, j, m
+    integer, allocatable :: owner(:), nodes(:)
+    integer :: e, n, k, i
     associate (a => run%analysis)
       call partition_elements(a%comm, model%mesh%connectivity, model%mesh%n_nodes, owner, err)
       if (allocated(err)) return
-      a%my_elements = pack([(e, e = 1, model%mesh%n_elements)], owner == a%comm%rank)
+      call a%elements%set_share(pack([(e, e = 1, model%mesh%n_elements)], owner == a%comm%rank))
       n = a%contact%n_slaves()
       allocate (a%owns_slave(n))
       a%owns_slave = [((i - 1) * a%comm%size / max(n, 1) == a%comm%rank, i = 1, n)]
-      m = 0
-      do k = 1, size(model%steps)
-        m = m + size(model%steps(k)%pressures)
-      end do
-      allocate (a%pressure_cliques(4, m))
-      j = 0
+      allocate (a%pressure_ptr(1), a%pressure_nodes(0))
+      a%pressure_ptr(1) = 1
       do k = 1, size(model%steps)
         do i = 1, size(model%steps(k)%pressures)
-          j = j + 1
-          a%pressure_cliques(:, j) = hex8_face_nodes(model%mesh, model%steps(k)%pressures(i)%element, &
-                                                     model%steps(k)%pressures(i)%face)
+          nodes = a%elements%face_nodes(model%steps(k)%pressures(i)%element, &
+                                        model%steps(k)%pressures(i)%face)
+          a%pressure_nodes = [a%pressure_nodes, nodes]
+          a%pressure_ptr = [a%pressure_ptr, a%pressure_ptr(size(a%pressure_ptr)) + size(nodes)]
         end do
       end do
     end associate
@@ -306,12 +323,7 @@ contains
     type(run_t), intent(inout) :: run
     type(model_t), intent(in) :: model
     type(error_t), allocatable, intent(out) :: err
-    if (run%writer) then
-      call run%dat%open(run%job // '.dat', err)
-      if (.not. allocated(err)) call run%results%create(run%job, model%mesh%node_id, model%mesh%x, &
-                                                          model%mesh%element_id, model%mesh%connectivity, err)
-      if (.not. allocated(err)) call define_contact_grids(run, err)
-    end if
+    call run%outputs%create(model, run%analysis, err)
     call run%analysis%comm%agree_error(err)
     if (allocated(err)) return
     call run%monitors%init(model, run%analysis, run%job, err)
@@ -319,7 +331,7 @@ contains
     if (allocated(err)) return
     call run%monitors%sample(model, run%analysis, spread(.true., 1, size(model%histories)), err)
     if (allocated(err)) return
-    call write_frame(run, model, err)
+    call run%outputs%write_frame(run%analysis, model, run%monitors, run%log, err)
   end subroutine open_outputs
 
   !> Continue from a checkpoint: restore the analysis, and cut the outputs back to what they
@@ -340,47 +352,13 @@ contains
     if (len(warning) > 0) call run%log%warn(warning)
     call run%log%info('restart from ' // path // ': time ' // str(info%time) // ', step ' // &
                       str(info%step) // ', increment ' // str(info%increment))
-    if (run%writer) call reopen_outputs(run, model, info, err)
+    if (run%writer) then
+      call run%monitors%write_files(err)
+      if (.not. allocated(err)) call run%outputs%reopen(model, run%analysis, info, run%log, err)
+    end if
     call run%analysis%comm%agree_error(err)
   end subroutine resume_outputs
 
-  !> Cut the text and results files back to the checkpoint and reopen them. Outputs that hold
-  !> less than they held at the checkpoint (deleted, emptied, cut) are kept as they are and
-  !> continued, with a warning: what they lack is lost (doc/restart.md).
-  subroutine reopen_outputs(run, model, info, err)
-    type(run_t), intent(inout) :: run
-    type(model_t), intent(in) :: model
-    type(checkpoint_info_t), intent(in) :: info
-    type(error_t), allocatable, intent(out) :: err
-    integer(i8) :: dat_size
-    call run%monitors%write_files(err)
-    if (allocated(err)) return
-    dat_size = file_size(run%job // '.dat')
-    if (dat_size >= info%dat_size) then
-      call truncate_file(run%job // '.dat', info%dat_size, err)
-    else if (info%dat_size > 0) then
-      call run%log%warn(run%job // '.dat holds ' // str(max(dat_size, 0_i8)) // ' bytes, ' // &
-        'fewer than the ' // str(info%dat_size) // ' it held at the checkpoint (deleted or ' // &
-        'cut since?): the tables printed before the checkpoint are incomplete; the restart ' // &
-        'appends its tables to what is there')
-    end if
-    if (.not. allocated(err)) call run%dat%open(run%job // '.dat', err, append=.true.)
-    if (allocated(err)) return
-    if (file_size(run%job // '.h5') >= 0) then
-      call run%results%open_append(run%job, err, keep_frames=info%n_frames)
-      if (.not. allocated(err) .and. run%results%n_frames() < info%n_frames) call run%log%warn( &
-        run%job // '.h5 holds ' // str(run%results%n_frames()) // ' complete frame(s), fewer ' // &
-        'than the ' // str(info%n_frames) // ' it held at the checkpoint: the missing frames ' // &
-        'are lost; the restart adds its frames after the ones there')
-    else
-      if (info%n_frames > 0) call run%log%warn(run%job // '.h5 is missing: the ' // &
-        str(info%n_frames) // ' frame(s) written before the checkpoint are lost; a new ' // &
-        run%job // '.h5 holds the frames written from the checkpoint on')
-      call run%results%create(run%job, model%mesh%node_id, model%mesh%x, model%mesh%element_id, &
-                              model%mesh%connectivity, err)
-    end if
-    if (.not. allocated(err)) call define_contact_grids(run, err)
-  end subroutine reopen_outputs
 
   !> Write a checkpoint now and note the time.
   subroutine checkpoint(run, model, err)
@@ -390,7 +368,7 @@ contains
     call set_activity('writing the checkpoint ' // run%job // '.rst.h5')
     call gather_element_fields(run%analysis)
     if (run%writer) call save_checkpoint(run%job, run%analysis, run%monitors, model, &
-                                         run%results%n_frames(), err)
+                                         run%outputs%n_frames(), err)
     call run%analysis%comm%agree_error(err)
     run%last_checkpoint = wall_time()
     if (.not. allocated(err)) call run%log%detail('checkpoint written: ' // run%job // '.rst.h5 ' // &
@@ -421,111 +399,22 @@ contains
     end associate
   end function checkpoint_due
 
-  !> One point grid per contact pair (its slave nodes) in the results.
-  subroutine define_contact_grids(run, err)
-    type(run_t), intent(inout) :: run
-    type(error_t), allocatable, intent(out) :: err
-    integer :: k, m, i
-    associate (contact => run%analysis%contact)
-      if (.not. allocated(contact%pairs)) return
-      do k = 1, size(contact%pairs)
-        m = contact%pairs(k)%last - contact%pairs(k)%first + 1
-        call run%results%define_surface_grid('contact_' // contact%pairs(k)%name, GRID_POINTS, &
-                                             reshape([(i, i = 0, m - 1)], [1, m]), err)
-        if (allocated(err)) return
-      end do
-    end associate
-  end subroutine define_contact_grids
 
-  !> Contact fields of every pair for the current frame. friction_state is the friction law's
-  !> state variable: theta [time] of the rate-and-state laws, the accumulated slip [length] of
-  !> SLIP WEAKENING, 0 for laws without state.
-  subroutine write_contact_fields(run, err)
-    type(run_t), intent(inout) :: run
-    type(error_t), allocatable, intent(out) :: err
-    real(dp), allocatable :: values(:, :), shear(:, :)
-    real(dp) :: normal(3), pressure, traction(3)
-    character(len=:), allocatable :: grid
-    integer :: k, s, j, first, last
-    associate (contact => run%analysis%contact, cstate => run%analysis%state%contact, &
-               x => run%analysis%x_contact)
-      if (.not. allocated(contact%pairs)) return
-      do k = 1, size(contact%pairs)
-        first = contact%pairs(k)%first
-        last = contact%pairs(k)%last
-        grid = 'contact_' // contact%pairs(k)%name
-        call run%results%write_surface_coordinates(grid, x(:, contact%slave_node(first:last)), err)
-        if (allocated(err)) return
-        allocate (values(8, last - first + 1), shear(3, last - first + 1))
-        do s = first, last
-          j = s - first + 1
-          call contact%traction(s, x, cstate, normal, pressure, traction)
-          values(:, j) = [real(cstate%status(s), dp), cstate%gap(s), pressure, norm2(traction), &
-                          cstate%slip(s), cstate%slip_rate(s), cstate%mu(s), &
-                          cstate%friction_state(s)]
-          if (cstate%face(s) == 0) values(2, j) = 0.0_dp
-          shear(:, j) = traction
-        end do
-        call write_field('status', 1)
-        call write_field('gap', 2)
-        call write_field('pressure', 3)
-        call write_field('shear_magnitude', 4)
-        call write_field('slip', 5)
-        call write_field('slip_rate', 6)
-        call write_field('mu', 7)
-        call write_field('friction_state', 8)
-        if (.not. allocated(err)) call run%results%write_surface_field(grid, 'shear', shear, err)
-        if (allocated(err)) return
-        deallocate (values, shear)
-      end do
-    end associate
-  contains
-    subroutine write_field(name, row)
-      character(len=*), intent(in) :: name
-      integer, intent(in) :: row
-      if (allocated(err)) return
-      call run%results%write_surface_field(grid, name, values(row:row, :), err)
-    end subroutine write_field
-  end subroutine write_contact_fields
 
   !> A note for each contact pair whose slave surface shares nodes with a tie: the tie holds
   !> them, and they are not checked for contact (fcs_contact_system, tied_nodes).
   subroutine note_tied_slaves(run)
     type(run_t), intent(inout) :: run
     integer :: k
-    associate (pairs => run%analysis%contact%pairs)
-      do k = 1, size(pairs)
-        if (pairs(k)%n_held_by_tie > 0) call run%log%info('note: contact pair ' // pairs(k)%name // &
-          ': ' // str(pairs(k)%n_held_by_tie) // ' slave node(s) also tied by a *TIE are left ' // &
-          'to the tie (not checked for contact)')
+    associate (contact => run%analysis%contact)
+      do k = 1, contact%n_pairs()
+        if (contact%held_by_tie(k) > 0) call run%log%info('note: contact pair ' // &
+          contact%pair_name(k) // ': ' // str(contact%held_by_tie(k)) // ' slave node(s) also ' // &
+          'tied by a *TIE are left to the tie (not checked for contact)')
       end do
     end associate
   end subroutine note_tied_slaves
 
-  !> One log line per contact pair: states and total forces.
-  subroutine log_contact_totals(run, detail_only)
-    type(run_t), intent(inout) :: run
-    logical, intent(in) :: detail_only
-    type(pair_totals_t) :: t
-    character(len=:), allocatable :: line
-    integer :: k
-    associate (contact => run%analysis%contact)
-      if (.not. allocated(contact%pairs)) return
-      do k = 1, size(contact%pairs)
-        t = contact%totals(k, run%analysis%x_contact, run%analysis%state%contact)
-        line = '  contact ' // contact%pairs(k)%name // ': ' // str(t%n_stick) // ' stick, ' // &
-          str(t%n_slip) // ' slip, ' // str(t%n_open) // ' open, ' // str(t%n_tied) // ' tied; ' // &
-          'normal force ' // str(t%normal_force) // ', tangential force (' // &
-          str(t%tangential_force(1)) // ', ' // str(t%tangential_force(2)) // ', ' // &
-          str(t%tangential_force(3)) // ')'
-        if (detail_only) then
-          call run%log%detail(line)
-        else
-          call run%log%info(line)
-        end if
-      end do
-    end associate
-  end subroutine log_contact_totals
 
   !> All steps, increment by increment.
   subroutine run_steps(run, model, err)
@@ -541,14 +430,15 @@ contains
         if (allocated(err)) return
         state%step_time = model%steps(k)%period
         call sample_histories(run, model, .true., err)
-        if (.not. allocated(err)) call increment_outputs(run, model, .true., err)
+        if (.not. allocated(err)) call run%outputs%write_due(run%analysis, model, run%monitors, &
+                                                             run%log, .true., err)
         call run%analysis%comm%agree_error(err)
         if (allocated(err)) return
         call run%log%info('end of step ' // str(k) // ' ("' // model%steps(k)%name // '") at time ' // &
                           str(state%time) // ' after ' // str(state%step_increment) // ' increment(s)' // &
                           '; largest out-of-balance ' // str(state%step_worst_residual) // &
                           ' (increment ' // str(state%step_worst_residual_increment) // ')')
-        call log_contact_totals(run, .false.)
+        call log_contact_totals(run%analysis, run%log, .false.)
         state%step = k + 1
         state%step_time = 0.0_dp
         state%step_increment = 0
@@ -584,7 +474,7 @@ contains
           exit
         end if
         call log_increment(run, model, record)
-        call increment_outputs(run, model, .false., err)
+        call run%outputs%write_due(run%analysis, model, run%monitors, run%log, .false., err)
         if (.not. allocated(err)) call run%monitors%watch_events(model, a, state%time - &
                                                                  state%last_increment, run%log, err)
         if (.not. allocated(err)) call sample_histories(run, model, .false., err)
@@ -610,7 +500,7 @@ contains
     type(model_t), intent(in) :: model
     type(error_t), intent(inout) :: err
     type(error_t), allocatable :: secondary
-    call write_frame(run, model, secondary)
+    call run%outputs%write_frame(run%analysis, model, run%monitors, run%log, secondary)
     if (.not. allocated(secondary)) call checkpoint(run, model, secondary)
     if (allocated(secondary)) then
       err%message = err%message // new_line('a') // '(saving the last good state also failed: ' // &
@@ -703,252 +593,23 @@ contains
     if (n > 0) text = label // str(n)
   end function optional_count
 
-  !> Print and write whatever is due after an increment (or at the end of the step).
-  subroutine increment_outputs(run, model, end_of_step, err)
-    type(run_t), intent(inout) :: run
-    type(model_t), intent(in) :: model
-    logical, intent(in) :: end_of_step
-    type(error_t), allocatable, intent(out) :: err
-    logical :: need_frame, need_print
-    integer :: i
-    real(dp), allocatable :: peeq(:, :), plastic_strain(:, :, :), back_stress(:, :, :)
-    associate (step => model%steps(run%analysis%state%step), state => run%analysis%state)
-      ! Output due on the last increment of a step is written once, by the end-of-step call.
-      if (.not. end_of_step .and. state%step_time >= step%period * (1.0_dp - 1.0e-12_dp)) return
-      need_frame = end_of_step
-      need_print = .false.
-      do i = 1, size(step%outputs)
-        if (.not. is_due(model, step, step%outputs(i), state, end_of_step)) cycle
-        select case (step%outputs(i)%kind)
-        case (OUTPUT_NODE_FILE, OUTPUT_EL_FILE, OUTPUT_CONTACT_FILE)
-          need_frame = .true.
-        case default
-          need_print = .true.
-        end select
-      end do
-      if (.not. (need_frame .or. need_print)) return
-      call run%analysis%timers%start('output')
-      call current_reactions(run%analysis, model, state%reaction, err)
-      if (allocated(err)) return
-      call gather_element_fields(run%analysis)
-      do i = 1, size(step%outputs)
-        if (.not. run%writer) exit
-        if (.not. is_due(model, step, step%outputs(i), state, end_of_step)) cycle
-        select case (step%outputs(i)%kind)
-        case (OUTPUT_NODE_PRINT)
-          call run%dat%node_print(model, step%outputs(i), state%time, state%u, state%reaction, err)
-        case (OUTPUT_EL_PRINT)
-          call plastic_fields(model, state, run%analysis%materials, peeq, plastic_strain, back_stress)
-          call run%dat%el_print(model, step%outputs(i), state%time, state%stress, state%strain, peeq, &
-                                err)
-        case (OUTPUT_CONTACT_PRINT)
-          call run%dat%contact_print(model, step%outputs(i), state%time, run%analysis%contact, &
-                                     state%contact, run%analysis%x_contact, err)
-        end select
-        if (allocated(err)) return
-      end do
-      if (need_frame) call write_frame(run, model, err)
-      call run%analysis%timers%stop('output')
-    end associate
-  end subroutine increment_outputs
 
-  !> Sample the histories due after this increment (or at the end of the step: every history
-  !> that has no row at this time yet).
+  !> Sample the histories due after this increment (or at the end of the step).
   subroutine sample_histories(run, model, end_of_step, err)
     type(run_t), intent(inout) :: run
     type(model_t), intent(in) :: model
     logical, intent(in) :: end_of_step
     type(error_t), allocatable, intent(out) :: err
-    logical :: due(size(model%histories))
-    integer :: k
-    associate (state => run%analysis%state)
-      do k = 1, size(model%histories)
-        associate (h => model%histories(k), table => run%monitors%tables(k))
-          due(k) = .false.
-          if (table%n_rows > 0) then
-            if (table%rows(1, table%n_rows) >= state%time) cycle
-          end if
-          if (end_of_step) then
-            due(k) = .true.
-          else if (h%frequency > 0) then
-            due(k) = mod(state%step_increment, h%frequency) == 0
-          end if
-          if (.not. due(k) .and. h%time_points > 0) due(k) = at_time_point(model, h%time_points, &
-            model%steps(state%step)%period, state)
-        end associate
-      end do
-    end associate
-    call run%monitors%sample(model, run%analysis, due, err)
+    call run%monitors%sample(model, run%analysis, histories_due(model, run%monitors%tables, &
+                             run%analysis%state, end_of_step), err)
   end subroutine sample_histories
 
-  !> Whether the state is at one of the times of list `k`.
-  logical function at_time_point(model, k, period, state)
-    type(model_t), intent(in) :: model
-    integer, intent(in) :: k
-    real(dp), intent(in) :: period
-    type(state_t), intent(in) :: state
-    real(dp) :: t
-    integer :: i
-    at_time_point = .false.
-    associate (tp => model%time_points(k))
-      do i = 1, size(tp%times)
-        t = tp%times(i)
-        if (tp%total_time) t = t - (state%time - state%step_time)
-        if (abs(state%step_time - t) <= 1.0e-9_dp * period) at_time_point = .true.
-      end do
-    end associate
-  end function at_time_point
 
-  !> History tables and the event catalog into the results file (h5py sees one row per
-  !> sample or event: shape (rows, columns)).
-  subroutine write_tables(run, err)
-    type(run_t), intent(inout) :: run
-    type(error_t), allocatable, intent(out) :: err
-    integer :: k
-    do k = 1, size(run%monitors%tables)
-      associate (table => run%monitors%tables(k))
-        call run%results%write_table('history', to_lower(table%name), join_strings(table%columns, ','), &
-                                     table%values(), err)
-      end associate
-      if (allocated(err)) return
-    end do
-    if (run%monitors%catalog_on) call run%results%write_table('events', 'catalog', EVENT_COLUMNS, &
-      run%monitors%catalog%table(), err)
-  end subroutine write_tables
 
-  !> Whether output request `request` is due now.
-  logical function is_due(model, step, request, state, end_of_step)
-    type(model_t), intent(in) :: model
-    type(step_t), intent(in) :: step
-    type(output_request_t), intent(in) :: request
-    type(state_t), intent(in) :: state
-    logical, intent(in) :: end_of_step
-    real(dp) :: t, tolerance
-    integer :: i
-    is_due = end_of_step
-    if (is_due) return
-    if (request%frequency > 0) then
-      is_due = mod(state%step_increment, request%frequency) == 0
-      if (is_due) return
-    end if
-    if (request%time_points == 0) return
-    tolerance = 1.0e-9_dp * step%period
-    associate (tp => model%time_points(request%time_points))
-      do i = 1, size(tp%times)
-        t = tp%times(i)
-        if (tp%total_time) t = t - (state%time - state%step_time)
-        if (abs(state%step_time - t) <= tolerance) is_due = .true.
-      end do
-    end associate
-  end function is_due
 
-  !> A results frame: geometry, displacements, forces, stresses (integration points, nodal
-  !> averages of the extrapolated values) and Mises stress.
-  subroutine write_frame(run, model, err)
-    type(run_t), intent(inout) :: run
-    type(model_t), intent(in) :: model
-    type(error_t), allocatable, intent(out) :: err
-    real(dp), allocatable :: nodal(:, :), cell_mises(:, :), nodal_mises(:, :)
-    integer :: q
-    integer(i8) :: bytes
-    call gather_element_fields(run%analysis)
-    if (.not. run%writer) return
-    ! Nodal averages, Mises values and the reordered copy of an integration-point field.
-    bytes = 8_i8 * (8_i8 * int(model%mesh%n_nodes, i8) + int(model%mesh%n_elements, i8) * &
-      (1_i8 + 6_i8 * int(N_GAUSS_HEX8, i8)))
-    call set_activity('writing a results frame to ' // run%job // '.h5', bytes)
-    call ensure_memory(bytes, 'writing a results frame to ' // run%job // '.h5', err)
-    if (allocated(err)) return
-    associate (state => run%analysis%state)
-      call run%results%begin_frame(state%time, state%step, state%increment, err)
-      if (allocated(err)) return
-      call run%results%write_coordinates(state%x, err)
-      if (.not. allocated(err)) call run%results%write_nodal('displacement', state%u, err)
-      if (.not. allocated(err)) call run%results%write_nodal('force', state%reaction, err)
-      if (allocated(err)) return
-      nodal = nodal_average(model, state%stress)
-      allocate (nodal_mises(1, size(nodal, 2)), cell_mises(1, model%mesh%n_elements))
-      do q = 1, size(nodal, 2)
-        nodal_mises(1, q) = mises_stress(nodal(:, q))
-      end do
-      do q = 1, model%mesh%n_elements
-        cell_mises(1, q) = element_mean_mises(state%stress(:, :, q))
-      end do
-      call run%results%write_nodal('stress', nodal, err)
-      if (.not. allocated(err)) call run%results%write_nodal('mises', nodal_mises, err)
-      if (.not. allocated(err)) call run%results%write_cell('mises', cell_mises, err)
-      if (.not. allocated(err)) call run%results%write_integration_points('stress', state%stress, err)
-      if (.not. allocated(err)) call run%results%write_integration_points('strain', state%strain, err)
-      if (.not. allocated(err) .and. run%analysis%materials_have_states) &
-        call write_plastic_fields(run, model, err)
-      if (.not. allocated(err)) call write_contact_fields(run, err)
-      if (.not. allocated(err)) call run%results%end_frame(err)
-      if (.not. allocated(err)) call write_tables(run, err)
-      call log_contact_totals(run, .true.)
-    end associate
-  end subroutine write_frame
 
-  !> The plastic state in a frame, named as CalculiX (PEEQ, PE) and Abaqus (ALPHA, the back
-  !> stress) name it: PEEQ at the integration points, averaged at the nodes and per element
-  !> (cells); the plastic strain PE (tensor components) and ALPHA at the integration points
-  !> and the nodes.
-  subroutine write_plastic_fields(run, model, err)
-    type(run_t), intent(inout) :: run
-    type(model_t), intent(in) :: model
-    type(error_t), allocatable, intent(out) :: err
-    real(dp), allocatable :: peeq(:, :), plastic_strain(:, :, :), back_stress(:, :, :), cell(:, :)
-    integer :: e
-    call plastic_fields(model, run%analysis%state, run%analysis%materials, peeq, plastic_strain, &
-                        back_stress)
-    plastic_strain(4:6, :, :) = 0.5_dp * plastic_strain(4:6, :, :)
-    allocate (cell(1, size(peeq, 2)))
-    do e = 1, size(peeq, 2)
-      cell(1, e) = sum(peeq(:, e)) / size(peeq, 1)
-    end do
-    call run%results%write_integration_points('PEEQ', reshape(peeq, [1, shape(peeq)]), err)
-    if (.not. allocated(err)) call run%results%write_integration_points('PE', plastic_strain, err)
-    if (.not. allocated(err)) call run%results%write_integration_points('ALPHA', back_stress, err)
-    if (.not. allocated(err)) call run%results%write_nodal('PEEQ', &
-      nodal_average(model, reshape(peeq, [1, shape(peeq)])), err)
-    if (.not. allocated(err)) call run%results%write_cell('PEEQ', cell, err)
-    if (.not. allocated(err)) call run%results%write_nodal('PE', nodal_average(model, plastic_strain), err)
-    if (.not. allocated(err)) call run%results%write_nodal('ALPHA', nodal_average(model, back_stress), err)
-  end subroutine write_plastic_fields
 
-  pure real(dp) function element_mean_mises(stress) result(m)
-    real(dp), intent(in) :: stress(:, :)
-    integer :: q
-    m = 0.0_dp
-    do q = 1, size(stress, 2)
-      m = m + mises_stress(stress(:, q))
-    end do
-    m = m / size(stress, 2)
-  end function element_mean_mises
 
-  !> Nodal values: integration-point values extrapolated to each element's nodes, averaged
-  !> over the elements sharing a node.
-  function nodal_average(model, ip_values) result(nodal)
-    type(model_t), intent(in) :: model
-    real(dp), intent(in) :: ip_values(:, :, :)
-    real(dp), allocatable :: nodal(:, :)
-    real(dp), allocatable :: weight(:)
-    real(dp) :: at_nodes(size(ip_values, 1), 8)
-    integer :: e, a, node
-    allocate (nodal(size(ip_values, 1), model%mesh%n_nodes), weight(model%mesh%n_nodes))
-    nodal = 0.0_dp
-    weight = 0.0_dp
-    do e = 1, model%mesh%n_elements
-      at_nodes = hex8_extrapolate(ip_values(:, :, e))
-      do a = 1, 8
-        node = model%mesh%connectivity(a, e)
-        nodal(:, node) = nodal(:, node) + at_nodes(:, a)
-        weight(node) = weight(node) + 1.0_dp
-      end do
-    end do
-    do node = 1, model%mesh%n_nodes
-      if (weight(node) > 0.0_dp) nodal(:, node) = nodal(:, node) / weight(node)
-    end do
-  end function nodal_average
 
   !> A memory figure in MiB: 4 significant digits below 1000, whole MiB above (no exponent).
   function memory_text(mib) result(text)
@@ -998,16 +659,13 @@ contains
     call run%log%info(line)
   end subroutine log_solver_stats
 
-  !> Close the output files; a failed close becomes the run's error if it has none.
+  !> Close the output files and free the solver; a failed close becomes the run's error if it
+  !> has none.
   subroutine close_outputs(run, err)
     type(run_t), intent(inout) :: run
     type(error_t), allocatable, intent(inout) :: err
-    type(error_t), allocatable :: dat_err, results_err
-    call run%dat%close(dat_err)
-    if (run%results%is_open()) call run%results%close(results_err)
+    call run%outputs%close(err)
     if (allocated(run%analysis%solver)) call run%analysis%solver%free()
-    if (.not. allocated(err) .and. allocated(dat_err)) call move_alloc(dat_err, err)
-    if (.not. allocated(err) .and. allocated(results_err)) call move_alloc(results_err, err)
   end subroutine close_outputs
 
 end module fcs_driver

@@ -6,15 +6,12 @@ module fcs_monitors
   use fcs_model, only: model_t, history_request_t, HISTORY_NSET_U, HISTORY_NSET_RF, &
                        HISTORY_CONTACT, HISTORY_ENERGY, HISTORY_RESIDUAL
   use fcs_static_explicit, only: analysis_t, current_reactions
-  use fcs_assembly, only: plastic_fields
   use fcs_history, only: history_table_t
   use fcs_event_catalog, only: event_catalog_t
   use fcs_contact_system, only: pair_totals_t
-  use fcs_contact_element, only: CONTACT_OPEN, CONTACT_TIED
-  use fcs_hex8_element, only: hex8_geometry_t, hex8_geometry
-  use fcs_hex8_shape, only: N_GAUSS_HEX8
   use fcs_log, only: logger_t
   use fcs_strings, only: string_t, str
+  use fcs_archive, only: archive_t
   implicit none
   private
   public :: monitors_t
@@ -33,6 +30,8 @@ module fcs_monitors
     procedure :: sample => monitors_sample
     procedure :: watch_events => monitors_watch_events
     procedure :: report_open_events => monitors_report_open_events
+    procedure :: save => monitors_save
+    procedure :: load => monitors_load
   end type monitors_t
 
 contains
@@ -54,15 +53,43 @@ contains
     end do
     this%catalog_on = model%event_threshold > 0.0_dp .and. a%contact%n_slaves() > 0
     if (this%catalog_on) then
-      allocate (sizes(size(a%contact%pairs)))
-      do k = 1, size(a%contact%pairs)
-        sizes(k) = a%contact%pairs(k)%last - a%contact%pairs(k)%first + 1
+      allocate (sizes(a%contact%n_pairs()))
+      do k = 1, a%contact%n_pairs()
+        sizes(k) = size(a%contact%pair_slave_nodes(k))
       end do
       call this%catalog%init(model%event_threshold, model%event_min_slip, sizes, job // '_events.csv', &
                              err, this%writer)
     end if
-    if (any([(has_energy(model%histories(k)), k = 1, size(model%histories))])) call reference_volumes(this, model)
+    if (any([(has_energy(model%histories(k)), k = 1, size(model%histories))])) &
+      this%volume = a%elements%point_volumes()
   end subroutine monitors_init
+
+  !> Write the rows of every history and the event catalog into group /monitors of `archive`.
+  subroutine monitors_save(this, archive, err)
+    class(monitors_t), intent(in) :: this
+    class(archive_t), intent(inout) :: archive
+    type(error_t), allocatable, intent(out) :: err
+    integer :: k
+    call archive%group('/monitors', err)
+    do k = 1, size(this%tables)
+      if (allocated(err)) return
+      call this%tables(k)%save(archive, '/monitors/history_' // str(k), err)
+    end do
+    if (.not. allocated(err)) call this%catalog%save(archive, '/monitors', err)
+  end subroutine monitors_save
+
+  !> Read what `save` wrote into monitors set up for the model (`init`).
+  subroutine monitors_load(this, archive, err)
+    class(monitors_t), intent(inout) :: this
+    class(archive_t), intent(inout) :: archive
+    type(error_t), allocatable, intent(out) :: err
+    integer :: k
+    do k = 1, size(this%tables)
+      call this%tables(k)%load(archive, '/monitors/history_' // str(k), err)
+      if (allocated(err)) return
+    end do
+    call this%catalog%load(archive, '/monitors', err)
+  end subroutine monitors_load
 
   !> Write every history CSV and the event catalog CSV whole from what is in memory: at the
   !> start of a new run (headers), or after a restart was accepted (the checkpoint's rows).
@@ -130,18 +157,6 @@ contains
     end do
   end function column_names
 
-  subroutine reference_volumes(this, model)
-    type(monitors_t), intent(inout) :: this
-    type(model_t), intent(in) :: model
-    type(hex8_geometry_t) :: geo
-    logical :: ok
-    integer :: e
-    allocate (this%volume(N_GAUSS_HEX8, model%mesh%n_elements))
-    do e = 1, model%mesh%n_elements
-      call hex8_geometry(model%mesh%x(:, model%mesh%connectivity(:, e)), geo, ok)
-      this%volume(:, e) = geo%dv
-    end do
-  end subroutine reference_volumes
 
   !> Sample the histories due now (`due(k)` for history k).
   subroutine monitors_sample(this, model, a, due, err)
@@ -188,7 +203,7 @@ contains
     case (HISTORY_RESIDUAL)
       values = [a%state%residual_norm]
     case default
-      values = [strain_energy(this, model, a), sum(a%state%contact%work)]
+      values = [strain_energy(this, a), a%contact%frictional_work(a%state%contact)]
     end select
   end function item_values
 
@@ -198,42 +213,27 @@ contains
     integer, intent(in) :: k
     real(dp) :: values(12)
     type(pair_totals_t) :: t
-    real(dp) :: normal(3), pressure, shear(3), sum_pressure, sum_shear
-    integer :: s, first, last, n_closed
-    first = a%contact%pairs(k)%first
-    last = a%contact%pairs(k)%last
     t = a%contact%totals(k, a%x_contact, a%state%contact)
-    sum_pressure = 0.0_dp
-    sum_shear = 0.0_dp
-    n_closed = 0
-    do s = first, last
-      if (a%state%contact%status(s) == CONTACT_OPEN) cycle
-      call a%contact%traction(s, a%x_contact, a%state%contact, normal, pressure, shear)
-      sum_pressure = sum_pressure + pressure
-      sum_shear = sum_shear + norm2(shear)
-      n_closed = n_closed + 1
-    end do
     values = [t%normal_force, t%tangential_force, real(t%n_stick + t%n_tied, dp), real(t%n_slip, dp), &
-              real(t%n_open, dp), sum(a%state%contact%slip(first:last)) / max(1, last - first + 1), &
-              maxval(a%state%contact%slip(first:last)), maxval(a%state%contact%slip_rate(first:last)), &
-              sum_pressure / max(1, n_closed), sum_shear / max(1, n_closed)]
+              real(t%n_open, dp), t%slip_mean, t%slip_max, t%rate_max, t%pressure_mean, t%shear_mean]
   end function contact_values
 
   !> 1/2 sum sigma:eps_e dV over the integration points (reference volumes; the elastic strain
   !> energy at small strains), eps_e = eps - eps_p the elastic part of the strain when a
   !> material is plastic.
-  real(dp) function strain_energy(this, model, a)
+  real(dp) function strain_energy(this, a)
     type(monitors_t), intent(in) :: this
-    type(model_t), intent(in) :: model
     type(analysis_t), intent(in) :: a
     real(dp), allocatable :: peeq(:, :), plastic_strain(:, :, :), back_stress(:, :, :)
-    if (a%materials_have_states) then
-      call plastic_fields(model, a%state, a%materials, peeq, plastic_strain, back_stress)
-      strain_energy = 0.5_dp * sum(sum(a%state%stress * (a%state%strain - plastic_strain), dim=1) * &
-                                   this%volume)
-    else
-      strain_energy = 0.5_dp * sum(sum(a%state%stress * a%state%strain, dim=1) * this%volume)
-    end if
+    associate (fields => a%state%elements)
+      if (a%elements%has_states()) then
+        call a%elements%plastic_fields(fields, peeq, plastic_strain, back_stress)
+        strain_energy = 0.5_dp * sum(sum(fields%stress * (fields%strain - plastic_strain), dim=1) * &
+                                     this%volume)
+      else
+        strain_energy = 0.5_dp * sum(sum(fields%stress * fields%strain, dim=1) * this%volume)
+      end if
+    end associate
   end function strain_energy
 
   !> Feed the event catalog after an increment that started at t_start; log ended events.
@@ -244,27 +244,20 @@ contains
     real(dp), intent(in) :: t_start
     type(logger_t), intent(inout) :: log
     type(error_t), allocatable, intent(out) :: err
-    real(dp), allocatable :: shear(:)
-    real(dp) :: normal(3), pressure, traction(3)
-    integer :: k, s, first, last, ended
+    real(dp), allocatable :: rate(:), slip(:), shear(:)
+    integer, allocatable :: nodes(:)
+    integer :: k, ended
     if (.not. this%catalog_on) return
-    do k = 1, size(a%contact%pairs)
-      if (a%contact%pairs(k)%tied) cycle
-      first = a%contact%pairs(k)%first
-      last = a%contact%pairs(k)%last
-      allocate (shear(last - first + 1))
-      do s = first, last
-        call a%contact%traction(s, a%x_contact, a%state%contact, normal, pressure, traction)
-        shear(s - first + 1) = norm2(traction)
-      end do
-      call this%catalog%update(k, t_start, a%state%time, a%state%contact%slip_rate(first:last), &
-        a%state%contact%slip(first:last), shear, model%mesh%node_id(a%contact%slave_node(first:last)), &
-        a%x_contact(:, a%contact%slave_node(first:last)), ended, err)
-      deallocate (shear)
+    do k = 1, a%contact%n_pairs()
+      if (a%contact%pair_is_tied(k)) cycle
+      nodes = a%contact%pair_slave_nodes(k)
+      call a%contact%pair_slip(k, a%x_contact, a%state%contact, rate, slip, shear)
+      call this%catalog%update(k, t_start, a%state%time, rate, slip, shear, model%mesh%node_id(nodes), &
+                               a%x_contact(:, nodes), ended, err)
       if (allocated(err)) return
       if (ended > 0) then
         associate (e => this%catalog%events(ended))
-          call log%info('slip event ' // str(ended) // ' on ' // a%contact%pairs(k)%name // ': ' // &
+          call log%info('slip event ' // str(ended) // ' on ' // a%contact%pair_name(k) // ': ' // &
             'onset ' // str(e%onset) // ', end ' // str(e%finish) // ', ' // str(e%n_nodes) // &
             ' nodes, peak slip rate ' // str(e%peak_rate) // ', largest slip ' // str(e%max_slip) // &
             ', mean stress drop ' // str(e%stress_drop) // ', hypocentre node ' // str(e%hypocentre))
@@ -285,7 +278,7 @@ contains
     do k = 1, size(this%catalog%watch)
       associate (w => this%catalog%watch(k))
         if (.not. w%active) cycle
-        call log%info('slip event under way on ' // a%contact%pairs(k)%name // ' at the end ' // &
+        call log%info('slip event under way on ' // a%contact%pair_name(k) // ' at the end ' // &
           'of the run (onset ' // str(w%event%onset) // ', ' // str(count(w%involved)) // &
           ' nodes so far, hypocentre node ' // str(w%event%hypocentre) // '): not in the ' // &
           'catalog; a restart with added steps completes it')

@@ -1,7 +1,9 @@
-!> Checkpoints of a running analysis and restarts from them: what the checkpoint records
-!> besides the state (the deck's hashes, the build, the size of the text outputs), and the
-!> checks a restart makes before it continues (same model, same steps up to the checkpoint;
-!> further steps may be added).
+!> Checkpoints of a running analysis and restarts from them. A checkpoint is "save every owner
+!> of run state" (`save_owners`) and a restart "load every owner" (`load_owners`), each owner
+!> through its own `save`/`load` over the archive (fcs_archive); this module adds what the
+!> checkpoint records about itself (the deck's hashes, the build, the size of the text
+!> outputs) and the checks a restart makes before it continues (same model, same steps up to
+!> the checkpoint; further steps may be added).
 module fcs_run_checkpoint
   use fcs_kinds, only: dp, i8
   use fcs_error, only: error_t, input_error, add_context
@@ -9,8 +11,9 @@ module fcs_run_checkpoint
   use fcs_contact_system, only: contact_system_t
   use fcs_model, only: model_t
   use fcs_static_explicit, only: analysis_t, build_pattern, contact_positions
-  use fcs_checkpoint, only: checkpoint_info_t, write_checkpoint, read_checkpoint, &
-                            checkpoint_generation_path
+  use fcs_checkpoint, only: checkpoint_info_t, h5_archive_t, begin_checkpoint, end_checkpoint, &
+                            open_checkpoint, close_checkpoint, checkpoint_generation_path
+  use fcs_archive, only: archive_t
   use fcs_files, only: file_size
   use fcs_monitors, only: monitors_t
   use fcs_strings, only: str, join_strings, string_t, parse_int, file_exists
@@ -36,22 +39,67 @@ contains
     integer, intent(in) :: n_frames
     type(error_t), allocatable, intent(out) :: err
     type(checkpoint_info_t) :: info
+    type(h5_archive_t) :: archive
     info%model_hash = model%model_hash
     info%step_hashes = join_strings(model%step_hashes, ' ')
     info%build = build_id()
     info%n_nodes = a%state%n_nodes
     info%n_elements = a%state%n_elements
     info%n_slaves = a%contact%n_slaves()
-    info%n_material_state = size(a%state%material_state, 1)
+    info%n_material_state = size(a%state%elements%material_state, 1)
     info%time = a%state%time
     info%step_time = a%state%step_time
     info%step = a%state%step
     info%increment = a%state%increment
     info%dat_size = max(0_i8, file_size(job // '.dat'))
     info%n_frames = n_frames
-    call write_checkpoint(job, a%state, a%contact, monitors%tables, monitors%catalog, info, &
-                          model%checkpoint%generations, err)
+    call begin_checkpoint(job, archive, err)
+    if (.not. allocated(err)) call save_owners(archive, a, monitors, err)
+    call end_checkpoint(archive, job, info, model%checkpoint%generations, err)
   end subroutine save_checkpoint
+
+  !> Every owner of run state saves itself into `archive`: the state (coordinates,
+  !> displacements, integration-point fields, counters), the contact states, the contact
+  !> system's search and pattern bookkeeping, the monitors (histories, event catalog).
+  subroutine save_owners(archive, a, monitors, err)
+    class(archive_t), intent(inout) :: archive
+    type(analysis_t), intent(in) :: a
+    type(monitors_t), intent(in) :: monitors
+    type(error_t), allocatable, intent(out) :: err
+    call a%state%save(archive, err)
+    if (.not. allocated(err)) call a%state%elements%save(archive, '/state', err)
+    if (.not. allocated(err)) call a%state%contact%save(archive, err)
+    if (.not. allocated(err)) call a%contact%save(archive, err)
+    if (.not. allocated(err)) call monitors%save(archive, err)
+  end subroutine save_owners
+
+  !> Every owner of run state loads itself from `archive`, in the order `save_owners` saved.
+  subroutine load_owners(archive, state, contact, monitors, err)
+    class(archive_t), intent(inout) :: archive
+    type(state_t), intent(inout) :: state
+    type(contact_system_t), intent(inout) :: contact
+    type(monitors_t), intent(inout) :: monitors
+    type(error_t), allocatable, intent(out) :: err
+    call state%load(archive, err)
+    if (.not. allocated(err)) call state%elements%load(archive, '/state', err)
+    if (.not. allocated(err)) call state%contact%load(archive, err)
+    if (.not. allocated(err)) call contact%load(archive, err)
+    if (.not. allocated(err)) call monitors%load(archive, err)
+  end subroutine load_owners
+
+  !> Read checkpoint `path` into the owners (set up for the model), verified as a whole.
+  subroutine read_checkpoint(path, state, contact, monitors, info, err)
+    character(len=*), intent(in) :: path
+    type(state_t), intent(inout) :: state
+    type(contact_system_t), intent(inout) :: contact
+    type(monitors_t), intent(inout) :: monitors
+    type(checkpoint_info_t), intent(out) :: info
+    type(error_t), allocatable, intent(out) :: err
+    type(h5_archive_t) :: archive
+    call open_checkpoint(path, archive, err)
+    if (.not. allocated(err)) call load_owners(archive, state, contact, monitors, err)
+    call close_checkpoint(archive, info, err)
+  end subroutine read_checkpoint
 
   !> Restore the analysis from checkpoint `path`, after checking that the deck still
   !> describes its model; the sparse pattern is rebuilt as it was. `warning` is set when the
@@ -65,7 +113,7 @@ contains
     character(len=:), allocatable, intent(out) :: warning
     type(error_t), allocatable, intent(out) :: err
     warning = ''
-    call read_checkpoint(path, a%state, a%contact, monitors%tables, monitors%catalog, info, err)
+    call read_checkpoint(path, a%state, a%contact, monitors, info, err)
     if (allocated(err)) then
       call offer_older_generation(path, a, monitors, err)
       return
@@ -159,7 +207,7 @@ contains
       state = a%state
       contact = a%contact
       scratch = monitors
-      call read_checkpoint(candidate, state, contact, scratch%tables, scratch%catalog, info, other_err)
+      call read_checkpoint(candidate, state, contact, scratch, info, other_err)
       if (allocated(other_err)) then
         deallocate (other_err)
         cycle

@@ -20,21 +20,14 @@ module fcs_static_explicit
   use fcs_mumps, only: mumps_solver_t
   use fcs_metis_order, only: metis_equation_order
   use fcs_loading, only: step_loading_t
-  use fcs_assembly, only: material_slot_t, assemble_elements, assemble_pressures, &
-                          element_configuration, inverted_element_error
-  use fcs_hex8_element, only: hex8_geometry_t, hex8_geometry, hex8_strain_increments, &
-                              hex8_rotate_stress
-  use fcs_hex8_shape, only: N_GAUSS_HEX8
-  use fcs_model, only: FORMULATION_BBAR
+  use fcs_assembly, only: assemble_pressures
+  use fcs_element_loops, only: element_loops_t, event_limits_t
   use fcs_rmin_events, only: rmin_collector_t, rmin_event_t, EVENT_STRAIN_LIMIT, &
-                             EVENT_ROTATION_LIMIT, EVENT_YIELD, event_kind_name, EVENT_NONE, &
+                             EVENT_ROTATION_LIMIT, event_kind_name, &
                              EVENT_FULL_INCREMENT, EVENT_SLIP_RATE_CHANGE, EVENT_FRICTION_CHANGE, &
                              EVENT_STATE_CHANGE, EVENT_PLASTIC_STRAIN_LIMIT
-  use fcs_material, only: material_t
-  use fcs_voigt, only: spin_rotation, rotate_stress_like, rotate_strain_like
   use fcs_timer, only: phase_timer_t
   use fcs_contact_system, only: contact_system_t
-  use fcs_assembly, only: element_cliques
   use fcs_comm, only: comm_t
   use fcs_strings, only: str
   implicit none
@@ -83,8 +76,9 @@ module fcs_static_explicit
   !> Working storage of the analysis, allocated once and reused every increment.
   type :: analysis_t
     type(state_t) :: state
-    type(material_slot_t), allocatable :: materials(:)
-    logical :: materials_have_states = .false.
+    !> The element loops: kinds, nodes, materials and formulation of every element, and the
+    !> elements of this process.
+    type(element_loops_t) :: elements
     type(sparse_matrix_t) :: matrix
     class(linear_solver_t), allocatable :: solver
     !> Reuse of the solver's factors across tangents (GMRES preconditioned by them).
@@ -108,13 +102,13 @@ module fcs_static_explicit
     !> Coordinates the contact search and elements use (current positions X + u).
     real(dp), allocatable :: x_contact(:, :)
     !> The processes of the run and the work of this one (replicated state, distributed
-    !> work): the elements it assembles and updates, and the contact slaves it assembles.
-    !> Everything else (displacements, contact states) is the same on every process.
+    !> work): the elements it assembles and updates (elements%mine), and the contact slaves it
+    !> assembles. Everything else (displacements, contact states) is the same on every process.
     type(comm_t) :: comm
-    integer, allocatable :: my_elements(:)
     logical, allocatable :: owns_slave(:)
-    !> Nodes loaded by face pressures in any step (their load stiffness goes to rank 0).
-    integer, allocatable :: pressure_cliques(:, :)
+    !> Nodes of the faces loaded by pressures in any step, face k
+    !> pressure_nodes(pressure_ptr(k):pressure_ptr(k+1)-1) (their load stiffness goes to rank 0).
+    integer, allocatable :: pressure_ptr(:), pressure_nodes(:)
     !> A distributed run's pattern changed: the solver needs the whole model's ordering.
     logical :: ordering_due = .false.
     !> Integration points on their yield surface that the trial increment unloads (q, e):
@@ -230,7 +224,7 @@ contains
     type(analysis_t), intent(inout) :: a
     type(model_t), intent(in) :: model
     type(error_t), allocatable, intent(out) :: err
-    if (a%contact%pattern_dirty) call build_pattern(a, model)
+    if (a%contact%needs_pattern()) call build_pattern(a, model)
     if (a%ordering_due) then
       call give_global_ordering(a, model, err)
       call a%comm%agree_error(err)
@@ -247,7 +241,7 @@ contains
     type(increment_record_t), intent(inout) :: record
     type(error_t), allocatable, intent(out) :: err
     integer :: pass, n_switched
-    if (a%materials_have_states) call reset_unloading(a)
+    if (a%elements%has_states()) call reset_unloading(a)
     do pass = 1, MAX_STATE_PASSES
       call a%timers%start('assembly')
       call assemble_system(a, model, step, t0, dt, err)
@@ -258,12 +252,12 @@ contains
       call solve_system(a, model%mesh%node_id, err)
       call a%comm%agree_error(err)
       if (allocated(err)) return
-      if (a%contact%n_slaves() == 0 .and. .not. a%materials_have_states) exit
+      if (a%contact%n_slaves() == 0 .and. .not. a%elements%has_states()) exit
       a%du = a%du_residual + a%du_load
       n_switched = 0
       if (a%contact%n_slaves() > 0) &
         call a%contact%switch_states(a%x_contact, a%state%contact, a%du, n_switched)
-      if (a%materials_have_states) call switch_unloading(a, model, step%nlgeom, n_switched)
+      if (a%elements%has_states()) call switch_unloading(a, step%nlgeom, n_switched)
       record%n_switches = record%n_switches + n_switched
       if (n_switched == 0) exit
     end do
@@ -280,7 +274,7 @@ contains
     type(increment_record_t), intent(inout) :: record
     real(dp), intent(out) :: r
     type(error_t), allocatable, intent(out) :: err
-    call collect_events(a, model, step, err)
+    call collect_events(a, step, err)
     call a%comm%agree_error(err)
     if (allocated(err)) return
     call global_fraction(a, step%rmin%event_tolerance, r)
@@ -316,11 +310,11 @@ contains
     logical, intent(in) :: predict_penetration
     call a%timers%start('update')
     associate (state => a%state)
-      if (step%nlgeom) call check_new_geometry(a, model, err)
+      if (step%nlgeom) call a%elements%check_geometry(state%x, a%du, err)
       call a%comm%agree_error(err)
       if (.not. allocated(err) .and. a%contact%n_slaves() > 0 .and. predict_penetration) &
         call a%contact%check_penetration(model%mesh%node_id, a%x_contact, state%contact, a%du, err)
-      if (.not. allocated(err)) call update_elements(a, model, step, err)
+      if (.not. allocated(err)) call a%elements%update(state%x, a%du, state%elements, step%nlgeom, err)
       call a%comm%agree_error(err)
       if (allocated(err)) then
         call a%timers%stop('update')
@@ -438,8 +432,7 @@ contains
     real(dp) :: worst, scale, node_norm, sums(2)
     integer :: node
     call a%timers%start('equilibrium')
-    call assemble_elements(model, a%state, a%materials, step%nlgeom, a%my_elements, a%f_int, err, &
-                           flux=a%flux)
+    call a%elements%assemble(a%state%x, a%state%elements, step%nlgeom, a%f_int, err, flux=a%flux)
     call a%comm%agree_error(err)
     if (allocated(err)) then
       call a%timers%stop('equilibrium')
@@ -537,22 +530,23 @@ contains
     type(analysis_t), intent(inout) :: a
     type(step_t), intent(in) :: step
     real(dp), intent(in) :: dt
-    real(dp) :: limits(3), factors(3)
-    integer :: i, worst
+    real(dp) :: limits(3), factors(3), change(3)
+    integer :: i, worst, change_node(3)
     integer, parameter :: kinds(3) = [EVENT_SLIP_RATE_CHANGE, EVENT_FRICTION_CHANGE, EVENT_STATE_CHANGE]
-    if (all(a%contact%change <= 0.0_dp) .or. dt <= 0.0_dp) then
+    call a%contact%friction_changes(change, change_node)
+    if (all(change <= 0.0_dp) .or. dt <= 0.0_dp) then
       a%state%friction_dt = 0.0_dp
       return
     end if
     limits = [step%rmin%max_log_rate_change, step%rmin%max_friction_change, step%rmin%max_state_change]
     factors = 2.0_dp
     do i = 1, 3
-      if (a%contact%change(i) > 0.0_dp) factors(i) = min(2.0_dp, limits(i) / a%contact%change(i))
+      if (change(i) > 0.0_dp) factors(i) = min(2.0_dp, limits(i) / change(i))
     end do
     worst = minloc(factors, 1)
     a%state%friction_dt = dt * factors(worst)
     a%state%friction_kind = kinds(worst)
-    a%state%friction_node = a%contact%change_node(worst)
+    a%state%friction_node = change_node(worst)
   end subroutine friction_step_control
 
   !> K + K_f + load stiffness and the internal, contact forces on the current state. Each
@@ -567,19 +561,18 @@ contains
     type(error_t), allocatable, intent(out) :: err
     real(dp), allocatable :: scratch(:)
     call a%matrix%zero()
-    if (a%materials_have_states) then
-      call assemble_elements(model, a%state, a%materials, step%nlgeom, a%my_elements, a%f_int, err, &
-                             a%matrix, a%unloading)
+    if (a%elements%has_states()) then
+      call a%elements%assemble(a%state%x, a%state%elements, step%nlgeom, a%f_int, err, a%matrix, &
+                               a%unloading)
     else
-      call assemble_elements(model, a%state, a%materials, step%nlgeom, a%my_elements, a%f_int, err, &
-                             a%matrix)
+      call a%elements%assemble(a%state%x, a%state%elements, step%nlgeom, a%f_int, err, a%matrix)
     end if
     call a%comm%agree_error(err)
     if (allocated(err)) return
     if (step%nlgeom .and. a%comm%is_root()) then
       allocate (scratch(size(a%f_int)))
       scratch = 0.0_dp
-      call assemble_pressures(model, a%loading, t0, a%state, .true., scratch, a%matrix)
+      call assemble_pressures(a%elements, a%loading, model, t0, a%state%x, .true., scratch, a%matrix)
     end if
     a%f_contact = 0.0_dp
     if (a%contact%n_slaves() > 0) call a%contact%assemble(a%x_contact, a%state%contact, dt, &
@@ -633,7 +626,7 @@ contains
     logical, intent(in) :: nlgeom
     real(dp), intent(out) :: f_int(:)
     type(error_t), allocatable, intent(out) :: err
-    call assemble_elements(model, a%state, a%materials, nlgeom, a%my_elements, f_int, err)
+    call a%elements%assemble(a%state%x, a%state%elements, nlgeom, f_int, err)
     call a%comm%agree_error(err)
     if (.not. allocated(err)) call a%comm%sum_real(f_int)
   end subroutine internal_forces
@@ -647,16 +640,18 @@ contains
     if (a%comm%size == 1) return
     allocate (mine(a%state%n_elements))
     mine = .false.
-    mine(a%my_elements) = .true.
-    do e = 1, a%state%n_elements
-      if (mine(e)) cycle
-      a%state%stress(:, :, e) = 0.0_dp
-      a%state%strain(:, :, e) = 0.0_dp
-      a%state%material_state(:, :, e) = 0.0_dp
-    end do
-    call a%comm%sum_real(a%state%stress)
-    call a%comm%sum_real(a%state%strain)
-    if (size(a%state%material_state) > 0) call a%comm%sum_real(a%state%material_state)
+    mine(a%elements%mine) = .true.
+    associate (fields => a%state%elements)
+      do e = 1, a%state%n_elements
+        if (mine(e)) cycle
+        fields%stress(:, :, e) = 0.0_dp
+        fields%strain(:, :, e) = 0.0_dp
+        fields%material_state(:, :, e) = 0.0_dp
+      end do
+      call a%comm%sum_real(fields%stress)
+      call a%comm%sum_real(fields%strain)
+      if (size(fields%material_state) > 0) call a%comm%sum_real(fields%material_state)
+    end associate
   end subroutine gather_element_fields
 
   !> Prescribed values on a system spread over processes: each eliminates the known values
@@ -721,20 +716,18 @@ contains
     type(model_t), intent(in) :: model
     logical, intent(in), optional :: keep_centres
     integer, allocatable :: clique_ptr(:), clique_nodes(:)
-    integer :: k, node, n_nodes, n_faces, last
-    call element_cliques(model, a%my_elements, clique_ptr, clique_nodes)
+    integer :: node, n_nodes, last
+    call a%elements%cliques(a%elements%mine, clique_ptr, clique_nodes)
     if (a%contact%n_slaves() > 0) call a%contact%cliques(a%state%contact, clique_ptr, clique_nodes, &
                                                          keep_centres, a%owns_slave)
     if (a%comm%size > 1 .and. a%comm%is_root()) then
       ! Rank 0 also holds every diagonal (constrained rows) and the pressure load stiffness:
-      ! a one-node clique per node, then the 4-node pressure faces (appended in one go).
+      ! a one-node clique per node, then the pressure faces (appended in one go).
       n_nodes = model%mesh%n_nodes
-      n_faces = size(a%pressure_cliques, 2)
       last = clique_ptr(size(clique_ptr))
-      clique_nodes = [clique_nodes, [(node, node = 1, n_nodes)], &
-                      reshape(a%pressure_cliques, [4 * n_faces])]
+      clique_nodes = [clique_nodes, [(node, node = 1, n_nodes)], a%pressure_nodes]
       clique_ptr = [clique_ptr, [(last + node, node = 1, n_nodes)], &
-                    [(last + n_nodes + 4 * k, k = 1, n_faces)]]
+                    last + n_nodes + a%pressure_ptr(2:) - 1]
     end if
     call a%matrix%build(model%mesh%n_nodes, clique_ptr, clique_nodes)
     a%ordering_due = a%comm%size > 1
@@ -758,7 +751,7 @@ contains
     if (.not. a%comm%is_root()) return
     select type (solver => a%solver)
     type is (mumps_solver_t)
-      call element_cliques(model, [(e, e = 1, model%mesh%n_elements)], clique_ptr, clique_nodes)
+      call a%elements%cliques([(e, e = 1, model%mesh%n_elements)], clique_ptr, clique_nodes)
       if (a%contact%n_slaves() > 0) call a%contact%cliques(a%state%contact, clique_ptr, &
                                                            clique_nodes, keep_centres=.true.)
       call whole%build(model%mesh%n_nodes, clique_ptr, clique_nodes)
@@ -788,8 +781,8 @@ contains
     a%f_ext1 = 0.0_dp
     call a%loading%force_at(model%amplitudes, t0, a%f_ext0)
     call a%loading%force_at(model%amplitudes, t1, a%f_ext1)
-    call assemble_pressures(model, a%loading, t0, a%state, nlgeom, a%f_ext0)
-    call assemble_pressures(model, a%loading, t1, a%state, nlgeom, a%f_ext1)
+    call assemble_pressures(a%elements, a%loading, model, t0, a%state%x, nlgeom, a%f_ext0)
+    call assemble_pressures(a%elements, a%loading, model, t1, a%state%x, nlgeom, a%f_ext1)
   end subroutine external_forces
 
   !> The external forces at step time t on the current geometry.
@@ -801,7 +794,7 @@ contains
     real(dp), intent(out) :: f_ext(:)
     f_ext = 0.0_dp
     call a%loading%force_at(model%amplitudes, t, f_ext)
-    call assemble_pressures(model, a%loading, t, a%state, nlgeom, f_ext)
+    call assemble_pressures(a%elements, a%loading, model, t, a%state%x, nlgeom, f_ext)
   end subroutine external_force_at
 
   !> Constrained degrees of freedom and their prescribed increments over [t0, t1]. Nodes in
@@ -861,220 +854,46 @@ contains
     end do
   end subroutine check_finite
 
-  !> Offer every event and limit of the trial increment to the collector.
-  subroutine collect_events(a, model, step, err)
+  !> Offer every event and limit of the trial increment to the collector: the contact
+  !> events, then the element limits and events (fcs_element_loops).
+  subroutine collect_events(a, step, err)
     type(analysis_t), intent(inout) :: a
-    type(model_t), intent(in) :: model
     type(step_t), intent(in) :: step
     type(error_t), allocatable, intent(out) :: err
-    type(hex8_geometry_t) :: geo
-    real(dp) :: strain(6, N_GAUSS_HEX8), spin(3, 3, N_GAUSS_HEX8), equivalent(N_GAUSS_HEX8)
-    real(dp) :: angle(N_GAUSS_HEX8), du(3, 8), strain_fixed(6, N_GAUSS_HEX8)
-    real(dp) :: r_yield, r_plastic
-    integer :: e, q, s, i
-    logical :: ok, bbar
     call a%collector%reset()
     if (a%contact%n_slaves() > 0) call a%contact%events(a%x_contact, a%state%contact, a%du_residual, &
                                                         a%du_load, a%collector)
-    if (.not. (step%nlgeom .or. a%materials_have_states)) return
-    do i = 1, size(a%my_elements)
-      e = a%my_elements(i)
-      call hex8_geometry(element_configuration(model, a%state, e, step%nlgeom), geo, ok)
-      if (.not. ok) then
-        call inverted_element_error(model, e, err)
-        return
-      end if
-      s = model%element_section(e)
-      bbar = model%sections(s)%formulation == FORMULATION_BBAR
-      du = element_increment(a%du_load, model%mesh%connectivity(:, e))
-      call hex8_strain_increments(geo, du, bbar, strain, spin, equivalent, angle)
-      if (step%nlgeom) then
-        if (maxval(equivalent) > 0.0_dp) call a%collector%offer(step%rmin%max_strain_increment / &
-          maxval(equivalent), EVENT_STRAIN_LIMIT, e, maxloc(equivalent, 1))
-        if (maxval(angle) > 0.0_dp) call a%collector%offer(step%rmin%max_rotation_increment / &
-          maxval(angle), EVENT_ROTATION_LIMIT, e, maxloc(angle, 1))
-      end if
-      if (.not. a%materials_have_states) cycle
-      du = element_increment(a%du_residual, model%mesh%connectivity(:, e))
-      call hex8_strain_increments(geo, du, bbar, strain_fixed, spin, equivalent, angle)
-      associate (material => a%materials(model%sections(s)%material)%m)
-        do q = 1, N_GAUSS_HEX8
-          call material%point_events(a%state%stress(:, q, e), a%state%material_state(:, q, e), &
-                                     strain_fixed(:, q), strain(:, q), &
-                                     step%rmin%max_plastic_strain_increment, r_yield, r_plastic)
-          call a%collector%offer(r_yield, EVENT_YIELD, e, q)
-          call a%collector%offer(r_plastic, EVENT_PLASTIC_STRAIN_LIMIT, e, q)
-        end do
-      end associate
-    end do
+    call a%elements%collect_events(a%state%x, a%du_load, a%du_residual, a%state%elements, step%nlgeom, &
+      event_limits_t(step%rmin%max_strain_increment, step%rmin%max_rotation_increment, &
+                     step%rmin%max_plastic_strain_increment), a%collector, err)
   end subroutine collect_events
 
   !> No point unloads at the start of an increment.
   subroutine reset_unloading(a)
     type(analysis_t), intent(inout) :: a
-    if (.not. allocated(a%unloading)) allocate (a%unloading(N_GAUSS_HEX8, a%state%n_elements))
+    if (.not. allocated(a%unloading)) allocate (a%unloading(a%elements%max_points, a%state%n_elements))
     a%unloading = .false.
   end subroutine reset_unloading
 
   !> Elastic unloading as a state switch (doc/theory.md 6.3; Yamada, Yoshimura & Sakurai
   !> 1968): every point on its yield surface that the trial increment a%du moves inwards
-  !> (material%unloads, strain increment on the start configuration) takes the elastic tangent
-  !> for the rest of the increment; `n_switched` grows by the number of new such points over
-  !> all processes (the increment is then solved again).
-  subroutine switch_unloading(a, model, nlgeom, n_switched)
+  !> takes the elastic tangent for the rest of the increment (fcs_element_loops,
+  !> count_unloading); `n_switched` grows by the number of new such points over all processes
+  !> (the increment is then solved again).
+  subroutine switch_unloading(a, nlgeom, n_switched)
     type(analysis_t), intent(inout) :: a
-    type(model_t), intent(in) :: model
     logical, intent(in) :: nlgeom
     integer, intent(inout) :: n_switched
-    type(hex8_geometry_t) :: geo
-    real(dp) :: strain(6, N_GAUSS_HEX8), spin(3, 3, N_GAUSS_HEX8), equivalent(N_GAUSS_HEX8)
-    real(dp) :: angle(N_GAUSS_HEX8), count(1)
-    integer :: e, q, s, i
-    logical :: ok
-    count = 0.0_dp
-    do i = 1, size(a%my_elements)
-      e = a%my_elements(i)
-      s = model%element_section(e)
-      call hex8_geometry(element_configuration(model, a%state, e, nlgeom), geo, ok)
-      if (.not. ok) cycle
-      call hex8_strain_increments(geo, element_increment(a%du, model%mesh%connectivity(:, e)), &
-                                  model%sections(s)%formulation == FORMULATION_BBAR, strain, spin, &
-                                  equivalent, angle)
-      associate (material => a%materials(model%sections(s)%material)%m)
-        do q = 1, N_GAUSS_HEX8
-          if (a%unloading(q, e)) cycle
-          if (.not. material%unloads(a%state%stress(:, q, e), a%state%material_state(:, q, e), &
-                                     strain(:, q))) cycle
-          a%unloading(q, e) = .true.
-          count = count + 1.0_dp
-        end do
-      end associate
-    end do
+    real(dp) :: count(1)
+    count = a%elements%count_unloading(a%state%x, a%du, a%state%elements, nlgeom, a%unloading)
     call a%comm%sum_real(count)
     n_switched = n_switched + nint(count(1))
   end subroutine switch_unloading
 
-  !> Nodal displacement increments of one element.
-  pure function element_increment(du, nodes) result(du_e)
-    real(dp), intent(in) :: du(:)
-    integer, intent(in) :: nodes(8)
-    real(dp) :: du_e(3, 8)
-    integer :: a
-    do a = 1, 8
-      du_e(:, a) = du(3 * nodes(a) - 2:3 * nodes(a))
-    end do
-  end function element_increment
 
-  !> Stress and strain update for the (scaled) increment: gradients on the mid-increment
-  !> configuration, objective rotation (Hughes & Winget 1980), then the material law.
-  subroutine update_elements(a, model, step, err)
-    type(analysis_t), intent(inout) :: a
-    type(model_t), intent(in) :: model
-    type(step_t), intent(in) :: step
-    type(error_t), allocatable, intent(out) :: err
-    type(hex8_geometry_t) :: geo
-    real(dp) :: strain(6, N_GAUSS_HEX8), spin(3, 3, N_GAUSS_HEX8), equivalent(N_GAUSS_HEX8)
-    real(dp) :: angle(N_GAUSS_HEX8), du(3, 8), x(3, 8)
-    integer :: e, q, s, i
-    logical :: ok, bbar, nlgeom
-    nlgeom = step%nlgeom
-    do i = 1, size(a%my_elements)
-      e = a%my_elements(i)
-      du = element_increment(a%du, model%mesh%connectivity(:, e))
-      x = element_configuration(model, a%state, e, nlgeom)
-      if (nlgeom) x = x + 0.5_dp * du
-      call hex8_geometry(x, geo, ok)
-      if (.not. ok) then
-        call inverted_element_error(model, e, err)
-        return
-      end if
-      s = model%element_section(e)
-      bbar = model%sections(s)%formulation == FORMULATION_BBAR
-      call hex8_strain_increments(geo, du, bbar, strain, spin, equivalent, angle)
-      associate (material => a%materials(model%sections(s)%material)%m)
-        do q = 1, N_GAUSS_HEX8
-          call update_point(material, nlgeom, strain(:, q), spin(:, :, q), a%state%stress(:, q, e), &
-                            a%state%strain(:, q, e), a%state%material_state(:, q, e))
-        end do
-      end associate
-    end do
-  end subroutine update_elements
 
-  !> The objective update of one integration point (doc/theory.md, 1.4): strain increment
-  !> and spin increment on the mid-increment configuration; `stress`, `strain` (accumulated,
-  !> output only) and the material's `state` go from the start to the end of the increment and
-  !> depend on nothing else, so an increment recomputed from its saved start gives the same
-  !> result.
-  !> * A material without internal variables: the midpoint Hughes-Winget update (1f), half of
-  !>   the constitutive increment before the rotation and half after, second order in the
-  !>   increment and exact under rigid rotation.
-  !> * A material with internal variables (a yield surface): the stress and the tensor-valued
-  !>   variables are rotated first, Q sigma Q^T, and the material's update (return mapping)
-  !>   then works in the rotated frame (1g; Simo & Hughes 1998, section 8.3), so that the
-  !>   stress it returns lies on the yield surface; the midpoint split would move the returned
-  !>   stress off the surface by the rotation of half an increment (second order).
-  !> Without NLGEOM there is no rotation: sigma + the material's increment.
-  !> With `tangent`, also the material's consistent tangent d(sigma)/d(strain_increment) of
-  !> this update (in the rotated frame), for equilibrium iterations.
-  pure subroutine update_point(material, nlgeom, strain_increment, spin, stress, strain, state, &
-                               tangent)
-    class(material_t), intent(in) :: material
-    logical, intent(in) :: nlgeom
-    real(dp), intent(in) :: strain_increment(6), spin(3, 3)
-    real(dp), intent(inout) :: stress(6), strain(6), state(:)
-    real(dp), intent(out), optional :: tangent(6, 6)
-    real(dp) :: updated(6), increment(6), q(3, 3)
-    if (nlgeom .and. material%n_state() > 0) then
-      q = spin_rotation(spin)
-      stress = rotate_stress_like(stress, q)
-      call material%rotate_state(state, q)
-      call material%update(stress, strain_increment, state, tangent)
-      strain = rotate_strain_like(strain, q) + strain_increment
-    else if (nlgeom) then
-      updated = stress
-      call material%update(updated, strain_increment, state, tangent)
-      increment = updated - stress
-      stress = hex8_rotate_stress(stress + 0.5_dp * increment, spin) + 0.5_dp * increment
-      strain = rotate_strain(strain + 0.5_dp * strain_increment, spin) + 0.5_dp * strain_increment
-    else
-      call material%update(stress, strain_increment, state, tangent)
-      strain = strain + strain_increment
-    end if
-  end subroutine update_point
 
-  !> Every element must keep a positive Jacobian on the mid-increment and the end
-  !> configurations of the increment about to be applied.
-  subroutine check_new_geometry(a, model, err)
-    type(analysis_t), intent(in) :: a
-    type(model_t), intent(in) :: model
-    type(error_t), allocatable, intent(out) :: err
-    type(hex8_geometry_t) :: geo
-    real(dp) :: du(3, 8), x(3, 8)
-    integer :: e, i
-    logical :: ok_mid, ok_end
-    do i = 1, size(a%my_elements)
-      e = a%my_elements(i)
-      du = element_increment(a%du, model%mesh%connectivity(:, e))
-      x = element_configuration(model, a%state, e, .true.)
-      call hex8_geometry(x + 0.5_dp * du, geo, ok_mid)
-      call hex8_geometry(x + du, geo, ok_end)
-      if (.not. (ok_mid .and. ok_end)) then
-        call inverted_element_error(model, e, err)
-        return
-      end if
-    end do
-  end subroutine check_new_geometry
 
-  !> Rotate an engineering-shear strain like a stress (tensor shear in between).
-  pure function rotate_strain(strain, spin) result(rotated)
-    real(dp), intent(in) :: strain(6), spin(3, 3)
-    real(dp) :: rotated(6)
-    real(dp) :: tensor(6)
-    tensor = strain
-    tensor(4:6) = 0.5_dp * tensor(4:6)
-    rotated = hex8_rotate_stress(tensor, spin)
-    rotated(4:6) = 2.0_dp * rotated(4:6)
-  end function rotate_strain
 
   !> For the message of an increment without equilibrium: the most distorted element of
   !> the current configuration when it is nearly inverted (its Jacobian determinant varies by
@@ -1084,24 +903,11 @@ contains
     type(model_t), intent(in) :: model
     logical, intent(in) :: nlgeom
     character(len=:), allocatable :: note
-    type(hex8_geometry_t) :: geo
-    real(dp) :: ratio, worst
-    integer :: i, e, worst_element
-    logical :: ok
+    real(dp) :: worst
+    integer :: worst_element
     note = ''
     if (.not. nlgeom) return
-    worst = huge(1.0_dp)
-    worst_element = 0
-    do i = 1, size(a%my_elements)
-      e = a%my_elements(i)
-      call hex8_geometry(element_configuration(model, a%state, e, .true.), geo, ok)
-      ratio = 0.0_dp
-      if (ok) ratio = minval(geo%dv) / maxval(geo%dv)
-      if (ratio < worst) then
-        worst = ratio
-        worst_element = e
-      end if
-    end do
+    call a%elements%most_distorted(a%state%x, worst_element, worst)
     if (worst_element == 0 .or. worst >= 0.05_dp) return
     note = '; element ' // str(model%mesh%element_id(worst_element)) // ' is nearly inverted ' // &
       '(its Jacobian determinant varies by a factor ' // str(1.0_dp / max(worst, tiny(1.0_dp))) // &

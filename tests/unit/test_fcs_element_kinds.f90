@@ -35,7 +35,7 @@ program test_fcs_element_kinds
   use fcs_quadrature, only: quadrature_rule_t, gauss_cube, gauss_square, gauss_line, &
     triangle_rule, tetrahedron_rule, wedge_rule
   use fcs_hex8_element, only: hex8_geometry_t, hex8_geometry, hex8_extrapolate
-  use fcs_mesh, only: HEX8_FACE_LOCAL_NODES
+  use fcs_hex8_face, only: HEX8_FACE_LOCAL_NODES
   implicit none
 
   real(dp), parameter :: TIGHT = 1.0e-12_dp

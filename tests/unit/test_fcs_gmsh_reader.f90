@@ -8,7 +8,9 @@
 program test_fcs_gmsh_reader
   use fcs_kinds, only: dp
   use fcs_error, only: error_t, EXIT_INPUT
-  use fcs_mesh, only: mesh_t, hex8_face_nodes
+  use fcs_mesh, only: mesh_t
+  use fcs_element_catalogue, only: element_catalogue_t
+  use fcs_element_loops, only: mesh_kinds
   use fcs_gmsh_reader, only: read_gmsh
   use fcs_strings, only: dirname, file_exists
   use fcs_test_assertions, only: test_suite_t
@@ -35,6 +37,17 @@ program test_fcs_gmsh_reader
 
 contains
 
+  !> The element kinds of the catalogue, as the mesh is to know them (fcs_element_loops).
+  function catalogue_kinds() result(kinds)
+    use fcs_mesh, only: mesh_kind_t
+    use fcs_error, only: error_t
+    type(mesh_kind_t), allocatable :: kinds(:)
+    type(element_catalogue_t) :: catalogue
+    type(error_t), allocatable :: err
+    call catalogue%init(err)
+    kinds = mesh_kinds(catalogue)
+  end function catalogue_kinds
+
   !> Directory of the test meshes, ending in "/" (see the program comment).
   function data_directory() result(directory)
     character(len=:), allocatable :: directory
@@ -59,7 +72,7 @@ contains
     type(mesh_t), intent(out) :: mesh
     logical, intent(out) :: ok
     type(error_t), allocatable :: err
-    call mesh%init()
+    call mesh%init(catalogue_kinds())
     call read_gmsh(path, mesh, err)
     ok = .not. allocated(err)
     if (.not. ok) then
@@ -122,7 +135,7 @@ contains
     expected = 0.0_dp
     expected(axis) = sense
     do f = 1, size(mesh%surfaces(s)%element)
-      nodes = hex8_face_nodes(mesh, mesh%surfaces(s)%element(f), mesh%surfaces(s)%face(f))
+      nodes = mesh%face_nodes(mesh%surfaces(s)%element(f), mesh%surfaces(s)%face(f))
       call suite%check(all(abs(mesh%x(axis, nodes) - value) <= MESHER_TOLERANCE), path // ': ' // name // &
         ' face on its plane')
       normal = face_normal(mesh, nodes)
@@ -274,13 +287,13 @@ contains
     type(mesh_t) :: mesh, other
     type(error_t), allocatable :: err
     logical :: duplicate
-    call mesh%init()
+    call mesh%init(catalogue_kinds())
     call mesh%add_node(5, [9.0_dp, 9.0_dp, 9.0_dp], duplicate)
     call read_gmsh(data_dir // 'cube_ascii.msh', mesh, err)
     call check_message(suite, err, 'clashing node', 'cube_ascii.msh', 'node 5 already exists')
-    call other%init()
+    call other%init(catalogue_kinds())
     call other%add_node(100, [9.0_dp, 9.0_dp, 9.0_dp], duplicate)
-    call other%add_element(13, [1, 1, 1, 1, 1, 1, 1, 1], duplicate)
+    call other%add_element(13, [1, 1, 1, 1, 1, 1, 1, 1], duplicate, other%find_kind('C3D8'))
     call read_gmsh(data_dir // 'cube_binary.msh', other, err)
     call check_message(suite, err, 'clashing element', 'cube_binary.msh', 'element 13 already exists')
   end subroutine test_clashing_ids
@@ -308,7 +321,7 @@ contains
     character(len=*), intent(in) :: name, fragment, other_fragment
     type(mesh_t) :: mesh
     type(error_t), allocatable :: err
-    call mesh%init()
+    call mesh%init(catalogue_kinds())
     call read_gmsh(data_dir // name, mesh, err)
     call check_message(suite, err, name, fragment, other_fragment)
   end subroutine expect_error

@@ -31,7 +31,8 @@ module fcs_partition
 
 contains
 
-  !> Owner rank (0-based) of every element.
+  !> Owner rank (0-based) of every element; connectivity(:, e) holds the nodes of element e,
+  !> padded with 0.
   subroutine partition_elements(comm, connectivity, n_nodes, owner, err)
     type(comm_t), intent(in) :: comm
     integer, intent(in) :: connectivity(:, :), n_nodes
@@ -49,9 +50,14 @@ contains
       if (ne < comm%size) then
         owner = [(mod(e - 1, comm%size), e = 1, ne)]
       else
-        allocate (eptr(ne + 1), eind(8 * ne), epart(ne), npart(n_nodes))
-        eptr = [(int(8 * e, c_int), e = 0, ne)]
-        eind = int(reshape(connectivity, [8 * ne]) - 1, c_int)
+        ! Elements of any kind: the nodes of element e are its nonzero connectivity entries
+        ! (shorter elements are padded with 0).
+        allocate (eptr(ne + 1), epart(ne), npart(n_nodes))
+        eptr(1) = 0
+        do e = 1, ne
+          eptr(e + 1) = eptr(e) + int(count(connectivity(:, e) > 0), c_int)
+        end do
+        eind = int(pack(connectivity, connectivity > 0) - 1, c_int)
         status = metis_part_mesh_dual(int(ne, c_int), int(n_nodes, c_int), eptr, eind, c_null_ptr, &
           c_null_ptr, 4_c_int, int(comm%size, c_int), c_null_ptr, c_null_ptr, objval, epart, npart)
         owner = int(epart)

@@ -1,0 +1,125 @@
+!> The contact system's view of one slave node (fcs_contact_system, which declares these
+!> procedures; the events and the update use them as the system does): its contact element
+!> (node_of, params_of, element_nodes), the friction coefficient of its cone, its
+!> linearisation, how it is held, when it closes and opens, its gap change.
+submodule (fcs_contact_system) fcs_contact_nodes
+  implicit none
+
+contains
+
+  !> Documented with its interface in fcs_contact_system.
+  module procedure closing_status
+    status = CONTACT_STICK
+    if (mu <= 0.0_dp) status = CONTACT_SLIP
+  end procedure closing_status
+
+  !> Documented with its interface in fcs_contact_system.
+  module procedure node_of
+    node%status = status
+    node%normal_force = cstate%normal_force(s)
+    node%friction = cstate%friction(:, s)
+    node%trial_norm = max(cstate%trial_norm(s), norm2(cstate%friction(:, s)))
+    node%friction_state = cstate%friction_state(s)
+    node%tied_gap = cstate%tied_gap(s)
+    node%slip_rate = cstate%slip_rate(s)
+  end procedure node_of
+
+  !> Documented with its interface in fcs_contact_system.
+  module procedure cone_mu
+    associate (law => this%pairs(this%slave_pair(s))%law)
+      ! During the equilibrium iterations of an increment the state is an iterate whose
+      ! slip rate is the increment's own: its cone is the one its return mapping used.
+      if (law%explicit_rate .and. .not. this%holding) then
+        mu = law%mu(cstate%normal_force(s) / this%area(s), cstate%slip_rate(s), &
+                    cstate%friction_state(s))
+      else
+        mu = cstate%mu(s)
+      end if
+    end associate
+  end procedure cone_mu
+
+  !> Documented with its interface in fcs_contact_system.
+  module procedure params_of
+    params%area = this%area(s)
+    params%normal_stiffness = this%pairs(this%slave_pair(s))%normal_stiffness
+    params%stick_stiffness = this%pairs(this%slave_pair(s))%stick_stiffness
+    if (present(face) .and. present(xi)) call edge_support(xi, &
+      this%pairs(this%slave_pair(s))%free_edge(:, face), params%support, params%dsupport)
+  end procedure params_of
+
+  !> Documented with its interface in fcs_contact_system.
+  module procedure linearise
+    type(segment_point_t) :: p, p_start
+    type(friction_derivatives_t) :: fr
+    type(contact_node_t) :: node
+    type(contact_params_t) :: params
+    real(dp) :: x5(3, 5), dt_rate
+    integer :: start_face
+    associate (pair => this%pairs(this%slave_pair(s)))
+      x5(:, 1) = x(:, this%slave_node(s))
+      x5(:, 2:5) = x(:, pair%face_nodes(:, cstate%face(s)))
+      p = segment_point(x5(:, 2:5), cstate%xi(:, s))
+      fr = pair%law%evaluate(cstate%normal_force(s) / this%area(s), cstate%slip_rate(s), &
+                             cstate%friction_state(s))
+      fr%mu = cone_mu(this, s, cstate)
+      node = node_of(cstate, s, cstate%status(s))
+      node%bilateral = hold_mode(this, s) == HOLD_CLOSED
+      params = params_of(this, s, cstate%face(s), cstate%xi(:, s))
+      ! An explicit rate is known at the start of the increment: no rate term in the tangent.
+      dt_rate = merge(0.0_dp, dt, pair%law%explicit_rate)
+      start_face = 0
+      if (this%holding) start_face = this%start_face(s)
+      if (start_face == 0) then
+        call contact_linearise(x5, p, cstate%gap(s), node, params, fr, dt_rate, lin)
+      else
+        ! An iterate of the equilibrium iterations: it has slipped since the start point.
+        p_start = segment_point(x(:, pair%face_nodes(:, start_face)), this%start_xi(:, s))
+        if (start_face == cstate%face(s)) then
+          call contact_linearise(x5, p, cstate%gap(s), node, params, fr, dt_rate, lin, &
+                                 p%x - p_start%x, p_start%shape)
+        else
+          call contact_linearise(x5, p, cstate%gap(s), node, params, fr, dt_rate, lin, &
+                                 p%x - p_start%x)
+        end if
+      end if
+    end associate
+  end procedure linearise
+
+  !> Documented with its interface in fcs_contact_system.
+  module procedure element_nodes
+    nodes(1) = this%slave_node(s)
+    nodes(2:5) = this%pairs(this%slave_pair(s))%face_nodes(:, cstate%face(s))
+  end procedure element_nodes
+
+  !> Documented with its interface in fcs_contact_system.
+  module procedure relative_normal
+    change = dot_product(p%normal, due(1:3) - matmul(reshape(due(4:15), [3, 4]), p%shape))
+  end procedure relative_normal
+
+  !> Documented with its interface in fcs_contact_system.
+  module procedure hold_mode
+    mode = HOLD_NONE
+    if (this%holding) mode = this%hold_status(s)
+  end procedure hold_mode
+
+  !> Documented with its interface in fcs_contact_system.
+  module procedure normal_force_floor
+    associate (pair => this%pairs(this%slave_pair(s)))
+      floor = GAP_TOLERANCE * pair%normal_stiffness * this%area(s) * pair%face_size
+    end associate
+  end procedure normal_force_floor
+
+  module procedure open_node
+    cstate%status(s) = CONTACT_OPEN
+    cstate%face(s) = face
+    cstate%normal_force(s) = 0.0_dp
+    cstate%friction(:, s) = 0.0_dp
+    cstate%trial_norm(s) = 0.0_dp
+    cstate%slip_rate(s) = 0.0_dp
+    cstate%tangential_displacement(:, s) = 0.0_dp
+    if (face == 0) return
+    cstate%xi(:, s) = p%xi
+    cstate%gap(s) = gap
+  end procedure open_node
+
+end submodule fcs_contact_nodes

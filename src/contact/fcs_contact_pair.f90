@@ -1,0 +1,228 @@
+!> A contact pair as the contact system holds it: its definition from the deck (slave and
+!> master surfaces, resolved penalties: `contact_pair_def_t`, part of the model), and what is
+!> built from it on the mesh - the master faces (4 node indices each, outward), the faces
+!> sharing a node with each face, the free edges of the master surface, the search grid and
+!> the friction law - with the pair-level geometry: global search of a point and following a
+!> closed node's contact point from face to face (fcs_contact_search).
+module fcs_contact_pair
+  use fcs_kinds, only: dp
+  use fcs_error, only: error_t, input_error
+  use fcs_strings, only: str
+  use fcs_diagnostics, only: source_loc_t
+  use fcs_mesh, only: mesh_t
+  use fcs_contact_geometry, only: segment_point_t, project_to_segment
+  use fcs_contact_search, only: face_grid_t, closest_face, edge_excess, XI_TOLERANCE
+  use fcs_friction_law, only: friction_law_t
+  use fcs_friction_factory, only: create_friction_law, friction_def_t
+  use fcs_sort, only: unique_sorted
+  implicit none
+  private
+  public :: contact_pair_def_t, contact_pair_t, pair_setup, face_coordinates, search, follow
+
+  !> A node-to-point contact pair (*CONTACT PAIR) or a tied pair (*TIE).
+  type :: contact_pair_def_t
+    character(len=:), allocatable :: name
+    !> Slave: a surface (element-face or node based); master: an element-face surface.
+    integer :: slave_surface = 0
+    integer :: master_surface = 0
+    !> The *SURFACE INTERACTION, which may come after the pair (as CalculiX allows): its name
+    !> is resolved after the last card.
+    integer :: interaction = 0
+    character(len=:), allocatable :: interaction_name
+    logical :: tied = .false.
+    !> *TIE: slave nodes farther than this from the master are not tied (<= 0: default).
+    real(dp) :: position_tolerance = 0.0_dp
+    !> Resolved penalties E_n, E_t [stress/length] and friction coefficient of this pair.
+    real(dp) :: normal_stiffness = 0.0_dp
+    real(dp) :: stick_stiffness = 0.0_dp
+    !> Mean thickness h of the master elements and the modulus E the defaults come from.
+    real(dp) :: master_thickness = 0.0_dp
+    real(dp) :: master_modulus = 0.0_dp
+    type(source_loc_t) :: loc
+  end type contact_pair_def_t
+
+  type :: contact_pair_t
+    character(len=:), allocatable :: name
+    logical :: tied = .false.
+    real(dp) :: normal_stiffness = 0.0_dp
+    real(dp) :: stick_stiffness = 0.0_dp
+    !> Mean master face size; search reach for open nodes; tie position tolerance.
+    real(dp) :: face_size = 0.0_dp
+    real(dp) :: reach = 0.0_dp
+    real(dp) :: position_tolerance = 0.0_dp
+    class(friction_law_t), allocatable :: law
+    !> Master faces (4 global node indices each, outward) and the faces sharing a node with
+    !> each face (itself included): neighbors(neighbor_ptr(f):neighbor_ptr(f+1)-1).
+    integer, allocatable :: face_nodes(:, :)
+    integer, allocatable :: neighbor_ptr(:), neighbors(:)
+    !> free_edge(k, f): edge k of face f (k = 1..4: nodes 1-2, 2-3, 3-4, 4-1, i.e. the edges
+    !> xi_2 = -1, xi_1 = 1, xi_2 = 1, xi_1 = -1) bounds the master surface (no other face
+    !> of the pair shares it).
+    logical, allocatable :: free_edge(:, :)
+    type(face_grid_t) :: grid
+    !> Slave entries of this pair in the contact state: first..last.
+    integer :: first = 1
+    integer :: last = 0
+    !> Slave nodes of the surface left out of this (untied) pair because a tie holds them.
+    integer :: n_held_by_tie = 0
+  end type contact_pair_t
+
+contains
+
+  !> Faces, neighbours, penalties, friction law and search grid of one pair, defined by `def`
+  !> on `mesh`, with the friction law `friction`, on coordinates x.
+  subroutine pair_setup(pair, def, friction, mesh, x, err)
+    type(contact_pair_t), intent(inout) :: pair
+    type(contact_pair_def_t), intent(in) :: def
+    type(friction_def_t), intent(in) :: friction
+    type(mesh_t), intent(in) :: mesh
+    real(dp), intent(in) :: x(:, :)
+    type(error_t), allocatable, intent(out) :: err
+    integer, allocatable :: nodes(:)
+    integer :: f, nf
+    pair%name = def%name
+    pair%tied = def%tied
+    pair%normal_stiffness = def%normal_stiffness
+    pair%stick_stiffness = def%stick_stiffness
+    pair%position_tolerance = def%position_tolerance
+    associate (surface => mesh%surfaces(def%master_surface))
+      nf = size(surface%element)
+      allocate (pair%face_nodes(4, nf))
+      do f = 1, nf
+        nodes = mesh%face_nodes(surface%element(f), surface%face(f))
+        if (size(nodes) /= 4) then
+          call input_error(err, 'contact pair ' // def%name // ': face S' // str(surface%face(f)) // &
+            ' of element ' // str(mesh%element_id(surface%element(f))) // ' has ' // &
+            str(size(nodes)) // ' nodes; master surfaces need 4-node (quadrilateral) faces')
+          return
+        end if
+        pair%face_nodes(:, f) = nodes
+      end do
+    end associate
+    pair%face_size = 0.0_dp
+    do f = 1, nf
+      pair%face_size = pair%face_size + 0.5_dp * (norm2(x(:, pair%face_nodes(3, f)) - &
+        x(:, pair%face_nodes(1, f))) + norm2(x(:, pair%face_nodes(4, f)) - x(:, pair%face_nodes(2, f))))
+    end do
+    pair%face_size = pair%face_size / (sqrt(2.0_dp) * nf)
+    pair%reach = pair%face_size
+    call face_neighbours(pair, mesh%n_nodes)
+    call free_edges(pair)
+    call pair%grid%build(face_coordinates(pair, x), pair%reach)
+    call create_friction_law(friction, pair%law, err)
+  end subroutine pair_setup
+
+  !> Node coordinates of every master face of a pair, (3, 4, n_faces).
+  pure function face_coordinates(pair, x) result(face_x)
+    type(contact_pair_t), intent(in) :: pair
+    real(dp), intent(in) :: x(:, :)
+    real(dp) :: face_x(3, 4, size(pair%face_nodes, 2))
+    integer :: f
+    do f = 1, size(pair%face_nodes, 2)
+      face_x(:, :, f) = x(:, pair%face_nodes(:, f))
+    end do
+  end function face_coordinates
+
+  !> For every face, the faces sharing at least one node with it (itself included).
+  subroutine face_neighbours(pair, n_nodes)
+    type(contact_pair_t), intent(inout) :: pair
+    integer, intent(in) :: n_nodes
+    integer, allocatable :: node_ptr(:), node_faces(:), fill(:), found(:)
+    integer :: f, i, nf, node, j
+    nf = size(pair%face_nodes, 2)
+    allocate (node_ptr(n_nodes + 1))
+    node_ptr = 0
+    do f = 1, nf
+      node_ptr(pair%face_nodes(:, f) + 1) = node_ptr(pair%face_nodes(:, f) + 1) + 1
+    end do
+    node_ptr(1) = 1
+    do i = 1, n_nodes
+      node_ptr(i + 1) = node_ptr(i + 1) + node_ptr(i)
+    end do
+    allocate (node_faces(node_ptr(n_nodes + 1) - 1))
+    fill = node_ptr(1:n_nodes)
+    do f = 1, nf
+      do i = 1, 4
+        node = pair%face_nodes(i, f)
+        node_faces(fill(node)) = f
+        fill(node) = fill(node) + 1
+      end do
+    end do
+    allocate (pair%neighbor_ptr(nf + 1), pair%neighbors(0))
+    pair%neighbor_ptr(1) = 1
+    do f = 1, nf
+      allocate (found(0))
+      do i = 1, 4
+        node = pair%face_nodes(i, f)
+        found = [found, (node_faces(j), j = node_ptr(node), node_ptr(node + 1) - 1)]
+      end do
+      found = unique_sorted(found)
+      pair%neighbors = [pair%neighbors, found]
+      pair%neighbor_ptr(f + 1) = pair%neighbor_ptr(f) + size(found)
+      deallocate (found)
+    end do
+  end subroutine face_neighbours
+
+  !> Which face edges bound the master surface: an edge is free when no other face of the
+  !> pair has both its nodes (faces sharing a node are the only candidates).
+  pure subroutine free_edges(pair)
+    type(contact_pair_t), intent(inout) :: pair
+    integer :: f, k, j, other, a, b
+    allocate (pair%free_edge(4, size(pair%face_nodes, 2)))
+    pair%free_edge = .true.
+    do f = 1, size(pair%face_nodes, 2)
+      do k = 1, 4
+        a = pair%face_nodes(k, f)
+        b = pair%face_nodes(mod(k, 4) + 1, f)
+        do j = pair%neighbor_ptr(f), pair%neighbor_ptr(f + 1) - 1
+          other = pair%neighbors(j)
+          if (other == f) cycle
+          if (any(pair%face_nodes(:, other) == a) .and. any(pair%face_nodes(:, other) == b)) &
+            pair%free_edge(k, f) = .false.
+        end do
+      end do
+    end do
+  end subroutine free_edges
+
+  !> Global search of one point: grid candidates, then the projection rule.
+  subroutine search(pair, x, xs, face, point, gap)
+    type(contact_pair_t), intent(in) :: pair
+    real(dp), intent(in) :: x(:, :), xs(3)
+    integer, intent(out) :: face
+    type(segment_point_t), intent(out) :: point
+    real(dp), intent(out) :: gap
+    integer, allocatable :: candidates(:)
+    call pair%grid%candidates(xs, candidates)
+    call closest_face(pair%face_nodes, x, candidates, xs, pair%reach, face, point, gap, pair%free_edge, &
+                      extend=.true.)
+  end subroutine search
+
+  !> Where a closed node's contact point is now: its face if the projection stays on it (or
+  !> within the extension past a free edge), else the face chosen by the search rule among
+  !> the faces sharing a node with it and those the search grid holds near the node (a
+  !> neighbouring master body that shares no node with it); face = 0: nothing in reach, or
+  !> the node has slid off the master surface.
+  subroutine follow(pair, x, xs, face_old, xi_old, face, p, gap)
+    type(contact_pair_t), intent(in) :: pair
+    real(dp), intent(in) :: x(:, :), xs(3), xi_old(2)
+    integer, intent(in) :: face_old
+    integer, intent(out) :: face
+    type(segment_point_t), intent(out) :: p
+    real(dp), intent(out) :: gap
+    integer, allocatable :: candidates(:)
+    real(dp) :: excess(4)
+    logical :: converged
+    call project_to_segment(x(:, pair%face_nodes(:, face_old)), xs, xi_old, p, gap, converged)
+    face = face_old
+    if (converged) then
+      excess = edge_excess(p%xi)
+      if (all(excess <= XI_TOLERANCE)) return
+    end if
+    call pair%grid%candidates(xs, candidates)
+    candidates = unique_sorted([candidates, pair%neighbors(pair%neighbor_ptr(face_old): &
+                                                           pair%neighbor_ptr(face_old + 1) - 1)])
+    call closest_face(pair%face_nodes, x, candidates, xs, pair%reach, face, p, gap, pair%free_edge, &
+                      extend=.true.)
+  end subroutine follow
+
+end module fcs_contact_pair

@@ -1,0 +1,696 @@
+!> The element loops: everything the stepper does element by element, for elements of any
+!> kind, asking each element's kind (fcs_element_kernels) and never assuming a number of nodes
+!> or integration points:
+!>   - `assemble`: internal forces and the tangent K (material part, initial stress with
+!>     NLGEOM, B-bar), added into a sparse matrix passed in (doc/theory.md 1.2-1.3);
+!>   - `update`: strains and stresses of the (scaled) increment, point by point through
+!>     `update_point` (Hughes & Winget 1980; doc/theory.md 1.4);
+!>   - `collect_events`: the R-minimum limits of a trial increment - strain and rotation
+!>     increments, yield and plastic-strain events (doc/theory.md 6.4);
+!>   - `count_unloading`: points on their yield surface that a trial increment unloads;
+!>   - `check_geometry`, `most_distorted`: Jacobian checks of a configuration;
+!>   - `nodal_average`, `point_volumes`, `plastic_fields`, `cliques`, `face_nodes`,
+!>     `face_pressure`: what outputs, monitors, the sparse pattern and the loads need.
+!> The loops own the material objects (one per material of the model) and know, for every
+!> element, its kind, nodes, material and formulation, and which elements this process works
+!> on (`mine`). Kinds come from the model's element catalogue (fcs_element_catalogue); those
+!> whose formulation the loops do not implement yet (C3D8R hourglass control, C3D8I
+!> incompatible modes) are refused by `init`.
+module fcs_element_loops
+  use fcs_kinds, only: dp
+  use fcs_error, only: error_t, fatal_error, input_error
+  use fcs_mesh, only: mesh_t, mesh_kind_t, MESH_MAX_FACES, MESH_MAX_FACE_NODES
+  use fcs_element_kind, only: element_kind_t, MAX_NODES, MAX_POINTS, FORMULATION_STANDARD
+  use fcs_element_catalogue, only: element_catalogue_t
+  use fcs_element_kernels, only: element_geometry_t, element_geometry, element_internal_force, &
+    element_tangent, element_strain_increments, element_point_volumes, element_extrapolate, &
+    element_min_jacobian_ratio, element_volume, element_face_nodes, element_face_pressure, &
+    element_face_area
+  use fcs_element_state, only: element_state_t
+  use fcs_hex8_element, only: hex8_rotate_stress, mises_stress
+  use fcs_material, only: material_t, material_slot_t
+  use fcs_voigt, only: spin_rotation, rotate_stress_like, rotate_strain_like
+  use fcs_sparse, only: sparse_matrix_t
+  use fcs_rmin_events, only: rmin_collector_t, EVENT_STRAIN_LIMIT, EVENT_ROTATION_LIMIT, &
+                             EVENT_YIELD, EVENT_PLASTIC_STRAIN_LIMIT
+  use fcs_strings, only: str
+  implicit none
+  private
+  public :: element_loops_t, event_limits_t, update_point, mesh_kinds, mises_stress
+  public :: element_jacobian_ratio, element_volume_of, element_face_area_of
+
+  !> The R-minimum limits of an increment at the integration points (doc/theory.md 6.4):
+  !> largest equivalent strain increment [-], rotation increment [rad] and growth of the
+  !> equivalent plastic strain [-].
+  type :: event_limits_t
+    real(dp) :: strain = 0.0_dp
+    real(dp) :: rotation = 0.0_dp
+    real(dp) :: plastic_strain = 0.0_dp
+  end type event_limits_t
+
+  type :: element_loops_t
+    !> The model's element kinds; per element its kind (index into them), nodes (rows
+    !> 1..n_nodes of its kind), user id, material (index into `materials`) and formulation.
+    type(element_catalogue_t) :: catalogue
+    integer :: n_elements = 0
+    !> The largest number of integration points of an element of the model.
+    integer :: max_points = 0
+    integer, allocatable :: kind(:)
+    integer, allocatable :: nodes(:, :)
+    integer, allocatable :: element_id(:)
+    integer, allocatable :: material(:)
+    logical, allocatable :: bbar(:)
+    type(material_slot_t), allocatable :: materials(:)
+    !> Reference coordinates (the configuration of the integrals without NLGEOM).
+    real(dp), allocatable :: x_reference(:, :)
+    !> The elements this process assembles and updates (all of them in a serial run).
+    integer, allocatable :: mine(:)
+  contains
+    procedure :: init => loops_init
+    procedure :: set_share => loops_set_share
+    procedure :: n_points => loops_n_points
+    procedure :: point_counts => loops_point_counts
+    procedure :: n_material_state => loops_n_material_state
+    procedure :: has_states => loops_has_states
+    procedure :: assemble => loops_assemble
+    procedure :: update => loops_update
+    procedure :: check_geometry => loops_check_geometry
+    procedure :: collect_events => loops_collect_events
+    procedure :: count_unloading => loops_count_unloading
+    procedure :: most_distorted => loops_most_distorted
+    procedure :: nodal_average => loops_nodal_average
+    procedure :: point_volumes => loops_point_volumes
+    procedure :: plastic_fields => loops_plastic_fields
+    procedure :: cliques => loops_cliques
+    procedure :: face_nodes => loops_face_nodes
+    procedure :: face_pressure => loops_face_pressure
+  end type element_loops_t
+
+contains
+
+  !> What the mesh is to know of the catalogue's kinds (fcs_mesh): names, node counts, gmsh
+  !> types and the local nodes of their faces, in catalogue order (mesh kind k is catalogue
+  !> kind k).
+  function mesh_kinds(catalogue) result(kinds)
+    type(element_catalogue_t), intent(in) :: catalogue
+    type(mesh_kind_t), allocatable :: kinds(:)
+    integer, allocatable :: local(:)
+    integer :: k, f
+    allocate (kinds(catalogue%size()))
+    do k = 1, catalogue%size()
+      associate (kind => catalogue%kinds(k))
+        kinds(k)%name = kind%name
+        kinds(k)%n_nodes = kind%n_nodes
+        kinds(k)%gmsh_type = kind%gmsh_type
+        kinds(k)%n_faces = min(kind%n_faces, MESH_MAX_FACES)
+        do f = 1, kinds(k)%n_faces
+          local = element_face_nodes(kind, f)
+          kinds(k)%face_size(f) = min(size(local), MESH_MAX_FACE_NODES)
+          kinds(k)%face_local(1:kinds(k)%face_size(f), f) = local(1:kinds(k)%face_size(f))
+        end do
+      end associate
+    end do
+  end function mesh_kinds
+
+  !> Smallest det J of element e of `mesh` over its mean (<= 0: inverted or degenerate).
+  real(dp) function element_jacobian_ratio(catalogue, mesh, e) result(ratio)
+    type(element_catalogue_t), intent(in) :: catalogue
+    type(mesh_t), intent(in) :: mesh
+    integer, intent(in) :: e
+    ratio = element_min_jacobian_ratio(catalogue%kinds(mesh%element_kind(e)), &
+                                       mesh%x(:, mesh%element_nodes(e)))
+  end function element_jacobian_ratio
+
+  !> Volume of element e of `mesh` (reference configuration).
+  real(dp) function element_volume_of(catalogue, mesh, e) result(volume)
+    type(element_catalogue_t), intent(in) :: catalogue
+    type(mesh_t), intent(in) :: mesh
+    integer, intent(in) :: e
+    volume = element_volume(catalogue%kinds(mesh%element_kind(e)), mesh%x(:, mesh%element_nodes(e)))
+  end function element_volume_of
+
+  !> Area of face f of element e of `mesh` (reference configuration).
+  real(dp) function element_face_area_of(catalogue, mesh, e, f) result(area)
+    type(element_catalogue_t), intent(in) :: catalogue
+    type(mesh_t), intent(in) :: mesh
+    integer, intent(in) :: e, f
+    area = element_face_area(catalogue%kinds(mesh%element_kind(e)), f, mesh%x(:, mesh%face_nodes(e, f)))
+  end function element_face_area_of
+
+  !> Set up the loops over the elements of `mesh`, of the kinds of `catalogue`; element e has
+  !> material material(e) of `materials` (moved in) and the B-bar formulation when bbar(e).
+  !> Every element is this process's until `set_share`. An element of a kind whose formulation
+  !> the loops do not implement is an input error.
+  subroutine loops_init(this, catalogue, mesh, material, bbar, materials, err)
+    class(element_loops_t), intent(inout) :: this
+    type(element_catalogue_t), intent(in) :: catalogue
+    type(mesh_t), intent(in) :: mesh
+    integer, intent(in) :: material(:)
+    logical, intent(in) :: bbar(:)
+    type(material_slot_t), allocatable, intent(inout) :: materials(:)
+    type(error_t), allocatable, intent(out) :: err
+    logical :: used(catalogue%size())
+    integer :: e, k
+    this%catalogue = catalogue
+    this%n_elements = mesh%n_elements
+    this%kind = mesh%element_kind(1:mesh%n_elements)
+    this%nodes = mesh%connectivity(:, 1:mesh%n_elements)
+    this%element_id = mesh%element_id(1:mesh%n_elements)
+    this%material = material
+    this%bbar = bbar
+    this%x_reference = mesh%x(:, 1:mesh%n_nodes)
+    call move_alloc(materials, this%materials)
+    this%mine = [(e, e = 1, mesh%n_elements)]
+    used = .false.
+    used(this%kind) = .true.
+    this%max_points = 0
+    do k = 1, catalogue%size()
+      if (.not. used(k)) cycle
+      associate (kind => catalogue%kinds(k))
+        if (kind%formulation /= FORMULATION_STANDARD) then
+          call input_error(err, 'element type ' // kind%name // ': its formulation (' // &
+            kind%summary // ') is not implemented by the element loops')
+          return
+        end if
+        this%max_points = max(this%max_points, kind%n_points)
+      end associate
+    end do
+  end subroutine loops_init
+
+  !> The elements this process works on.
+  subroutine loops_set_share(this, mine)
+    class(element_loops_t), intent(inout) :: this
+    integer, intent(in) :: mine(:)
+    this%mine = mine
+  end subroutine loops_set_share
+
+  !> Number of integration points of element e.
+  pure integer function loops_n_points(this, e) result(n)
+    class(element_loops_t), intent(in) :: this
+    integer, intent(in) :: e
+    n = this%catalogue%kinds(this%kind(e))%n_points
+  end function loops_n_points
+
+  !> Number of integration points of every element.
+  pure function loops_point_counts(this) result(counts)
+    class(element_loops_t), intent(in) :: this
+    integer :: counts(this%n_elements)
+    integer :: e
+    do e = 1, this%n_elements
+      counts(e) = this%n_points(e)
+    end do
+  end function loops_point_counts
+
+  !> The largest number of internal variables a material keeps per integration point.
+  pure integer function loops_n_material_state(this) result(n)
+    class(element_loops_t), intent(in) :: this
+    integer :: k
+    n = 0
+    do k = 1, size(this%materials)
+      n = max(n, this%materials(k)%m%n_state())
+    end do
+  end function loops_n_material_state
+
+  !> Whether some material has internal variables (a yield surface).
+  pure logical function loops_has_states(this) result(has)
+    class(element_loops_t), intent(in) :: this
+    has = this%n_material_state() > 0
+  end function loops_has_states
+
+  !> Nodal coordinates of element e: current ones x(3, n_nodes) with NLGEOM, else the
+  !> reference ones.
+  pure subroutine element_x(this, e, x, nlgeom, xe)
+    type(element_loops_t), intent(in) :: this
+    integer, intent(in) :: e
+    real(dp), intent(in) :: x(:, :)
+    logical, intent(in) :: nlgeom
+    real(dp), intent(out) :: xe(:, :)
+    integer :: n
+    n = this%catalogue%kinds(this%kind(e))%n_nodes
+    if (nlgeom) then
+      xe(:, 1:n) = x(:, this%nodes(1:n, e))
+    else
+      xe(:, 1:n) = this%x_reference(:, this%nodes(1:n, e))
+    end if
+  end subroutine element_x
+
+  !> Nodal displacement increments du_e(3, n_nodes) of element e from du(3 n_nodes).
+  pure subroutine element_increment(this, e, du, du_e)
+    type(element_loops_t), intent(in) :: this
+    integer, intent(in) :: e
+    real(dp), intent(in) :: du(:)
+    real(dp), intent(out) :: du_e(:, :)
+    integer :: a, node
+    do a = 1, this%catalogue%kinds(this%kind(e))%n_nodes
+      node = this%nodes(a, e)
+      du_e(:, a) = du(3 * node - 2:3 * node)
+    end do
+  end subroutine element_increment
+
+  !> Error for an element whose Jacobian is no longer positive.
+  subroutine inverted_element_error(this, e, err)
+    type(element_loops_t), intent(in) :: this
+    integer, intent(in) :: e
+    type(error_t), allocatable, intent(out) :: err
+    call fatal_error(err, 'element ' // str(this%element_id(e)) // ' is inverted ' // &
+      '(Jacobian determinant <= 0): the deformation is too large for the mesh, or a load or ' // &
+      'contact penalty crushes it; refine the mesh there or reduce the R-minimum limits')
+  end subroutine inverted_element_error
+
+  !> Internal forces f_int (3 n_nodes) of this process's elements on the configuration of
+  !> `nlgeom` (current coordinates x, or the reference), and, when `matrix` is present, their
+  !> tangent K added into it (values only: the caller zeroes it). Points marked in
+  !> `elastic(q, e)` (elastic unloading) take the elastic tangent. With `flux` (n_nodes), the
+  !> sum over the elements of a node of the magnitudes of their nodal forces: the force the
+  !> node passes on, the scale its out-of-balance force is measured against (f_int itself
+  !> vanishes at a free node in equilibrium).
+  subroutine loops_assemble(this, x, fields, nlgeom, f_int, err, matrix, elastic, flux)
+    class(element_loops_t), intent(in) :: this
+    real(dp), intent(in) :: x(:, :)
+    type(element_state_t), intent(in) :: fields
+    logical, intent(in) :: nlgeom
+    real(dp), intent(out) :: f_int(:)
+    type(error_t), allocatable, intent(out) :: err
+    type(sparse_matrix_t), intent(inout), optional :: matrix
+    logical, intent(in), optional :: elastic(:, :)
+    real(dp), intent(out), optional :: flux(:)
+    type(element_geometry_t) :: geo
+    real(dp) :: xe(3, MAX_NODES), f(3 * MAX_NODES), k(3 * MAX_NODES, 3 * MAX_NODES)
+    real(dp) :: c(6, 6, MAX_POINTS)
+    integer :: e, q, a, node, i, n
+    logical :: ok, missing
+    f_int = 0.0_dp
+    if (present(flux)) flux = 0.0_dp
+    do i = 1, size(this%mine)
+      e = this%mine(i)
+      associate (kind => this%catalogue%kinds(this%kind(e)))
+        n = kind%n_nodes
+        call element_x(this, e, x, nlgeom, xe)
+        call element_geometry(kind, xe(:, 1:n), geo, ok)
+        if (.not. ok) then
+          call inverted_element_error(this, e, err)
+          return
+        end if
+        call element_internal_force(kind, geo, fields%stress(:, :, e), this%bbar(e), f(1:3 * n))
+        do a = 1, n
+          node = this%nodes(a, e)
+          f_int(3 * node - 2:3 * node) = f_int(3 * node - 2:3 * node) + f(3 * a - 2:3 * a)
+        end do
+        if (present(flux)) then
+          do a = 1, n
+            node = this%nodes(a, e)
+            flux(node) = flux(node) + norm2(f(3 * a - 2:3 * a))
+          end do
+        end if
+        if (.not. present(matrix)) cycle
+        associate (material => this%materials(this%material(e))%m)
+          do q = 1, kind%n_points
+            c(:, :, q) = material%tangent(fields%stress(:, q, e), fields%material_state(:, q, e))
+          end do
+          if (present(elastic)) then
+            do q = 1, kind%n_points
+              if (elastic(q, e)) c(:, :, q) = material%elastic_matrix()
+            end do
+          end if
+        end associate
+        call element_tangent(kind, geo, fields%stress(:, :, e), c(:, :, 1:kind%n_points), &
+                             this%bbar(e), nlgeom, k(1:3 * n, 1:3 * n))
+        call matrix%add_matrix(this%nodes(1:n, e), k(1:3 * n, 1:3 * n), missing)
+      end associate
+    end do
+  end subroutine loops_assemble
+
+  !> Stress and strain update of this process's elements for the (scaled) increment du:
+  !> gradients on the mid-increment configuration (with NLGEOM; the reference one without),
+  !> objective rotation (Hughes & Winget 1980), then the material law (`update_point`).
+  subroutine loops_update(this, x, du, fields, nlgeom, err)
+    class(element_loops_t), intent(in) :: this
+    real(dp), intent(in) :: x(:, :), du(:)
+    type(element_state_t), intent(inout) :: fields
+    logical, intent(in) :: nlgeom
+    type(error_t), allocatable, intent(out) :: err
+    type(element_geometry_t) :: geo
+    real(dp) :: strain(6, MAX_POINTS), spin(3, 3, MAX_POINTS), equivalent(MAX_POINTS)
+    real(dp) :: angle(MAX_POINTS), du_e(3, MAX_NODES), xe(3, MAX_NODES)
+    integer :: e, q, i, n
+    logical :: ok
+    do i = 1, size(this%mine)
+      e = this%mine(i)
+      associate (kind => this%catalogue%kinds(this%kind(e)))
+        n = kind%n_nodes
+        call element_increment(this, e, du, du_e)
+        call element_x(this, e, x, nlgeom, xe)
+        if (nlgeom) xe(:, 1:n) = xe(:, 1:n) + 0.5_dp * du_e(:, 1:n)
+        call element_geometry(kind, xe(:, 1:n), geo, ok)
+        if (.not. ok) then
+          call inverted_element_error(this, e, err)
+          return
+        end if
+        call element_strain_increments(kind, geo, du_e(:, 1:n), this%bbar(e), strain, spin, &
+                                       equivalent, angle)
+        associate (material => this%materials(this%material(e))%m)
+          do q = 1, kind%n_points
+            call update_point(material, nlgeom, strain(:, q), spin(:, :, q), fields%stress(:, q, e), &
+                              fields%strain(:, q, e), fields%material_state(:, q, e))
+          end do
+        end associate
+      end associate
+    end do
+  end subroutine loops_update
+
+  !> The objective update of one integration point (doc/theory.md, 1.4): strain increment
+  !> and spin increment on the mid-increment configuration; `stress`, `strain` (accumulated,
+  !> output only) and the material's `state` go from the start to the end of the increment and
+  !> depend on nothing else, so an increment recomputed from its saved start gives the same
+  !> result.
+  !> * A material without internal variables: the midpoint Hughes-Winget update (1f), half of
+  !>   the constitutive increment before the rotation and half after, second order in the
+  !>   increment and exact under rigid rotation.
+  !> * A material with internal variables (a yield surface): the stress and the tensor-valued
+  !>   variables are rotated first, Q sigma Q^T, and the material's update (return mapping)
+  !>   then works in the rotated frame (1g; Simo & Hughes 1998, section 8.3), so that the
+  !>   stress it returns lies on the yield surface; the midpoint split would move the returned
+  !>   stress off the surface by the rotation of half an increment (second order).
+  !> Without NLGEOM there is no rotation: sigma + the material's increment.
+  !> With `tangent`, also the material's consistent tangent d(sigma)/d(strain_increment) of
+  !> this update (in the rotated frame), for equilibrium iterations.
+  pure subroutine update_point(material, nlgeom, strain_increment, spin, stress, strain, state, &
+                               tangent)
+    class(material_t), intent(in) :: material
+    logical, intent(in) :: nlgeom
+    real(dp), intent(in) :: strain_increment(6), spin(3, 3)
+    real(dp), intent(inout) :: stress(6), strain(6), state(:)
+    real(dp), intent(out), optional :: tangent(6, 6)
+    real(dp) :: updated(6), increment(6), q(3, 3)
+    if (nlgeom .and. material%n_state() > 0) then
+      q = spin_rotation(spin)
+      stress = rotate_stress_like(stress, q)
+      call material%rotate_state(state, q)
+      call material%update(stress, strain_increment, state, tangent)
+      strain = rotate_strain_like(strain, q) + strain_increment
+    else if (nlgeom) then
+      updated = stress
+      call material%update(updated, strain_increment, state, tangent)
+      increment = updated - stress
+      stress = hex8_rotate_stress(stress + 0.5_dp * increment, spin) + 0.5_dp * increment
+      strain = rotate_strain(strain + 0.5_dp * strain_increment, spin) + 0.5_dp * strain_increment
+    else
+      call material%update(stress, strain_increment, state, tangent)
+      strain = strain + strain_increment
+    end if
+  end subroutine update_point
+
+  !> Rotate an engineering-shear strain like a stress (tensor shear in between).
+  pure function rotate_strain(strain, spin) result(rotated)
+    real(dp), intent(in) :: strain(6), spin(3, 3)
+    real(dp) :: rotated(6)
+    real(dp) :: tensor(6)
+    tensor = strain
+    tensor(4:6) = 0.5_dp * tensor(4:6)
+    rotated = hex8_rotate_stress(tensor, spin)
+    rotated(4:6) = 2.0_dp * rotated(4:6)
+  end function rotate_strain
+
+  !> Every element of this process must keep a positive Jacobian on the mid-increment and the
+  !> end configurations of the increment du about to be applied to current coordinates x.
+  subroutine loops_check_geometry(this, x, du, err)
+    class(element_loops_t), intent(in) :: this
+    real(dp), intent(in) :: x(:, :), du(:)
+    type(error_t), allocatable, intent(out) :: err
+    type(element_geometry_t) :: geo
+    real(dp) :: du_e(3, MAX_NODES), xe(3, MAX_NODES)
+    integer :: e, i, n
+    logical :: ok_mid, ok_end
+    do i = 1, size(this%mine)
+      e = this%mine(i)
+      associate (kind => this%catalogue%kinds(this%kind(e)))
+        n = kind%n_nodes
+        call element_increment(this, e, du, du_e)
+        call element_x(this, e, x, .true., xe)
+        call element_geometry(kind, xe(:, 1:n) + 0.5_dp * du_e(:, 1:n), geo, ok_mid)
+        call element_geometry(kind, xe(:, 1:n) + du_e(:, 1:n), geo, ok_end)
+        if (.not. (ok_mid .and. ok_end)) then
+          call inverted_element_error(this, e, err)
+          return
+        end if
+      end associate
+    end do
+  end subroutine loops_check_geometry
+
+  !> Offer the element events and limits of the trial increment du_residual + r du_load to
+  !> the collector: with NLGEOM the strain and rotation limits of du_load; with materials that
+  !> have internal variables the yield and plastic-strain-limit fractions of every point
+  !> (material%point_events). Gradients on the configuration of `nlgeom`.
+  subroutine loops_collect_events(this, x, du_load, du_residual, fields, nlgeom, limits, &
+                                  collector, err)
+    class(element_loops_t), intent(in) :: this
+    real(dp), intent(in) :: x(:, :), du_load(:), du_residual(:)
+    type(element_state_t), intent(in) :: fields
+    logical, intent(in) :: nlgeom
+    type(event_limits_t), intent(in) :: limits
+    type(rmin_collector_t), intent(inout) :: collector
+    type(error_t), allocatable, intent(out) :: err
+    type(element_geometry_t) :: geo
+    real(dp) :: strain(6, MAX_POINTS), spin(3, 3, MAX_POINTS), equivalent(MAX_POINTS)
+    real(dp) :: angle(MAX_POINTS), du_e(3, MAX_NODES), strain_fixed(6, MAX_POINTS)
+    real(dp) :: xe(3, MAX_NODES), r_yield, r_plastic
+    integer :: e, q, i, n, np
+    logical :: ok, states
+    states = this%has_states()
+    if (.not. (nlgeom .or. states)) return
+    do i = 1, size(this%mine)
+      e = this%mine(i)
+      associate (kind => this%catalogue%kinds(this%kind(e)))
+        n = kind%n_nodes
+        np = kind%n_points
+        call element_x(this, e, x, nlgeom, xe)
+        call element_geometry(kind, xe(:, 1:n), geo, ok)
+        if (.not. ok) then
+          call inverted_element_error(this, e, err)
+          return
+        end if
+        call element_increment(this, e, du_load, du_e)
+        call element_strain_increments(kind, geo, du_e(:, 1:n), this%bbar(e), strain, spin, &
+                                       equivalent, angle)
+        if (nlgeom) then
+          if (maxval(equivalent(1:np)) > 0.0_dp) call collector%offer(limits%strain / &
+            maxval(equivalent(1:np)), EVENT_STRAIN_LIMIT, e, maxloc(equivalent(1:np), 1))
+          if (maxval(angle(1:np)) > 0.0_dp) call collector%offer(limits%rotation / &
+            maxval(angle(1:np)), EVENT_ROTATION_LIMIT, e, maxloc(angle(1:np), 1))
+        end if
+        if (.not. states) cycle
+        call element_increment(this, e, du_residual, du_e)
+        call element_strain_increments(kind, geo, du_e(:, 1:n), this%bbar(e), strain_fixed, &
+                                       spin, equivalent, angle)
+        associate (material => this%materials(this%material(e))%m)
+          do q = 1, np
+            call material%point_events(fields%stress(:, q, e), fields%material_state(:, q, e), &
+                                       strain_fixed(:, q), strain(:, q), limits%plastic_strain, &
+                                       r_yield, r_plastic)
+            call collector%offer(r_yield, EVENT_YIELD, e, q)
+            call collector%offer(r_plastic, EVENT_PLASTIC_STRAIN_LIMIT, e, q)
+          end do
+        end associate
+      end associate
+    end do
+  end subroutine loops_collect_events
+
+  !> Elastic unloading as a state switch (doc/theory.md 6.3; Yamada, Yoshimura & Sakurai
+  !> 1968): every point of this process's elements on its yield surface that the trial
+  !> increment du moves inwards (material%unloads, strain increment on the start
+  !> configuration) is marked in `unloading(q, e)`, to take the elastic tangent for the rest
+  !> of the increment; returns the number of newly marked points.
+  function loops_count_unloading(this, x, du, fields, nlgeom, unloading) result(n_new)
+    class(element_loops_t), intent(in) :: this
+    real(dp), intent(in) :: x(:, :), du(:)
+    type(element_state_t), intent(in) :: fields
+    logical, intent(in) :: nlgeom
+    logical, intent(inout) :: unloading(:, :)
+    real(dp) :: n_new
+    type(element_geometry_t) :: geo
+    real(dp) :: strain(6, MAX_POINTS), spin(3, 3, MAX_POINTS), equivalent(MAX_POINTS)
+    real(dp) :: angle(MAX_POINTS), du_e(3, MAX_NODES), xe(3, MAX_NODES)
+    integer :: e, q, i, n
+    logical :: ok
+    n_new = 0.0_dp
+    do i = 1, size(this%mine)
+      e = this%mine(i)
+      associate (kind => this%catalogue%kinds(this%kind(e)))
+        n = kind%n_nodes
+        call element_x(this, e, x, nlgeom, xe)
+        call element_geometry(kind, xe(:, 1:n), geo, ok)
+        if (.not. ok) cycle
+        call element_increment(this, e, du, du_e)
+        call element_strain_increments(kind, geo, du_e(:, 1:n), this%bbar(e), strain, spin, &
+                                       equivalent, angle)
+        associate (material => this%materials(this%material(e))%m)
+          do q = 1, kind%n_points
+            if (unloading(q, e)) cycle
+            if (.not. material%unloads(fields%stress(:, q, e), fields%material_state(:, q, e), &
+                                       strain(:, q))) cycle
+            unloading(q, e) = .true.
+            n_new = n_new + 1.0_dp
+          end do
+        end associate
+      end associate
+    end do
+  end function loops_count_unloading
+
+  !> The most distorted of this process's elements on current coordinates x: `element` (0:
+  !> none) and the ratio of its smallest to its largest det J w over its points (0 if
+  !> inverted).
+  subroutine loops_most_distorted(this, x, element, ratio)
+    class(element_loops_t), intent(in) :: this
+    real(dp), intent(in) :: x(:, :)
+    integer, intent(out) :: element
+    real(dp), intent(out) :: ratio
+    type(element_geometry_t) :: geo
+    real(dp) :: xe(3, MAX_NODES), this_ratio, dv(MAX_POINTS)
+    integer :: i, e, n, np
+    logical :: ok
+    ratio = huge(1.0_dp)
+    element = 0
+    do i = 1, size(this%mine)
+      e = this%mine(i)
+      associate (kind => this%catalogue%kinds(this%kind(e)))
+        n = kind%n_nodes
+        np = kind%n_points
+        call element_x(this, e, x, .true., xe)
+        call element_geometry(kind, xe(:, 1:n), geo, ok)
+        this_ratio = 0.0_dp
+        if (ok) then
+          dv(1:np) = element_point_volumes(kind, geo)
+          this_ratio = minval(dv(1:np)) / maxval(dv(1:np))
+        end if
+        if (this_ratio < ratio) then
+          ratio = this_ratio
+          element = e
+        end if
+      end associate
+    end do
+  end subroutine loops_most_distorted
+
+  !> Nodal values (n_components, n_nodes): the integration-point values values(:, q, e) of
+  !> every element extrapolated to its nodes (element_extrapolate), averaged over the
+  !> elements sharing a node.
+  function loops_nodal_average(this, values, n_nodes) result(nodal)
+    class(element_loops_t), intent(in) :: this
+    real(dp), intent(in) :: values(:, :, :)
+    integer, intent(in) :: n_nodes
+    real(dp), allocatable :: nodal(:, :)
+    real(dp), allocatable :: weight(:)
+    real(dp) :: at_nodes(size(values, 1), MAX_NODES)
+    integer :: e, a, node
+    allocate (nodal(size(values, 1), n_nodes), weight(n_nodes))
+    nodal = 0.0_dp
+    weight = 0.0_dp
+    do e = 1, this%n_elements
+      associate (kind => this%catalogue%kinds(this%kind(e)))
+        call element_extrapolate(kind, values(:, :, e), at_nodes)
+        do a = 1, kind%n_nodes
+          node = this%nodes(a, e)
+          nodal(:, node) = nodal(:, node) + at_nodes(:, a)
+          weight(node) = weight(node) + 1.0_dp
+        end do
+      end associate
+    end do
+    do node = 1, n_nodes
+      if (weight(node) > 0.0_dp) nodal(:, node) = nodal(:, node) / weight(node)
+    end do
+  end function loops_nodal_average
+
+  !> The reference volume each integration point of every element represents,
+  !> volume(q, e) = det J w_q (0 beyond an element's points).
+  function loops_point_volumes(this) result(volume)
+    class(element_loops_t), intent(in) :: this
+    real(dp), allocatable :: volume(:, :)
+    type(element_geometry_t) :: geo
+    real(dp) :: xe(3, MAX_NODES)
+    integer :: e
+    logical :: ok
+    allocate (volume(this%max_points, this%n_elements))
+    volume = 0.0_dp
+    do e = 1, this%n_elements
+      associate (kind => this%catalogue%kinds(this%kind(e)))
+        call element_x(this, e, this%x_reference, .false., xe)
+        call element_geometry(kind, xe(:, 1:kind%n_nodes), geo, ok)
+        volume(1:kind%n_points, e) = element_point_volumes(kind, geo)
+      end associate
+    end do
+  end function loops_point_volumes
+
+  !> The plastic state of every integration point, as each element's material reports it:
+  !> equivalent plastic strain peeq(q, e), plastic strain(6, q, e) (Voigt, engineering shear)
+  !> and back stress(6, q, e); zeros for materials without plasticity and beyond an
+  !> element's points.
+  subroutine loops_plastic_fields(this, fields, peeq, plastic_strain, back_stress)
+    class(element_loops_t), intent(in) :: this
+    type(element_state_t), intent(in) :: fields
+    real(dp), allocatable, intent(out) :: peeq(:, :), plastic_strain(:, :, :), back_stress(:, :, :)
+    integer :: e, q
+    allocate (peeq(this%max_points, this%n_elements), &
+              plastic_strain(6, this%max_points, this%n_elements), &
+              back_stress(6, this%max_points, this%n_elements))
+    peeq = 0.0_dp
+    plastic_strain = 0.0_dp
+    back_stress = 0.0_dp
+    do e = 1, this%n_elements
+      associate (material => this%materials(this%material(e))%m)
+        do q = 1, this%n_points(e)
+          peeq(q, e) = material%equivalent_plastic_strain(fields%material_state(:, q, e))
+          plastic_strain(:, q, e) = material%plastic_strain(fields%material_state(:, q, e))
+          back_stress(:, q, e) = material%back_stress(fields%material_state(:, q, e))
+        end do
+      end associate
+    end do
+  end subroutine loops_plastic_fields
+
+  !> Node lists of the given elements as cliques for the sparse pattern.
+  subroutine loops_cliques(this, elements, clique_ptr, clique_nodes)
+    class(element_loops_t), intent(in) :: this
+    integer, intent(in) :: elements(:)
+    integer, allocatable, intent(out) :: clique_ptr(:), clique_nodes(:)
+    integer :: i, e, n
+    allocate (clique_ptr(size(elements) + 1))
+    clique_ptr(1) = 1
+    do i = 1, size(elements)
+      clique_ptr(i + 1) = clique_ptr(i) + this%catalogue%kinds(this%kind(elements(i)))%n_nodes
+    end do
+    allocate (clique_nodes(clique_ptr(size(elements) + 1) - 1))
+    do i = 1, size(elements)
+      e = elements(i)
+      n = clique_ptr(i + 1) - clique_ptr(i)
+      clique_nodes(clique_ptr(i):clique_ptr(i + 1) - 1) = this%nodes(1:n, e)
+    end do
+  end subroutine loops_cliques
+
+  !> Global nodes of face f of element e, corners first, outward.
+  pure function loops_face_nodes(this, e, f) result(nodes)
+    class(element_loops_t), intent(in) :: this
+    integer, intent(in) :: e, f
+    integer, allocatable :: nodes(:)
+    nodes = this%nodes(element_face_nodes(this%catalogue%kinds(this%kind(e)), f), e)
+  end function loops_face_nodes
+
+  !> Nodal forces force(3 m) of pressure p on face f of element e (its m nodes as
+  !> `face_nodes` lists them) on coordinates x (current with NLGEOM, else the reference) and,
+  !> optionally, the derivative dfdx of a follower pressure.
+  subroutine loops_face_pressure(this, e, f, x, nlgeom, p, force, dfdx)
+    class(element_loops_t), intent(in) :: this
+    integer, intent(in) :: e, f
+    real(dp), intent(in) :: x(:, :), p
+    logical, intent(in) :: nlgeom
+    real(dp), intent(out) :: force(:)
+    real(dp), intent(out), optional :: dfdx(:, :)
+    integer, allocatable :: nodes(:)
+    nodes = this%face_nodes(e, f)
+    associate (kind => this%catalogue%kinds(this%kind(e)))
+      if (nlgeom) then
+        call element_face_pressure(kind, f, x(:, nodes), p, force, dfdx)
+      else
+        call element_face_pressure(kind, f, this%x_reference(:, nodes), p, force, dfdx)
+      end if
+    end associate
+  end subroutine loops_face_pressure
+
+end module fcs_element_loops
