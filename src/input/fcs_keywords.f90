@@ -237,7 +237,13 @@ contains
     params = [p('LAW', PARAM_CHOICE, default='COULOMB', choices=friction_laws(), &
                 description='Friction law.'), &
               p('STICK SLOPE', PARAM_REAL, unit='stress/length', description='Stick stiffness ' // &
-                'E_t (default: E_n, the normal penalty).')]
+                'E_t (default: E_n, the normal penalty).'), &
+              p('RADIATION DAMPING', PARAM_TEXT, unit='stress time/length', description='Radiation ' // &
+                'damping eta of the quasi-dynamic approximation (Rice 1993): a slipping node ' // &
+                'resists with mu f_n + eta A V. MATERIAL: eta = G / (2 c_s) from the elastic ' // &
+                'bodies on either side of each pair (1/eta = 1/Z_slave + 1/Z_master with ' // &
+                'Z = sqrt(G rho) = G / c_s; needs *DENSITY), or a number eta >= 0. Default: none ' // &
+                '(fcs3d extension; doc/theory.md, section 5, "Radiation damping").')]
     do i = 1, size(catalogue)
       if (size(catalogue(i)%choices) > 0) then
         params = [params, p(catalogue(i)%name, PARAM_CHOICE, choices=catalogue(i)%choices, &

@@ -162,6 +162,10 @@ module fcs_model
     !> PRESSURE-OVERCLOSURE=TIED: the pairs using it never separate nor slip.
     logical :: tied = .false.
     type(friction_def_t) :: friction
+    !> *FRICTION, RADIATION DAMPING=: eta [stress time/length] as given (0: none), or from the
+    !> elastic bodies on either side of each pair (damping_from_material: MATERIAL).
+    real(dp) :: radiation_damping = 0.0_dp
+    logical :: damping_from_material = .false.
     type(source_loc_t) :: loc
   end type interaction_def_t
 
@@ -181,6 +185,8 @@ module fcs_model
     !> Mean thickness h of the master elements and the modulus E the defaults come from.
     real(dp) :: master_thickness = 0.0_dp
     real(dp) :: master_modulus = 0.0_dp
+    !> Resolved radiation damping eta [stress time/length] of this pair (0: none).
+    real(dp) :: radiation_damping = 0.0_dp
     type(source_loc_t) :: loc
   end type contact_pair_def_t
 
