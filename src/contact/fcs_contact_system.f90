@@ -128,9 +128,11 @@ module fcs_contact_system
     type(tie_set_t) :: ties
     real(dp), allocatable :: reference(:, :)
     !> Largest changes over the last increment at nodes slipping before and after it: of
-    !> ln V, of mu and of ln(state), and the node where each happened.
-    real(dp) :: change(3) = 0.0_dp
-    integer :: change_node(3) = 0
+    !> ln V, of mu and of ln(state); and the largest slip of the increment over the law's
+    !> characteristic slip L at any slipping node (rate-and-state laws); and the node where
+    !> each happened.
+    real(dp) :: change(4) = 0.0_dp
+    integer :: change_node(4) = 0
   contains
     procedure :: init => system_init
     procedure :: n_slaves => system_n_slaves
@@ -850,6 +852,7 @@ contains
       end if
       if (was_slipping .and. cstate%status(s) == CONTACT_SLIP .and. cstate%slip_rate(s) > 0.0_dp) &
         call record_friction_changes(this, s, old_rate, old_mu, old_state, cstate)
+      if (cstate%status(s) == CONTACT_SLIP) call record_slip_increment(this, s, cstate%slip_rate(s) * dt)
     end do
     call leave_to_twins(this, cstate)
   end subroutine system_update
@@ -948,6 +951,22 @@ contains
                                     law%state_change(old_state, cstate%friction_state(s))])
     end associate
   end subroutine record_friction_changes
+
+  !> The slip of slipping node s over the increment in units of the characteristic slip L of
+  !> its law (rate-and-state laws; the R-minimum limit MAX SLIP INCREMENT: the next increment
+  !> is at most xi L / V_max, Lapusta et al. 2000).
+  subroutine record_slip_increment(this, s, slip)
+    type(contact_system_t), intent(inout) :: this
+    integer, intent(in) :: s
+    real(dp), intent(in) :: slip
+    real(dp) :: length
+    length = this%pairs(this%slave_pair(s))%law%characteristic_slip()
+    if (length <= 0.0_dp) return
+    if (slip / length > this%change(4)) then
+      this%change(4) = slip / length
+      this%change_node(4) = this%slave_node(s)
+    end if
+  end subroutine record_slip_increment
 
   !> Keep the largest changes of ln V, mu, ln(state) and where they happened.
   subroutine record_changes(this, s, changes)

@@ -307,6 +307,12 @@ contains
             'change of mu of a slipping node from one increment to the next.'), &
           p('MAX STATE CHANGE', PARAM_REAL, default='0.2', unit='-', description='Largest ' // &
             'change of ln(state) (rate-and-state laws) from one increment to the next.'), &
+          p('MAX SLIP INCREMENT', PARAM_REAL, unit='L', description='Largest slip of a ' // &
+            'slipping node in one increment, as a fraction xi of the characteristic slip L (DC) ' // &
+            'of its rate-and-state law: the next trial increment is then at most xi L / V_max ' // &
+            '(V_max the largest slip rate; Lapusta et al. 2000), so that the state evolution ' // &
+            'of a fast event is resolved in time. Default: none (laws without L are never ' // &
+            'limited by it).'), &
           p('EQUILIBRIUM TOLERANCE', PARAM_REAL, default='1e-3', unit='-', description='Largest ' // &
             'out-of-balance force left at the end of an increment: the largest nodal ' // &
             'residual over the mean nodal internal force flux. An increment that leaves more ' // &

@@ -119,6 +119,10 @@ module fcs_model
     real(dp) :: max_log_rate_change = 1.0_dp
     real(dp) :: max_friction_change = 5.0e-3_dp
     real(dp) :: max_state_change = 0.2_dp
+    !> MAX SLIP INCREMENT: largest slip of a slipping node in one increment, in units of the
+    !> characteristic slip L of its rate-and-state law (xi of Lapusta et al. 2000: the next
+    !> increment is at most xi L / V_max) [-]; 0: none (the default).
+    real(dp) :: max_slip_increment = 0.0_dp
     !> Largest out-of-balance force left at the end of an increment, relative to the model's
     !> force scale (the mean nodal internal force flux) [-]; an increment that leaves more is
     !> corrected by equilibrium iterations.
