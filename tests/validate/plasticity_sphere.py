@@ -21,8 +21,10 @@ u(b) = s_y b (1 - nu) / E. The pressure-expansion curve is compared through the 
 displacement: from u(b) of a frame, c follows, then Hill's p(c) against the applied p (while
 c <= b). The FE limit pressure is taken as the pressure at which u(b) reaches 3 times Hill's
 u(b) at the limit (beyond the limit the expansion grows without bound at constant pressure;
-3 times is on the flat part of the curve); a run may stop past it (a singular matrix once the
-whole wall flows), which is expected.
+3 times is on the flat part of the curve). Under pressure control the run stops when no
+equilibrium exists any more ("no equilibrium", exit status 1: the load has reached the FE
+limit), which is expected; if it stops before u(b) reaches 3 times Hill's, the FE limit is the
+pressure of its last equilibrium increment (from below, within the minimum increment).
 
 Prints a convergence table (elements, increments, wall time, first-yield pressure, largest
 error of the curve, limit pressure and its error) and writes it as Markdown.
@@ -160,6 +162,8 @@ def run_mesh(fcs3d, work, n, m, rmin):
         # Linear between the two frames around 3 u_limit.
         limit = pressure[k - 1] + (pressure[k] - pressure[k - 1]) * (3.0 * U_LIMIT - u[k - 1]) / \
             (u[k] - u[k - 1])
+    elif result.returncode != 0 and 'no equilibrium' in result.stderr:
+        limit = pressure[-1]
     else:
         limit = float('nan')
     return dict(mesh='%dx%d' % (n, m), elements=n_elements, increments=increments, wall=wall,

@@ -6,6 +6,10 @@ non-matching meshes, default increments and penalties, against closed forms (iss
     plain_decks.py run CASE [CASE ...] [--penalty E] [--law LAW] [--tolerance T]
                                         (writes, runs and checks each, in the current directory)
     plain_decks.py tie [--tolerance T]  (the tie patch tests: see make_tie_deck)
+    plain_decks.py rotation [--tolerance T]  (a cube under follower pressure turned rigidly:
+                                              see make_rotation_deck)
+    plain_decks.py turn [--tolerance T]      (the coulomb pair turned rigidly by 90 degrees:
+                                              see make_turn_deck)
 
 Units mm, N, MPa. E = 1000, nu = 0.3 for every body. The slider is pressed by p = 1 on its top
 (N = p A = 1: the pressure resultant, A = 1) in step 1, its top nodes (TOP) held in x and y;
@@ -182,7 +186,7 @@ def make_deck(path, case, penalty=None, max_increment=None, law='COULOMB'):
 class Run:
     """What one run printed: the history columns and the log's increment lines."""
 
-    def __init__(self, job):
+    def __init__(self, job, top='TOP'):
         data = np.genfromtxt('%s_%s.csv' % (job, HISTORY.lower()), delimiter=',', names=True)
         self.time = data['time']
         names = data.dtype.names
@@ -191,8 +195,9 @@ class Run:
         ft = sum(np.column_stack([data[p + '_FT%d' % i] for i in (1, 2, 3)]) for p in pairs)
         self.ft = np.linalg.norm(ft, axis=1)
         self.open = sum(data[p + '_OPEN'] for p in pairs)
-        self.t = data['TOP_RF1']
-        self.rf_z = data['TOP_RF3']
+        self.rf = np.column_stack([data['%s_RF%d' % (top, i)] for i in (1, 2, 3)])
+        self.t = self.rf[:, 0]
+        self.rf_z = self.rf[:, 2]
         self.history_residual = data['RESIDUAL']
         self.residuals = []
         with open(job + '.log') as log:
@@ -358,6 +363,141 @@ def make_tie_deck(path, load):
     cc.write_deck(path, lines)
 
 
+def make_rotation_deck(path):
+    """A cube 1 x 1 x 1 (2x2x2 hexahedra, E = 1000, nu = 0.3) under a follower pressure p = 1
+    on all six faces, on statically determinate supports (corner 1 fixed, corner (1, 0, 0) held
+    in y and z, corner (0, 1, 0) in z), NLGEOM. Step 1 raises the pressure; the cube shrinks to
+    s = exp(-p (1 - 2 nu) / E) (hypoelastic, logarithmic strain). Step 2 turns it rigidly by 90
+    degrees about z: corner (1, 0, 0) moves on the circle of radius s, its x and y displacements
+    following s cos(theta) - 1 and s sin(theta) through tabular amplitudes (points every half
+    degree: the increments end on them, on the circle, where the Hughes-Winget update of a
+    rigid increment is exact). Expected: sigma = -p I throughout and zero reactions (the
+    pressure on a closed surface is self-equilibrated)."""
+    cube = cc.Box(np.linspace(0, 1, 3), np.linspace(0, 1, 3), np.linspace(0, 1, 3))
+    s = math.exp(-PRESSURE * (1 - 2 * POISSON) / YOUNG)
+    lines = ['*HEADING', 'Rigid rotation of a cube under a follower pressure '
+             '(tests/integration/contact/plain_decks.py)']
+    lines += cube.mesh_cards('CUBE') + cc.material_cards('MAT', 'CUBE', YOUNG, POISSON)
+    faces = []
+    for axis in range(3):
+        for side in (0, 1):
+            name = 'F%d%d' % (axis, side)
+            lines += cc.face_surface_cards(name, cube, axis, side)
+            faces.append(name)
+    corner = {key: cube.ids[key] for key in [(0, 0, 0), (2, 0, 0), (0, 2, 0)]}
+    turn_x, turn_y = [], []
+    for k in range(181):
+        t = k / 180.0
+        turn_x.append('%.15g, %.15g' % (t, s * math.cos(math.radians(90.0 * t)) - 1.0))
+        turn_y.append('%.15g, %.15g' % (t, s * math.sin(math.radians(90.0 * t))))
+    lines += ['*AMPLITUDE, NAME=TURNX'] + turn_x + ['*AMPLITUDE, NAME=TURNY'] + turn_y
+    lines += cc.nset_cards('SUPPORTS', sorted(corner.values()))
+    lines += ['*BOUNDARY', '%d, 1, 3' % corner[(0, 0, 0)], '%d, 2, 3' % corner[(2, 0, 0)],
+              '%d, 3, 3' % corner[(0, 2, 0)]]
+    lines += ['*STEP, NLGEOM', '*STATIC', '*DSLOAD'] + ['%s, P, %g' % (f, PRESSURE) for f in faces]
+    lines += ['*END STEP', '*STEP, NLGEOM', '*STATIC', '*BOUNDARY, AMPLITUDE=TURNX',
+              '%d, 1, 1, 1.' % corner[(2, 0, 0)], '*BOUNDARY, AMPLITUDE=TURNY',
+              '%d, 2, 2, 1.' % corner[(2, 0, 0)],
+              '*NODE PRINT, NSET=SUPPORTS', 'RF', '*EL PRINT, ELSET=CUBE', 'S', '*END STEP']
+    cc.write_deck(path, lines)
+
+
+def check_rotation(job, tolerance):
+    """sigma = -p I at every integration point and zero reactions, within tolerance of p (and of
+    the pressure load of a face, p)."""
+    checker = cc.Checker()
+    blocks = cc.read_dat(job + '.dat')
+    stress = np.array([v for k, v in [b for b in blocks if b['title'].startswith('stresses')][-1]['rows']])
+    expected = np.array([-PRESSURE] * 3 + [0.0] * 3)
+    error = np.abs(stress - expected).max() / PRESSURE
+    checker.check(error <= tolerance, 'after the 90-degree turn: sigma = -p I within %.2e of p at '
+                  'every integration point (tolerance %g)' % (error, tolerance))
+    rows = {k[0]: v for k, v in [b for b in blocks if b['title'].startswith('forces')][-1]['rows']}
+    # The supported degrees of freedom (RF at a free one is the pressure load applied there).
+    supported = [(1, [0, 1, 2]), (3, [0, 1, 2]), (7, [2])]
+    reaction = max(np.abs(rows[node][dofs]).max() for node, dofs in supported) / PRESSURE
+    checker.check(reaction <= tolerance, 'reactions at the supports: largest %.2e of a face load p '
+                  '(tolerance %g)' % (reaction, tolerance))
+    checker.finish()
+
+
+def make_turn_deck(path):
+    """The frictional pair of the coulomb case (4x4x2 slider 1 x 1 x 0.25 pressed by p = 1 on a
+    3x3x2 base 1.5 x 1.5 x 0.5, non-matching, Coulomb mu = 0.3, default penalties), NLGEOM, the
+    slider held in its plane by friction alone (no support). Step 1 raises the pressure (the
+    base's bottom BOTTOM fixed); step 2 turns the whole pair rigidly by 90 degrees about the
+    x-axis through the line y = 0, z = -0.5 of the bottom: the bottom nodes follow
+    u_y = y (cos(theta) - 1), u_z = y sin(theta) through tabular amplitudes (points every half
+    degree). Expected: the contact normal force F_n = N and the tangential force vector sum
+    F_t = 0 at every increment (the follower pressure turns with the pair), the reaction of
+    BOTTOM turned with the pair (R of step 1's), and no state change."""
+    blocks = bases('coulomb')
+    top = slider('coulomb')
+    base = blocks[0]
+    lines = ['*HEADING', 'A frictional pair turned rigidly by 90 degrees '
+             '(tests/integration/contact/plain_decks.py)']
+    lines += base.mesh_cards('BASE1') + top.mesh_cards('SLIDER')
+    bottom = sorted(base.face_nodes(2, 0))
+    lines += cc.nset_cards('BOTTOM', bottom)
+    lines += cc.face_surface_cards('MASTER1', base, 2, 1)
+    lines += ['*SURFACE, NAME=MASTER, TYPE=ELEMENT', 'MASTER1_EL, S2']
+    lines += cc.face_surface_cards('SLAVE', top, 2, 0)
+    lines += cc.face_surface_cards('LOADED', top, 2, 1)
+    lines += ['*ELSET, ELSET=BODIES', 'BASE1, SLIDER']
+    lines += cc.material_cards('MAT', 'BODIES', YOUNG, POISSON)
+    lines += ['*SURFACE INTERACTION, NAME=SI'] + law_card('COULOMB', 1.0)
+    lines += ['*CONTACT PAIR, INTERACTION=SI, NAME=%s' % PAIR, 'SLAVE, MASTER']
+    lines += ['*HISTORY, NAME=%s, FREQUENCY=1' % HISTORY, 'CONTACT, %s' % PAIR,
+              'NSET, BOTTOM, RF', 'RESIDUAL']
+    cosm1, sine = [], []
+    for k in range(181):
+        t = k / 180.0
+        cosm1.append('%.15g, %.15g' % (t, math.cos(math.radians(90.0 * t)) - 1.0))
+        sine.append('%.15g, %.15g' % (t, math.sin(math.radians(90.0 * t))))
+    lines += ['*AMPLITUDE, NAME=COSM1'] + cosm1 + ['*AMPLITUDE, NAME=SINE'] + sine
+    lines += ['*STEP, NLGEOM', '*STATIC', '0.25, 1.', '*BOUNDARY', 'BOTTOM, 1, 3',
+              '*DSLOAD', 'LOADED, P, %g' % PRESSURE, '*END STEP']
+    ys = {n: base.x[n - base.first_node][1] for n in bottom}
+    lines += ['*STEP, NLGEOM', '*STATIC', '*BOUNDARY', 'BOTTOM, 1, 1', '*BOUNDARY, AMPLITUDE=COSM1']
+    lines += ['%d, 2, 2, %.15g' % (n, ys[n]) for n in bottom]
+    lines += ['*BOUNDARY, AMPLITUDE=SINE'] + ['%d, 3, 3, %.15g' % (n, ys[n]) for n in bottom]
+    lines += ['*END STEP']
+    cc.write_deck(path, lines)
+
+
+def check_turn(job, tolerance):
+    """F_n = N, F_t = 0 and the bottom's reaction turned with the pair, within tolerance of N,
+    at every increment; the out-of-balance below the equilibrium tolerance; no state change."""
+    checker = cc.Checker()
+    run = Run(job, top='BOTTOM')
+    n = PRESSURE
+    worst = max(run.residuals)
+    checker.check(worst <= EQUILIBRIUM_TOLERANCE, 'out-of-balance ratio <= %g at every increment '
+                  '(%d increments, largest %.3g)' % (EQUILIBRIUM_TOLERANCE, len(run.residuals), worst))
+    step2 = run.time > 1.0 + 1e-9
+    theta = np.radians(90.0 * (run.time[step2] - 1.0))
+    errors = np.abs(run.fn[step2] / n - 1)
+    checker.check(errors.max() <= tolerance, 'turning (%d increments): F_n = N within %g '
+                  '(max error %.3g)' % (step2.sum(), tolerance, errors.max()))
+    checker.check(run.ft[step2].max() <= tolerance * n, 'turning: F_t = %.3g N at most (<= %g N)'
+                  % (run.ft[step2].max(), tolerance * n))
+    first = np.array([run.rf[~step2][-1]])[0]
+    turned = np.column_stack([np.full_like(theta, first[0]),
+                              first[1] * np.cos(theta) - first[2] * np.sin(theta),
+                              first[1] * np.sin(theta) + first[2] * np.cos(theta)])
+    rf_error = np.linalg.norm(run.rf[step2] - turned, axis=1).max() / n
+    checker.check(rf_error <= tolerance, 'turning: reaction of BOTTOM = R (its step-1 value %s) '
+                  'within %.3g N (<= %g N)' % (np.array2string(first, precision=4), rf_error,
+                                              tolerance * n))
+    with open(job + '.log') as log:
+        limits = [line.split(' limit ')[1].split()[0] for line in log
+                  if line.startswith('inc ') and ' step 2 ' in line]
+    changes = [x for x in limits if '->' in x or x in ('open', 'close')]
+    checker.check(not changes, 'turning: no contact state change (%d increments limited by: %s)'
+                  % (len(limits), ', '.join(sorted(set(limits)))))
+    checker.finish()
+
+
 def check_tie(job, load, tolerance):
     """Every integration point's stress equals the uniform closed form within tolerance of
     its largest component."""
@@ -393,11 +533,13 @@ def main():
         p.add_argument('--max-increment', type=float)
     for p in (d, c, r):
         p.add_argument('--law', default='COULOMB', choices=LAWS)
+    rot = sub.add_parser('rotation')
+    turn = sub.add_parser('turn')
     t = sub.add_parser('tie')
     ct = sub.add_parser('check-tie')
     ct.add_argument('load')
     ct.add_argument('job')
-    for p in (c, r, t, ct):
+    for p in (c, r, t, ct, rot, turn):
         p.add_argument('--tolerance', type=float, default=5e-3)
     args = parser.parse_args()
     if args.command == 'deck':
@@ -421,6 +563,16 @@ def main():
         sys.exit(1 if failed else 0)
     elif args.command == 'check-tie':
         check_tie(args.job, args.load, args.tolerance)
+    elif args.command in ('rotation', 'turn'):
+        make, check = {'rotation': (make_rotation_deck, check_rotation),
+                       'turn': (make_turn_deck, check_turn)}[args.command]
+        job = args.command
+        make(job + '.inp')
+        print('== ' + job)
+        if os.system('"%s" -q %s.inp' % (os.environ.get('FCS3D', 'fcs3d'), job)) != 0:
+            print('FAIL fcs3d failed on %s.inp' % job)
+            sys.exit(1)
+        check(job, args.tolerance)
     else:
         failed = 0
         for case in args.cases:
