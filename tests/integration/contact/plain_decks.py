@@ -564,15 +564,15 @@ def main():
     elif args.command == 'check-tie':
         check_tie(args.job, args.load, args.tolerance)
     elif args.command in ('rotation', 'turn'):
-        make_case, check_case = {'rotation': (make_rotation_deck, check_rotation),
-                                 'turn': (make_turn_deck, check_turn)}[args.command]
+        make, check_job = {'rotation': (make_rotation_deck, check_rotation),
+                           'turn': (make_turn_deck, check_turn)}[args.command]
         job = args.command
-        make_case(job + '.inp')
+        make(job + '.inp')
         print('== ' + job)
         if os.system('"%s" -q %s.inp' % (os.environ.get('FCS3D', 'fcs3d'), job)) != 0:
             print('FAIL fcs3d failed on %s.inp' % job)
             sys.exit(1)
-        check_case(job, args.tolerance)
+        check_job(job, args.tolerance)
     else:
         failed = 0
         for case in args.cases:
