@@ -9,13 +9,16 @@ module fcs_contact_geometry
   use fcs_kinds, only: dp
   implicit none
   private
-  public :: segment_point_t, segment_point, project_to_segment, cross3
+  public :: segment_point_t, segment_point, project_to_segment, cross3, calculix_tangents
   public :: PROJECTION_MAX_ITERATIONS
 
   !> Newton iterations allowed for the closest-point projection.
   integer, parameter :: PROJECTION_MAX_ITERATIONS = 30
   real(dp), parameter :: XI_NODE(2, 4) = reshape([-1.0_dp, -1.0_dp, 1.0_dp, -1.0_dp, &
                                                    1.0_dp, 1.0_dp, -1.0_dp, 1.0_dp], [2, 4])
+
+  !> 1 - |n_x| below which CalculiX takes the normal as parallel to the x axis (0.1 degree).
+  real(dp), parameter :: CALCULIX_X_PARALLEL = 1.5231e-6_dp
 
   !> Everything about one point xi of a master segment.
   type :: segment_point_t
@@ -108,5 +111,24 @@ contains
     real(dp) :: c(3)
     c = [a(2) * b(3) - a(3) * b(2), a(3) * b(1) - a(1) * b(3), a(1) * b(2) - a(2) * b(1)]
   end function cross3
+
+  !> The tangent frame in which CalculiX reports node-to-face contact (*CONTACT PRINT, CDIS and
+  !> CSTR): t_1 the global x axis projected on the plane normal to n and normalised (the z
+  !> axis when n is within 0.1 degree of the x axis), t_2 = n x t_1. A global frame, unlike
+  !> the face frame e_1, e_2 of segment_point_t, so that tables compare line by line
+  !> (CalculiX's springforc_n2f, read for its convention).
+  pure function calculix_tangents(normal) result(t)
+    real(dp), intent(in) :: normal(3)
+    real(dp) :: t(3, 2)
+    real(dp) :: axis(3)
+    if (1.0_dp - abs(normal(1)) < CALCULIX_X_PARALLEL) then
+      axis = [0.0_dp, 0.0_dp, 1.0_dp]
+    else
+      axis = [1.0_dp, 0.0_dp, 0.0_dp]
+    end if
+    t(:, 1) = axis - dot_product(axis, normal) * normal
+    t(:, 1) = t(:, 1) / norm2(t(:, 1))
+    t(:, 2) = cross3(normal, t(:, 1))
+  end function calculix_tangents
 
 end module fcs_contact_geometry

@@ -15,7 +15,8 @@ module fcs_contact_system
   use fcs_error, only: error_t, fatal_error, input_error
   use fcs_model, only: model_t, contact_pair_def_t
   use fcs_mesh, only: mesh_t, hex8_face_nodes, SURFACE_FACES
-  use fcs_contact_geometry, only: segment_point_t, segment_point, project_to_segment
+  use fcs_contact_geometry, only: segment_point_t, segment_point, project_to_segment, &
+                                  calculix_tangents
   use fcs_contact_search, only: face_grid_t, closest_face, edge_excess, edge_support, XI_TOLERANCE, &
                                 EDGE_EXTENSION
   use fcs_contact_element, only: contact_linear_t, contact_linearise, contact_update, &
@@ -1363,23 +1364,26 @@ contains
       ' is too small for the contact pressure, or the node went through the master body')
   end subroutine penetration_error
 
-  !> Values of slave s in the local frame of its master face, as CalculiX prints them:
-  !> relative displacement (normal = gap, tangential components of the accumulated
-  !> tangential displacement on e_1, e_2) and stresses (pressure, shear components f_m / A).
+  !> Values of slave s as CalculiX prints them (*CONTACT PRINT): relative displacement
+  !> (normal = gap, then the accumulated tangential displacement on CalculiX's tangents t_1,
+  !> t_2 of the master normal, calculix_tangents) and stresses (pressure, then the shear on
+  !> t_1, t_2 with CalculiX's sign: that of the elastic slip, i.e. the shear the slave node
+  !> exerts on the master, opposite to the traction on the slave).
   subroutine system_local_values(this, s, x, cstate, displacement, stress)
     class(contact_system_t), intent(in) :: this
     integer, intent(in) :: s
     real(dp), intent(in) :: x(:, :)
     type(contact_state_t), intent(in) :: cstate
     real(dp), intent(out) :: displacement(3), stress(3)
-    type(segment_point_t) :: p
+    real(dp) :: normal(3), pressure, shear(3), t(3, 2)
     displacement = 0.0_dp
     stress = 0.0_dp
     if (cstate%face(s) == 0) return
-    p = segment_point(x(:, this%pairs(this%slave_pair(s))%face_nodes(:, cstate%face(s))), cstate%xi(:, s))
-    displacement = [cstate%gap(s), matmul(cstate%tangential_displacement(:, s), p%e)]
+    call this%traction(s, x, cstate, normal, pressure, shear)
+    t = calculix_tangents(normal)
+    displacement = [cstate%gap(s), matmul(cstate%tangential_displacement(:, s), t)]
     if (cstate%status(s) == CONTACT_OPEN) return
-    stress = [cstate%normal_force(s), cstate%friction(:, s)] / this%area(s)
+    stress = [pressure, -matmul(shear, t)]
   end subroutine system_local_values
 
   !> Nodal contact forces R f of every closed node on coordinates x, added to f_contact.

@@ -2,6 +2,9 @@
 !>
 !> The deck reader and model builder report every problem they find here, up to a limit, and
 !> turn the collection into one `error_t` (exit status 2) at the end (STYLE.md, "Errors").
+!> Warnings (input that is read, but not quite as written: a parameter CalculiX ignores, an
+!> undefined id skipped in a set) are collected apart; they never stop a run, and the caller
+!> passes them on to the log.
 module fcs_diagnostics
   use fcs_error, only: error_t, input_error
   use fcs_strings, only: string_t, str
@@ -11,6 +14,8 @@ module fcs_diagnostics
 
   !> How many errors are collected before the reader gives up.
   integer, parameter :: DEFAULT_MAX_ERRORS = 20
+  !> How many warnings are kept; further ones are counted.
+  integer, parameter :: MAX_WARNINGS = 100
 
   !> Where a piece of input came from: file name as given, 1-based line, the line's text.
   type :: source_loc_t
@@ -24,8 +29,13 @@ module fcs_diagnostics
     type(string_t), allocatable :: messages(:)
     integer :: count = 0
     integer :: max_errors = DEFAULT_MAX_ERRORS
+    !> Warnings, each formatted with its location, and how many were reported.
+    type(string_t), allocatable :: warnings(:)
+    integer :: n_warnings = 0
   contains
     procedure :: report => diagnostics_report
+    procedure :: warn => diagnostics_warn
+    procedure :: warning_list => diagnostics_warning_list
     procedure :: report_plain => diagnostics_report_plain
     procedure :: has_errors => diagnostics_has_errors
     procedure :: is_full => diagnostics_is_full
@@ -70,6 +80,34 @@ contains
     grown(size(grown))%s = message
     call move_alloc(grown, this%messages)
   end subroutine diagnostics_report_plain
+
+  !> Record a warning at `loc` ("file:line: message" and the line's text).
+  subroutine diagnostics_warn(this, loc, message)
+    class(diagnostics_t), intent(inout) :: this
+    type(source_loc_t), intent(in) :: loc
+    character(len=*), intent(in) :: message
+    type(string_t), allocatable :: grown(:)
+    this%n_warnings = this%n_warnings + 1
+    if (this%n_warnings > MAX_WARNINGS) return
+    if (.not. allocated(this%warnings)) allocate (this%warnings(0))
+    allocate (grown(size(this%warnings) + 1))
+    grown(1:size(this%warnings)) = this%warnings
+    grown(size(grown))%s = format_location(loc, message)
+    call move_alloc(grown, this%warnings)
+  end subroutine diagnostics_warn
+
+  !> The warnings kept, and a last line counting those beyond MAX_WARNINGS.
+  function diagnostics_warning_list(this) result(list)
+    class(diagnostics_t), intent(in) :: this
+    type(string_t), allocatable :: list(:)
+    if (allocated(this%warnings)) then
+      list = this%warnings
+    else
+      allocate (list(0))
+    end if
+    if (this%n_warnings > size(list)) list = [list, string_t('(' // &
+      str(this%n_warnings - size(list)) // ' further warnings not shown)')]
+  end function diagnostics_warning_list
 
   logical function diagnostics_has_errors(this)
     class(diagnostics_t), intent(in) :: this

@@ -1,5 +1,5 @@
 !> Model builder, contact keywords: *SURFACE INTERACTION, *SURFACE BEHAVIOR, *FRICTION,
-!> *CONTACT PAIR, *TIE (with their CalculiX meaning; method notes 1.2-1.3).
+!> *CONTACT PAIR, *TIE, *CHANGE FRICTION (with their CalculiX meaning; method notes 1.2-1.3).
 module fcs_build_contact
   use fcs_kinds, only: dp
   use fcs_deck_lexer, only: card_t
@@ -7,7 +7,7 @@ module fcs_build_contact
   use fcs_diagnostics, only: diagnostics_t, source_loc_t
   use fcs_builder_state, only: builder_t
   use fcs_mesh, only: SURFACE_FACES
-  use fcs_model, only: model_t, interaction_def_t, contact_pair_def_t
+  use fcs_model, only: model_t, interaction_def_t, contact_pair_def_t, friction_change_t
   use fcs_strings, only: to_upper, str, parse_real, string_t
   use fcs_error, only: error_t
   use fcs_friction_factory, only: friction_def_t, friction_def_problems, set_friction_parameter, &
@@ -15,7 +15,7 @@ module fcs_build_contact
   implicit none
   private
   public :: handle_surface_interaction, handle_surface_behavior, handle_friction
-  public :: handle_contact_pair, handle_tie
+  public :: handle_contact_pair, handle_tie, resolve_pair_interactions, handle_change_friction
 
 contains
 
@@ -49,18 +49,25 @@ contains
                                    '*SURFACE INTERACTION line')
   end function has_interaction
 
-  !> *SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR|TIED: slope E_n.
+  !> *SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR|TIED: slope K[, sigma_inf[, c0]], as in
+  !> CalculiX. fcs3d's penalty E_n is K: p = K max(-c, 0) (c the clearance, negative when
+  !> penetrating) on every slave node that projects onto the master. CalculiX's node-to-face
+  !> law smooths it, p = -K c (1/2 + arctan(-c/eps)/pi) with eps = pi sigma_inf / K: a tension
+  !> tending to sigma_inf at large clearance, p = K (-c) - sigma_inf at large penetration (so
+  !> its penetrations exceed fcs3d's by sigma_inf / K at the same pressure); c0 scales the
+  !> clearance within which CalculiX makes contact elements. Both are read and ignored, with
+  !> a warning.
   subroutine handle_surface_behavior(card, model, state, diag)
     type(card_t), intent(in) :: card
     type(model_t), intent(inout) :: model
     type(builder_t), intent(in) :: state
     type(diagnostics_t), intent(inout) :: diag
-    real(dp) :: slope, extra
+    real(dp) :: slope, extra(2)
     integer :: i
     if (.not. has_interaction(card, state, diag)) return
     associate (line => card%lines(1))
       if (card%n_lines /= 1 .or. size(line%fields) > 3) then
-        call diag%report(line%loc, '*SURFACE BEHAVIOR: expected one line: slope[, sigma_inf, c0]')
+        call diag%report(line%loc, '*SURFACE BEHAVIOR: expected one line: slope K[, sigma_inf[, c0]]')
         return
       end if
       if (.not. line_real(line, 1, slope, 'slope', 'SURFACE BEHAVIOR', diag)) return
@@ -68,14 +75,20 @@ contains
         call diag%report(line%loc, '*SURFACE BEHAVIOR: the slope (penalty stiffness E_n) must be positive')
         return
       end if
+      extra = 0.0_dp
       do i = 2, size(line%fields)
-        if (.not. line_optional_real(line, i, extra, 0.0_dp, 'value', 'SURFACE BEHAVIOR', diag)) return
-        if (extra /= 0.0_dp) then
-          call diag%report(line%loc, '*SURFACE BEHAVIOR: sigma_inf and c0 (CalculiX''s tension ' // &
-                           'at large clearance) are not used by fcs3d; leave them 0 or absent')
-          return
-        end if
+        if (.not. line_optional_real(line, i, extra(i - 1), 0.0_dp, trim(merge('sigma_inf', &
+            'c0       ', i == 2)), 'SURFACE BEHAVIOR', diag)) return
       end do
+      if (extra(1) /= 0.0_dp) call diag%warn(line%loc, '*SURFACE BEHAVIOR: sigma_inf = ' // &
+        line%fields(2)%s // ' is ignored: CalculiX''s smoothed law carries a tension tending ' // &
+        'to sigma_inf at large clearance and gives p = K overclosure - sigma_inf at large ' // &
+        'overclosure; fcs3d''s penalty p = K max(overclosure, 0) carries no tension ' // &
+        '(penetrations differ by sigma_inf / K)')
+      if (extra(2) /= 0.0_dp) call diag%warn(line%loc, '*SURFACE BEHAVIOR: c0 = ' // &
+        line%fields(3)%s // ' (CalculiX''s clearance, relative to the slave faces, within ' // &
+        'which it makes contact elements) is ignored: every slave node that projects onto ' // &
+        'the master is a contact candidate in fcs3d')
     end associate
     associate (interaction => model%interactions(state%interaction))
       interaction%normal_stiffness = slope
@@ -84,36 +97,28 @@ contains
   end subroutine handle_surface_behavior
 
   !> *FRICTION, LAW=...: the law and its parameters (keyword line), or for COULOMB the
-  !> CalculiX data line mu[, stick slope]; the stick slope also as STICK SLOPE=.
+  !> CalculiX data line mu[, stick slope]; the stick slope also as STICK SLOPE=. In a step,
+  !> after *CHANGE FRICTION: the new Coulomb friction of that interaction (handle_step_friction).
   subroutine handle_friction(card, model, state, diag)
     type(card_t), intent(in) :: card
     type(model_t), intent(inout) :: model
-    type(builder_t), intent(in) :: state
+    type(builder_t), intent(inout) :: state
     type(diagnostics_t), intent(inout) :: diag
     type(friction_def_t) :: def
-    type(string_t), allocatable :: problems(:)
     real(dp) :: stick, damping
     logical :: from_material
-    integer :: i
+    if (state%in_step) then
+      call handle_step_friction(card, state, diag)
+      return
+    end if
     if (.not. has_interaction(card, state, diag)) return
     if (model%interactions(state%interaction)%has_friction) then
       call diag%report(card%loc, '*FRICTION: interaction ' // model%interactions(state%interaction)%name // &
                        ' already has friction')
       return
     end if
-    def%law = param_upper(card, 'LAW')
-    def%loc = card%loc
-    stick = 0.0_dp
     if (.not. radiation_damping(card, damping, from_material, diag)) return
-    if (.not. set_law_parameters(card, def, stick, diag)) return
-    if (card%n_lines > 0) then
-      if (.not. coulomb_data_line(card, def, stick, diag)) return
-    end if
-    problems = friction_def_problems(def)
-    do i = 1, size(problems)
-      call diag%report(card%loc, '*FRICTION, LAW=' // def%law // ': ' // problems(i)%s)
-    end do
-    if (size(problems) > 0) return
+    if (.not. read_friction(card, def, stick, diag)) return
     associate (interaction => model%interactions(state%interaction))
       interaction%has_friction = .true.
       interaction%friction = def
@@ -122,6 +127,94 @@ contains
       interaction%damping_from_material = from_material
     end associate
   end subroutine handle_friction
+
+  !> The law, its parameters and the stick slope of a *FRICTION card; false after errors.
+  logical function read_friction(card, def, stick, diag) result(ok)
+    type(card_t), intent(in) :: card
+    type(friction_def_t), intent(out) :: def
+    real(dp), intent(out) :: stick
+    type(diagnostics_t), intent(inout) :: diag
+    type(string_t), allocatable :: problems(:)
+    integer :: i
+    ok = .false.
+    def%law = param_upper(card, 'LAW')
+    def%loc = card%loc
+    stick = 0.0_dp
+    if (.not. set_law_parameters(card, def, stick, diag)) return
+    if (card%n_lines > 0) then
+      if (.not. coulomb_data_line(card, def, stick, diag)) return
+    end if
+    problems = friction_def_problems(def)
+    do i = 1, size(problems)
+      call diag%report(card%loc, '*FRICTION, LAW=' // def%law // ': ' // problems(i)%s)
+    end do
+    ok = size(problems) == 0
+  end function read_friction
+
+  !> *CHANGE FRICTION, INTERACTION=: the next *FRICTION of this step changes that interaction.
+  subroutine handle_change_friction(card, model, state, diag)
+    type(card_t), intent(in) :: card
+    type(model_t), intent(in) :: model
+    type(builder_t), intent(inout) :: state
+    type(diagnostics_t), intent(inout) :: diag
+    integer :: k
+    state%changed_interaction = 0
+    do k = 1, size(model%interactions)
+      if (model%interactions(k)%name == param_upper(card, 'INTERACTION')) state%changed_interaction = k
+    end do
+    if (state%changed_interaction == 0) then
+      call diag%report(card%loc, '*CHANGE FRICTION: interaction "' // &
+                       param_value(card, 'INTERACTION') // '" is not defined')
+      return
+    end if
+    if (model%interactions(state%changed_interaction)%tied) then
+      call diag%report(card%loc, '*CHANGE FRICTION: interaction "' // &
+                       param_value(card, 'INTERACTION') // '" is tied (PRESSURE-OVERCLOSURE=TIED)')
+      state%changed_interaction = 0
+      return
+    end if
+    if (model%interactions(state%changed_interaction)%has_friction) then
+      if (model%interactions(state%changed_interaction)%friction%law /= 'COULOMB') then
+        call diag%report(card%loc, '*CHANGE FRICTION: interaction "' // &
+          param_value(card, 'INTERACTION') // '" has friction LAW=' // &
+          model%interactions(state%changed_interaction)%friction%law // &
+          '; only Coulomb friction can be changed between steps')
+        state%changed_interaction = 0
+        return
+      end if
+    end if
+    state%change_loc = card%loc
+  end subroutine handle_change_friction
+
+  !> *FRICTION in a step: after *CHANGE FRICTION, the Coulomb friction (mu[, stick slope]) of
+  !> its interaction from this step on.
+  subroutine handle_step_friction(card, state, diag)
+    type(card_t), intent(in) :: card
+    type(builder_t), intent(inout) :: state
+    type(diagnostics_t), intent(inout) :: diag
+    type(friction_change_t) :: change
+    if (state%changed_interaction == 0) then
+      call diag%report(card%loc, '*FRICTION in a step must follow *CHANGE FRICTION, ' // &
+                       'INTERACTION= (or move it before the first *STEP)')
+      return
+    end if
+    change%interaction = state%changed_interaction
+    change%loc = card%loc
+    state%changed_interaction = 0
+    if (card%find_param('RADIATION DAMPING') > 0) then
+      call diag%report(card%loc, '*FRICTION in a step: RADIATION DAMPING cannot be changed ' // &
+                       'between steps (give it on the *FRICTION of the interaction)')
+      return
+    end if
+    if (.not. read_friction(card, change%friction, change%stick_stiffness, diag)) return
+    if (change%friction%law /= 'COULOMB') then
+      call diag%report(card%loc, '*FRICTION: only Coulomb friction (mu[, stick slope]) can ' // &
+                       'be changed between steps, not LAW=' // change%friction%law)
+      return
+    end if
+    if (.not. allocated(state%step%friction_changes)) allocate (state%step%friction_changes(0))
+    state%step%friction_changes = [state%step%friction_changes, change]
+  end subroutine handle_step_friction
 
   !> RADIATION DAMPING= of *FRICTION: eta >= 0 [stress time/length], or MATERIAL (eta from the
   !> bodies on either side of each pair, resolved with the model: fcs_model_checks). Absent: 0.
@@ -236,26 +329,45 @@ contains
     type(model_t), intent(inout) :: model
     type(diagnostics_t), intent(inout) :: diag
     type(contact_pair_def_t) :: pair
-    integer :: k, i
+    integer :: i
     pair%loc = card%loc
-    do k = 1, size(model%interactions)
-      if (model%interactions(k)%name == param_upper(card, 'INTERACTION')) pair%interaction = k
-    end do
-    if (pair%interaction == 0) then
-      call diag%report(card%loc, '*CONTACT PAIR: interaction "' // param_value(card, 'INTERACTION') // &
-                       '" is not defined (define it with *SURFACE INTERACTION first)')
-      return
-    end if
+    pair%interaction_name = param_upper(card, 'INTERACTION')
+    if (card%find_param('SMALL SLIDING') > 0) call diag%warn(card%loc, '*CONTACT PAIR: SMALL ' // &
+      'SLIDING is accepted as finite sliding: fcs3d finds each slave node''s master face once ' // &
+      'per increment, as CalculiX does with SMALL SLIDING, and follows the node over the ' // &
+      'master surface from increment to increment')
     do i = 1, card%n_lines
       if (.not. pair_surfaces(card, i, model, diag, pair)) cycle
       pair%name = param_upper(card, 'NAME')
       if (len(pair%name) == 0) pair%name = model%mesh%surfaces(pair%slave_surface)%name // '-' // &
                                            model%mesh%surfaces(pair%master_surface)%name
       if (card%n_lines > 1 .and. card%find_param('NAME') > 0) pair%name = pair%name // '-' // str(i)
-      pair%tied = model%interactions(pair%interaction)%tied
       call add_pair(model, pair, card%lines(i)%loc, diag)
     end do
   end subroutine handle_contact_pair
+
+  !> After the last card: the interaction of every *CONTACT PAIR, by name (a *SURFACE
+  !> INTERACTION may follow the pair that names it, as CalculiX allows), and whether it ties.
+  subroutine resolve_pair_interactions(model, diag)
+    type(model_t), intent(inout) :: model
+    type(diagnostics_t), intent(inout) :: diag
+    integer :: p, k
+    do p = 1, size(model%contact_pairs)
+      associate (pair => model%contact_pairs(p))
+        if (.not. allocated(pair%interaction_name)) cycle
+        pair%interaction = 0
+        do k = 1, size(model%interactions)
+          if (model%interactions(k)%name == pair%interaction_name) pair%interaction = k
+        end do
+        if (pair%interaction == 0) then
+          call diag%report(pair%loc, '*CONTACT PAIR: interaction "' // pair%interaction_name // &
+                           '" is not defined (define it with *SURFACE INTERACTION)')
+          cycle
+        end if
+        pair%tied = model%interactions(pair%interaction)%tied
+      end associate
+    end do
+  end subroutine resolve_pair_interactions
 
   !> *TIE, NAME=: slave surface, master surface.
   subroutine handle_tie(card, model, diag)

@@ -10,7 +10,7 @@ module fcs_build_material
   implicit none
   private
   public :: handle_material, handle_elastic, handle_density, handle_solid_section, handle_solver
-  public :: handle_restart
+  public :: handle_restart, resolve_section_materials
 
 contains
 
@@ -104,13 +104,13 @@ contains
     type(model_t), intent(inout) :: model
     type(diagnostics_t), intent(inout) :: diag
     type(section_t) :: section
-    integer :: i, f, k
+    integer :: i, f
     do i = 1, card%n_lines
       do f = 1, size(card%lines(i)%fields)
         if (len(card%lines(i)%fields(f)%s) > 0) then
-          call diag%report(card%lines(i)%loc, '*SOLID SECTION: the data line of a solid ' // &
-                           'section must be empty (thickness applies to plane elements only)')
-          return
+          call diag%warn(card%lines(i)%loc, '*SOLID SECTION: the data line (a thickness, for ' // &
+                         'plane elements) is ignored for solid elements, as CalculiX ignores it')
+          exit
         end if
       end do
     end do
@@ -120,18 +120,30 @@ contains
       call diag%report(card%loc, '*SOLID SECTION: element set "' // param_upper(card, 'ELSET') // &
                        '" is not defined')
     end if
-    section%material = 0
-    do k = 1, size(model%materials)
-      if (model%materials(k)%name == param_upper(card, 'MATERIAL')) section%material = k
-    end do
-    if (section%material == 0) then
-      call diag%report(card%loc, '*SOLID SECTION: material "' // param_upper(card, 'MATERIAL') // &
-                       '" is not defined (' // str(size(model%materials)) // ' materials defined)')
-    end if
+    section%material_name = param_upper(card, 'MATERIAL')
     section%formulation = FORMULATION_FULL
     if (param_upper(card, 'FORMULATION') == 'BBAR') section%formulation = FORMULATION_BBAR
-    if (section%element_set > 0 .and. section%material > 0) model%sections = [model%sections, section]
+    if (section%element_set > 0) model%sections = [model%sections, section]
   end subroutine handle_solid_section
+
+  !> After the last card: the material of every section, by name (a material may be defined
+  !> after the *SOLID SECTION that names it, as CalculiX allows).
+  subroutine resolve_section_materials(model, diag)
+    type(model_t), intent(inout) :: model
+    type(diagnostics_t), intent(inout) :: diag
+    integer :: s, k
+    do s = 1, size(model%sections)
+      associate (section => model%sections(s))
+        section%material = 0
+        do k = 1, size(model%materials)
+          if (model%materials(k)%name == section%material_name) section%material = k
+        end do
+        if (section%material == 0) call diag%report(section%loc, '*SOLID SECTION: material "' // &
+          section%material_name // '" is not defined (' // str(size(model%materials)) // &
+          ' materials defined)')
+      end associate
+    end do
+  end subroutine resolve_section_materials
 
   !> *RESTART, WRITE, FREQUENCY=, INTERVAL=, GENERATIONS=.
   subroutine handle_restart(card, model, diag)
@@ -152,12 +164,24 @@ contains
     end associate
   end subroutine handle_restart
 
-  !> *SOLVER, TYPE=.
-  subroutine handle_solver(card, model)
+  !> *SOLVER, TYPE=, REUSE TOLERANCE=.
+  subroutine handle_solver(card, model, diag)
+    use fcs_deck_fields, only: param_value
+    use fcs_strings, only: parse_real
     type(card_t), intent(in) :: card
     type(model_t), intent(inout) :: model
+    type(diagnostics_t), intent(inout) :: diag
+    real(dp) :: tolerance
+    logical :: ok
     model%solver_name = param_upper(card, 'TYPE')
     model%solver_chosen = .true.
+    call parse_real(param_value(card, 'REUSE TOLERANCE'), tolerance, ok)
+    if (.not. ok .or. .not. (tolerance >= 0.0_dp .and. tolerance <= 1.0e-3_dp)) then
+      call diag%report(card%loc, '*SOLVER: REUSE TOLERANCE must lie in [0, 1e-3] (0: factorise ' // &
+                       'every tangent)')
+      return
+    end if
+    model%reuse_tolerance = tolerance
   end subroutine handle_solver
 
 end module fcs_build_material

@@ -2,14 +2,15 @@
 module fcs_build_mesh
   use fcs_kinds, only: dp
   use fcs_error, only: error_t
-  use fcs_deck_lexer, only: card_t
+  use fcs_deck_lexer, only: card_t, data_line_t
   use fcs_deck_fields, only: param_upper, param_value, has_flag, line_real, line_int, &
-                             line_optional_real, resolve_nodes, resolve_elements, is_integer_text
+                             line_optional_real, resolve_nodes, resolve_elements, is_integer_text, &
+                             element_records
   use fcs_diagnostics, only: diagnostics_t, format_location
   use fcs_mesh, only: mesh_t, SURFACE_FACES
   use fcs_gmsh_reader, only: read_gmsh
   use fcs_model, only: model_t
-  use fcs_strings, only: to_upper, str, dirname, join_path
+  use fcs_strings, only: to_upper, str, dirname, join_path, parse_int
   implicit none
   private
   public :: handle_node, handle_element, handle_nset, handle_elset, handle_surface, handle_mesh
@@ -19,23 +20,25 @@ module fcs_build_mesh
 
 contains
 
-  !> *NODE: id, x, y, z.
+  !> *NODE: id, x, y, z. Further fields are ignored, as CalculiX ignores them (one warning
+  !> per card names the first such line and counts them).
   subroutine handle_node(card, model, diag)
     type(card_t), intent(in) :: card
     type(model_t), intent(inout) :: model
     type(diagnostics_t), intent(inout) :: diag
-    integer :: i, id, n_added, c
+    integer :: i, id, n_added, c, n_long, first_long
     integer, allocatable :: added(:)
     real(dp) :: x(3)
     logical :: ok, duplicate
     allocate (added(card%n_lines))
     n_added = 0
+    n_long = 0
+    first_long = 0
     do i = 1, card%n_lines
       associate (line => card%lines(i))
         if (size(line%fields) > 4) then
-          call diag%report(line%loc, '*NODE: expected id, x, y, z; found ' // &
-                           str(size(line%fields)) // ' fields')
-          cycle
+          n_long = n_long + 1
+          if (first_long == 0) first_long = i
         end if
         if (.not. line_int(line, 1, id, 'node id', 'NODE', diag)) cycle
         if (id <= 0) then
@@ -60,6 +63,9 @@ contains
     end do
     if (card%find_param('NSET') > 0) call model%mesh%add_to_node_set(param_upper(card, 'NSET'), &
                                                                       added(1:n_added))
+    if (n_long > 0) call diag%warn(card%lines(first_long)%loc, '*NODE: ' // str(n_long) // &
+      ' line(s) of this card have fields after id, x, y, z (the first is this one); they ' // &
+      'are ignored, as CalculiX ignores them')
   end subroutine handle_node
 
   !> *ELEMENT, TYPE=C3D8: id, 8 node ids.
@@ -70,12 +76,19 @@ contains
     integer :: i, a, b, id, node_id, n_added
     integer :: nodes(8)
     integer, allocatable :: added(:)
+    type(data_line_t), allocatable :: records(:)
     logical :: ok, duplicate
-    allocate (added(card%n_lines))
+    records = element_records(card, 9)
+    allocate (added(size(records)))
     n_added = 0
-    do i = 1, card%n_lines
-      associate (line => card%lines(i))
-        if (size(line%fields) /= 9) then
+    do i = 1, size(records)
+      associate (line => records(i))
+        if (size(line%fields) < 9 .and. .not. line%continued) then
+          call diag%report(line%loc, '*ELEMENT: a C3D8 element needs its id and 8 node ids; ' // &
+                           'found ' // str(size(line%fields)) // ' fields (a record continues ' // &
+                           'on the next line only after a trailing comma)')
+          cycle
+        else if (size(line%fields) /= 9) then
           call diag%report(line%loc, '*ELEMENT: a C3D8 element needs its id and 8 node ids; ' // &
                            'found ' // str(size(line%fields)) // ' fields')
           cycle
@@ -145,7 +158,9 @@ contains
     call model%mesh%add_to_element_set(param_upper(card, 'ELSET'), members)
   end subroutine handle_elset
 
-  !> Members of a *NSET or *ELSET card, as indices.
+  !> Members of a *NSET or *ELSET card, as indices. Ids that name no node (element) are
+  !> skipped with a warning per data line, as CalculiX skips them; an undefined set name is
+  !> an error.
   subroutine collect_members(card, mesh, nodes, diag, members)
     type(card_t), intent(in) :: card
     type(mesh_t), intent(in) :: mesh
@@ -154,7 +169,8 @@ contains
     integer, allocatable, intent(out) :: members(:)
     integer, allocatable :: found(:)
     character(len=:), allocatable :: keyword
-    integer :: i, f
+    integer :: i, f, id, k, undefined(5), n_undefined
+    logical :: ok
     keyword = merge('NSET ', 'ELSET', nodes)
     keyword = trim(keyword)
     allocate (members(0))
@@ -164,20 +180,58 @@ contains
         members = [members, found]
         cycle
       end if
+      n_undefined = 0
       do f = 1, size(card%lines(i)%fields)
-        if (len(card%lines(i)%fields(f)%s) == 0) cycle
-        if (nodes) then
-          call resolve_nodes(mesh, card%lines(i)%fields(f)%s, card%lines(i), keyword, diag, found)
-        else
-          call resolve_elements(mesh, card%lines(i)%fields(f)%s, card%lines(i), keyword, diag, found)
-        end if
-        members = [members, found]
+        associate (text => card%lines(i)%fields(f)%s)
+          if (len(text) == 0) cycle
+          if (is_integer_text(text)) then
+            call parse_int(text, id, ok)
+            k = 0
+            if (ok) k = merge(mesh%node_index(id), mesh%element_index(id), nodes)
+            if (k == 0) then
+              call note_undefined(id, undefined, n_undefined)
+            else
+              members = [members, k]
+            end if
+          else if (nodes) then
+            call resolve_nodes(mesh, text, card%lines(i), keyword, diag, found)
+            members = [members, found]
+          else
+            call resolve_elements(mesh, text, card%lines(i), keyword, diag, found)
+            members = [members, found]
+          end if
+        end associate
       end do
+      if (n_undefined > 0) call diag%warn(card%lines(i)%loc, '*' // keyword // ': ' // &
+        trim(merge('node(s)   ', 'element(s)', nodes)) // ' ' // id_list(undefined, n_undefined) // &
+        ' not defined; skipped, as CalculiX skips them')
       if (diag%is_full()) return
     end do
   end subroutine collect_members
 
-  !> One GENERATE line: first, last[, increment]; every generated id must exist.
+  !> Remember an undefined id: the first five, and how many.
+  pure subroutine note_undefined(id, first, n)
+    integer, intent(in) :: id
+    integer, intent(inout) :: first(:), n
+    n = n + 1
+    if (n <= size(first)) first(n) = id
+  end subroutine note_undefined
+
+  !> "3, 7, 12" from the first ids of `n`; "3, 7, 12, 15, 20, ... (9 in all)" beyond five.
+  function id_list(first, n) result(text)
+    integer, intent(in) :: first(:), n
+    character(len=:), allocatable :: text
+    integer :: i
+    text = ''
+    do i = 1, min(n, size(first))
+      if (i > 1) text = text // ', '
+      text = text // str(first(i))
+    end do
+    if (n > size(first)) text = text // ', ... (' // str(n) // ' in all)'
+  end function id_list
+
+  !> One GENERATE line: first, last[, increment]. Ids in the range that name no node
+  !> (element) are skipped with a warning, as CalculiX skips them.
   subroutine generate_range(line, mesh, nodes, keyword, diag, found)
     use fcs_deck_lexer, only: data_line_t
     type(data_line_t), intent(in) :: line
@@ -186,7 +240,7 @@ contains
     character(len=*), intent(in) :: keyword
     type(diagnostics_t), intent(inout) :: diag
     integer, allocatable, intent(out) :: found(:)
-    integer :: first, last, step, id, n, k
+    integer :: first, last, step, id, n, k, undefined(5), n_undefined
     allocate (found(0))
     if (size(line%fields) < 2 .or. size(line%fields) > 3) then
       call diag%report(line%loc, '*' // keyword // ', GENERATE: expected first, last[, increment]')
@@ -196,7 +250,9 @@ contains
     if (.not. line_int(line, 2, last, 'last id', keyword, diag)) return
     step = 1
     if (size(line%fields) == 3) then
-      if (.not. line_int(line, 3, step, 'increment', keyword, diag)) return
+      if (len(line%fields(3)%s) > 0) then
+        if (.not. line_int(line, 3, step, 'increment', keyword, diag)) return
+      end if
     end if
     if (step <= 0 .or. last < first) then
       call diag%report(line%loc, '*' // keyword // ', GENERATE: need first <= last and a ' // &
@@ -211,6 +267,7 @@ contains
     deallocate (found)
     allocate (found((last - first) / step + 1))
     n = 0
+    n_undefined = 0
     do id = first, last, step
       if (nodes) then
         k = mesh%node_index(id)
@@ -218,15 +275,17 @@ contains
         k = mesh%element_index(id)
       end if
       if (k == 0) then
-        call diag%report(line%loc, '*' // keyword // ', GENERATE: ' // &
-                         trim(merge('node   ', 'element', nodes)) // ' ' // str(id) // &
-                         ' in the range is not defined')
-        found = found(1:n)
-        return
+        call note_undefined(id, undefined, n_undefined)
+        cycle
       end if
       n = n + 1
       found(n) = k
     end do
+    found = found(1:n)
+    if (n_undefined > 0) call diag%warn(line%loc, '*' // keyword // ', GENERATE: ' // &
+      str(n_undefined) // ' id(s) of the range name no ' // &
+      trim(merge('node   ', 'element', nodes)) // ' (' // id_list(undefined, n_undefined) // &
+      '); skipped, as CalculiX skips them')
   end subroutine generate_range
 
   !> *SURFACE: element faces (element or set, S1..S6) or nodes (TYPE=NODE).

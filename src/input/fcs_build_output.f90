@@ -68,9 +68,40 @@ contains
     case default
       request%totals = TOTALS_NO
     end select
+    call warn_output_params(card, diag)
     if (.not. allocated(state%step%outputs)) allocate (state%step%outputs(0))
+    ! CDIS and CSTR have no totals: TOTALS=ONLY prints nothing, as in CalculiX.
+    if (request%kind == OUTPUT_CONTACT_PRINT .and. request%totals == TOTALS_ONLY) return
     state%step%outputs = [state%step%outputs, request]
   end subroutine handle_output_request
+
+  !> Warnings for output parameters that fcs3d accepts but that do not do here what they say:
+  !> TOTALS of variables without totals, NSET of results frames (which hold every node),
+  !> OUTPUT=2D (shell and beam output; fcs3d's solids are written in 3D).
+  subroutine warn_output_params(card, diag)
+    type(card_t), intent(in) :: card
+    type(diagnostics_t), intent(inout) :: diag
+    character(len=:), allocatable :: totals
+    totals = param_upper(card, 'TOTALS')
+    if (card%keyword == 'EL PRINT' .and. totals /= 'NO' .and. len(totals) > 0) &
+      call diag%warn(card%loc, '*EL PRINT: TOTALS=' // totals // ': S, E and PE have no ' // &
+        'totals (CalculiX sums whole-element variables such as ELSE and EVOL only, which ' // &
+        'fcs3d does not compute); the tables are printed as without TOTALS, as CalculiX ' // &
+        'prints them')
+    if (card%keyword == 'CONTACT PRINT' .and. totals == 'YES') call diag%warn(card%loc, &
+      '*CONTACT PRINT: TOTALS=YES: CDIS and CSTR have no totals (CalculiX sums contact ' // &
+      'energies only); the tables are printed as without TOTALS, as CalculiX prints them')
+    if (card%keyword == 'CONTACT PRINT' .and. totals == 'ONLY') call diag%warn(card%loc, &
+      '*CONTACT PRINT: TOTALS=ONLY: CDIS and CSTR have no totals (CalculiX sums contact ' // &
+      'energies only); this request prints nothing, as in CalculiX')
+    if (card%find_param('NSET') > 0 .and. (card%keyword == 'NODE FILE' .or. &
+        card%keyword == 'CONTACT FILE')) call diag%warn(card%loc, '*' // card%keyword // &
+      ': NSET=' // param_value(card, 'NSET') // ' does not restrict the results: every ' // &
+      'frame of <job>.h5 holds every node')
+    if (param_upper(card, 'OUTPUT') == '2D') call diag%warn(card%loc, '*' // card%keyword // &
+      ': OUTPUT=2D is for CalculiX''s expanded shell and beam elements; fcs3d''s solid ' // &
+      'elements are written in 3D')
+  end subroutine warn_output_params
 
   !> The variable names on the data lines, each checked against `allowed`.
   subroutine read_variables(card, allowed, diag, variables)

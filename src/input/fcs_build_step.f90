@@ -1,10 +1,10 @@
-!> Model builder, step keywords: *STEP, *STATIC, *END STEP, *BOUNDARY, *CLOAD, *DSLOAD,
+!> Model builder, step keywords: *STEP, *STATIC, *END STEP, *BOUNDARY, *CLOAD, *DSLOAD, *DLOAD,
 !> *AMPLITUDE, *TIME POINTS.
 !>
 !> Conditions follow the Abaqus/CalculiX rules: *BOUNDARY in the model definition holds in
 !> every step; in a step, OP=MOD (default) adds to or changes the conditions of the previous
-!> step and OP=NEW first removes all of them. The same holds for *CLOAD and *DSLOAD. Within
-!> one scope (the model data, or one step) a degree of freedom takes one condition: two
+!> step and OP=NEW first removes all of them. The same holds for *CLOAD and for the face
+!> pressures of *DSLOAD and *DLOAD (one list, as in CalculiX). Within one scope (the model data, or one step) a degree of freedom takes one condition: two
 !> different ones (say a node in both a fixed set and a prescribed set) are an error naming
 !> both lines, where CalculiX would silently keep the later.
 module fcs_build_step
@@ -72,6 +72,10 @@ contains
     ! The step has a procedure even if its values are bad: no second error at *END STEP.
     state%step%has_procedure = .true.
     state%step%period = 1.0_dp
+    state%step%direct = has_flag(card, 'DIRECT')
+    if (card%find_param('SOLVER') > 0) call diag%warn(card%loc, '*STATIC: SOLVER=' // &
+      param_value(card, 'SOLVER') // ' (CalculiX''s linear solver) is ignored: fcs3d''s ' // &
+      'solver is chosen by *SOLVER or --solver (default UMFPACK)')
     if (card%n_lines > 1) then
       call diag%report(card%lines(2)%loc, '*STATIC: expected one data line')
       return
@@ -110,6 +114,8 @@ contains
     state%step%period = v(2)
     state%step%min_increment = v(3)
     state%step%max_increment = v(4)
+    ! DIRECT: fixed increments, never longer than the initial one.
+    if (state%step%direct) state%step%max_increment = v(1)
   end subroutine handle_static
 
   pure function static_field(i) result(name)
@@ -208,6 +214,11 @@ contains
     state%step%loads = state%loads%to_array()
     state%step%pressures = state%pressures%to_array()
     if (.not. allocated(state%step%outputs)) allocate (state%step%outputs(0))
+    if (.not. allocated(state%step%friction_changes)) allocate (state%step%friction_changes(0))
+    if (state%changed_interaction > 0) then
+      call diag%report(state%change_loc, '*CHANGE FRICTION: no *FRICTION follows it in this step')
+      state%changed_interaction = 0
+    end if
     state%steps = [state%steps, state%step]
     state%in_step = .false.
   end subroutine handle_end_step
@@ -373,16 +384,16 @@ contains
     call report_more_clashes(card%loc, 'CLOAD', n_clashes, diag)
   end subroutine handle_cload
 
-  !> *DSLOAD: surface, P, pressure (or element/set, P1..P6, pressure).
+  !> *DSLOAD: surface, P, pressure, or element/set, P1..P6, pressure. *DLOAD: element/set,
+  !> P1..P6, pressure (CalculiX's face numbering, as S1..S6). Both fill one list of face
+  !> pressures, as in CalculiX, so OP=NEW of either removes the pressures of both.
   subroutine handle_dsload(card, model, state, diag)
     type(card_t), intent(in) :: card
     type(model_t), intent(in) :: model
     type(builder_t), intent(inout) :: state
     type(diagnostics_t), intent(inout) :: diag
     type(face_load_t) :: f
-    integer :: i, j, k, amplitude, face
-    integer, allocatable :: elements(:)
-    character(len=:), allocatable :: label
+    integer :: i, amplitude
     real(dp) :: value
     if (.not. amplitude_param(card, model, diag, amplitude)) return
     if (param_upper(card, 'OP') == 'NEW' .and. .not. state%pressures_renewed) then
@@ -391,50 +402,115 @@ contains
     end if
     do i = 1, card%n_lines
       associate (line => card%lines(i))
+        if (size(line%fields) >= 2) then
+          if (pressure_face(card, line%fields(2)%s) < 0) then
+            call diag%report(line%loc, '*' // card%keyword // ': ' // &
+                             load_label_message(card, to_upper(line%fields(2)%s)))
+            cycle
+          end if
+        end if
         if (size(line%fields) /= 3) then
-          call diag%report(line%loc, '*DSLOAD: expected surface, P, pressure')
+          call diag%report(line%loc, '*' // card%keyword // ': expected ' // &
+                           trim(merge('surface, P, pressure        ', 'element or set, Pn, pressure', &
+                                      card%keyword == 'DSLOAD')))
           cycle
         end if
-        if (.not. line_real(line, 3, value, 'pressure', 'DSLOAD', diag)) cycle
-        label = to_upper(line%fields(2)%s)
+        if (.not. line_real(line, 3, value, 'pressure', card%keyword, diag)) cycle
         f%pressure = value
         f%amplitude = amplitude
-        if (label == 'P') then
-          k = model%mesh%find_surface(to_upper(line%fields(1)%s))
-          if (k == 0) then
-            call diag%report(line%loc, '*DSLOAD: surface "' // line%fields(1)%s // '" is not defined')
-            cycle
-          end if
-          if (model%mesh%surfaces(k)%kind /= SURFACE_FACES) then
-            call diag%report(line%loc, '*DSLOAD: surface "' // line%fields(1)%s // '" is node ' // &
-                             'based; pressure needs an element-face surface')
-            cycle
-          end if
-          do j = 1, size(model%mesh%surfaces(k)%element)
-            f%element = model%mesh%surfaces(k)%element(j)
-            f%face = model%mesh%surfaces(k)%face(j)
-            call state%pressures%put(f)
-          end do
+        if (pressure_face(card, line%fields(2)%s) == 0) then
+          call put_surface_pressure(card, line, model, state, f, diag)
         else
-          face = 0
-          if (len(label) == 2) then
-            if (label(1:1) == 'P') face = index('123456', label(2:2))
-          end if
-          if (face == 0) then
-            call diag%report(line%loc, '*DSLOAD: load label "' // line%fields(2)%s // '" is not ' // &
-                             'P (with a surface) or P1..P6 (with an element or element set)')
-            cycle
-          end if
-          call resolve_elements(model%mesh, line%fields(1)%s, line, 'DSLOAD', diag, elements)
-          f%face = face
-          do j = 1, size(elements)
-            f%element = elements(j)
-            call state%pressures%put(f)
-          end do
+          call put_element_pressure(card, line, model, state, f, diag)
         end if
       end associate
     end do
   end subroutine handle_dsload
+
+  !> A pressure on every face of an element-face surface (*DSLOAD, label P).
+  subroutine put_surface_pressure(card, line, model, state, f, diag)
+    type(card_t), intent(in) :: card
+    type(data_line_t), intent(in) :: line
+    type(model_t), intent(in) :: model
+    type(builder_t), intent(inout) :: state
+    type(face_load_t), intent(inout) :: f
+    type(diagnostics_t), intent(inout) :: diag
+    integer :: j, k
+    k = model%mesh%find_surface(to_upper(line%fields(1)%s))
+    if (k == 0) then
+      call diag%report(line%loc, '*' // card%keyword // ': surface "' // line%fields(1)%s // &
+                       '" is not defined')
+      return
+    end if
+    if (model%mesh%surfaces(k)%kind /= SURFACE_FACES) then
+      call diag%report(line%loc, '*' // card%keyword // ': surface "' // line%fields(1)%s // &
+                       '" is node based; pressure needs an element-face surface')
+      return
+    end if
+    do j = 1, size(model%mesh%surfaces(k)%element)
+      f%element = model%mesh%surfaces(k)%element(j)
+      f%face = model%mesh%surfaces(k)%face(j)
+      call state%pressures%put(f)
+    end do
+  end subroutine put_surface_pressure
+
+  !> A pressure on face n of an element or of every element of a set (label Pn).
+  subroutine put_element_pressure(card, line, model, state, f, diag)
+    type(card_t), intent(in) :: card
+    type(data_line_t), intent(in) :: line
+    type(model_t), intent(in) :: model
+    type(builder_t), intent(inout) :: state
+    type(face_load_t), intent(inout) :: f
+    type(diagnostics_t), intent(inout) :: diag
+    integer, allocatable :: elements(:)
+    integer :: j
+    f%face = pressure_face(card, line%fields(2)%s)
+    call resolve_elements(model%mesh, line%fields(1)%s, line, card%keyword, diag, elements)
+    do j = 1, size(elements)
+      f%element = elements(j)
+      call state%pressures%put(f)
+    end do
+  end subroutine put_element_pressure
+
+  !> The face of a pressure label: n for Pn (n = 1..6), 0 for P (*DSLOAD: a surface), -1 for
+  !> anything else.
+  pure integer function pressure_face(card, text) result(face)
+    type(card_t), intent(in) :: card
+    character(len=*), intent(in) :: text
+    character(len=:), allocatable :: label
+    label = to_upper(text)
+    face = -1
+    if (label == 'P' .and. card%keyword == 'DSLOAD') face = 0
+    if (len(label) == 2) then
+      if (label(1:1) == 'P' .and. index('123456', label(2:2)) > 0) face = index('123456', label(2:2))
+    end if
+  end function pressure_face
+
+  !> Why a load label is refused: CalculiX's body loads and user-defined loads are not
+  !> available yet; anything else is not a label.
+  function load_label_message(card, label) result(text)
+    type(card_t), intent(in) :: card
+    character(len=*), intent(in) :: label
+    character(len=:), allocatable :: text
+    character(len=*), parameter :: expected = 'P1..P6 (pressure on face n of an element or ' // &
+                                              'element set)'
+    select case (label)
+    case ('GRAV', 'CENTRIF', 'NEWTONGRAVITY', 'BX', 'BY', 'BZ', 'BXNU', 'BYNU', 'BZNU', 'EDNOR')
+      text = 'load label "' // label // '" (a body load) is not available yet in fcs3d; ' // &
+             'available: ' // expected
+    case default
+      if (len(label) > 2) then
+        if (label(1:1) == 'P' .and. index('123456', label(2:2)) > 0) then
+          text = 'load label "' // label // '" (a non-uniform pressure of CalculiX: by user ' // &
+                 'subroutine or from nodal values) is not available in fcs3d; available: ' // &
+                 expected
+          return
+        end if
+      end if
+      text = 'load label "' // label // '" is not valid; expected ' // expected
+      if (card%keyword == 'DSLOAD') text = text // ', or P with an element-face surface'
+    end select
+  end function load_label_message
 
   !> The AMPLITUDE= parameter resolved to an index (0 if absent). False if undefined.
   logical function amplitude_param(card, model, diag, amplitude) result(ok)

@@ -40,6 +40,9 @@ module fcs_builder_state
     integer :: material = 0
     !> Interaction that *SURFACE BEHAVIOR and *FRICTION apply to (0: none yet).
     integer :: interaction = 0
+    !> Interaction of the step's *CHANGE FRICTION that awaits its *FRICTION (0: none).
+    integer :: changed_interaction = 0
+    type(source_loc_t) :: change_loc
     logical :: in_step = .false.
     !> 0 for the model data, k while step k is read: conditions of one scope must agree.
     integer :: scope = 0

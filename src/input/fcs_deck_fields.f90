@@ -6,11 +6,11 @@ module fcs_deck_fields
   use fcs_deck_lexer, only: card_t, data_line_t
   use fcs_diagnostics, only: diagnostics_t
   use fcs_mesh, only: mesh_t
-  use fcs_strings, only: parse_real, parse_int, to_upper, str
+  use fcs_strings, only: string_t, parse_real, parse_int, to_upper, str
   implicit none
   private
   public :: param_value, param_upper, has_flag, line_real, line_int, line_optional_real
-  public :: resolve_nodes, resolve_elements, is_integer_text
+  public :: resolve_nodes, resolve_elements, is_integer_text, element_records
 
 contains
 
@@ -90,6 +90,35 @@ contains
     if (.not. ok) call diag%report(line%loc, '*' // keyword // ': ' // what // ' must be a whole ' // &
                                    'number, not "' // line%fields(i)%s // '" (field ' // str(i) // ')')
   end function line_int
+
+  !> The records of an *ELEMENT card whose records have `n_fields` fields (the id and the node
+  !> ids): each data line, joined with the lines that follow while it ends with a comma and
+  !> its record is unfinished (fewer than `n_fields` fields), as a 20-node element is written
+  !> on two lines. A complete line's trailing comma only ends it, as in CalculiX. A record
+  !> keeps the first line's location and the joined text; one that stays unfinished or grows
+  !> too long is left for the caller to report (by its field count).
+  function element_records(card, n_fields) result(records)
+    type(card_t), intent(in) :: card
+    integer, intent(in) :: n_fields
+    type(data_line_t), allocatable :: records(:)
+    integer :: i, n
+    allocate (records(card%n_lines))
+    n = 0
+    i = 0
+    do while (i < card%n_lines)
+      i = i + 1
+      n = n + 1
+      records(n) = card%lines(i)
+      do while (records(n)%continued .and. size(records(n)%fields) < n_fields .and. &
+                i < card%n_lines)
+        i = i + 1
+        records(n)%fields = [records(n)%fields, card%lines(i)%fields]
+        records(n)%loc%text = records(n)%loc%text // ' ' // card%lines(i)%loc%text
+        records(n)%continued = card%lines(i)%continued
+      end do
+    end do
+    records = records(1:n)
+  end function element_records
 
   !> True when `text` looks like an integer id (digits with an optional sign).
   pure logical function is_integer_text(text)

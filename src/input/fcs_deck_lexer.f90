@@ -3,8 +3,10 @@
 !> A card is one keyword line (`*KEYWORD, PARAM=value, FLAG`) with the data lines that follow
 !> it. Conventions (Abaqus Keywords Reference, "Input syntax rules"; CalculiX ccx manual §6):
 !> lines starting with `**` are comments; blank lines are skipped; keywords, parameter names
-!> and (later, by the builder) set and material names are case-insensitive; a keyword or data
-!> line that ends with a comma continues on the next line; `*INCLUDE, INPUT=file` inserts a
+!> and (later, by the builder) set and material names are case-insensitive; a line that ends
+!> with a comma does not run on into the next one, as in CalculiX: the comma is dropped and
+!> the data line marked `continued`, which only an unfinished *ELEMENT record uses (the builder
+!> joins it with the next line, `element_records`); `*INCLUDE, INPUT=file` inserts a
 !> file, its path relative to the including file. Each card and data line keeps its source
 !> location so that every later error can say `file:line:`. A tab counts as a blank (a keyword
 !> or comment may be indented with tabs); a UTF-8 byte-order mark at the start of a file is
@@ -35,10 +37,12 @@ module fcs_deck_lexer
     logical :: has_value = .false.
   end type param_t
 
-  !> One data line split into comma-separated fields.
+  !> One data line split into comma-separated fields. `continued`: the line ended with a
+  !> comma (dropped from the fields).
   type :: data_line_t
     type(string_t), allocatable :: fields(:)
     type(source_loc_t) :: loc
+    logical :: continued = .false.
   end type data_line_t
 
   !> A keyword line and its data lines.
@@ -48,6 +52,8 @@ module fcs_deck_lexer
     type(data_line_t), allocatable :: lines(:)
     integer :: n_lines = 0
     type(source_loc_t) :: loc
+    !> The keyword line ended with a comma (dropped): its parameters end there.
+    logical :: trailing_comma = .false.
   contains
     procedure :: find_param => card_find_param
   end type card_t
@@ -93,8 +99,7 @@ contains
     type(diagnostics_t), intent(inout) :: diag
     integer :: unit, stat, line_no, i
     character(len=256) :: msg
-    character(len=:), allocatable :: line, pending
-    type(source_loc_t) :: pending_loc
+    character(len=:), allocatable :: line
     logical :: eof, already_open
     do i = 1, size(reader%stack)
       if (reader%stack(i)%s == path) then
@@ -129,7 +134,6 @@ contains
     reader%stack = [reader%stack, string_t(path)]
     deck%files = [deck%files, string_t(path)]
     line_no = 0
-    pending = ''
     do
       call read_line(unit, line, eof, stat)
       if (eof) exit
@@ -143,25 +147,9 @@ contains
       call clean_line(line)
       if (is_comment_or_blank(line)) cycle
       if (.not. check_ascii(line, loc_of(path, line_no, line), diag)) cycle
-      if (len(pending) > 0) then
-        if (index(adjustl(line), '*') == 1) then
-          call handle_line(reader, pending, pending_loc, deck, diag)
-          pending = ''
-        else
-          pending_loc%text = pending_loc%text // ' ' // line
-          pending = pending // line
-        end if
-      end if
-      if (len(pending) == 0) then
-        pending = adjustl(line)
-        pending_loc = loc_of(path, line_no, line)
-      end if
-      if (ends_with_comma(pending)) cycle
-      call handle_line(reader, pending, pending_loc, deck, diag)
-      pending = ''
+      call handle_line(reader, trim(adjustl(line)), loc_of(path, line_no, line), deck, diag)
       if (diag%is_full()) exit
     end do
-    if (len(pending) > 0) call handle_line(reader, pending, pending_loc, deck, diag)
     close (unit)
     reader%stack = reader%stack(1:size(reader%stack) - 1)
     if (size(reader%stack) == 0) reader%last_line = line_no
@@ -208,7 +196,8 @@ contains
     character(len=:), allocatable :: target
     integer :: k
     if (line(1:1) == '*') then
-      call parse_keyword_line(line, loc, card, diag)
+      call parse_keyword_line(without_trailing_comma(line), loc, card, diag)
+      card%trailing_comma = ends_with_comma(line)
       if (.not. allocated(card%keyword)) return
       if (card%keyword == 'INCLUDE') then
         k = card%find_param('INPUT')
@@ -231,7 +220,7 @@ contains
                          '(a deck starts with a keyword such as *HEADING or *NODE)')
         return
       end if
-      call append_data_line(deck%cards(deck%n_cards), line, loc)
+      call append_data_line(deck%cards(deck%n_cards), line, loc, diag)
     end if
   end subroutine handle_line
 
@@ -294,10 +283,13 @@ contains
     deck%cards(deck%n_cards) = card
   end subroutine append_card
 
-  subroutine append_data_line(card, line, loc)
+  !> Add a data line to `card`. A first data line that holds parameters (`NAME=value`) after
+  !> a keyword line ending in a comma is an error: keyword lines do not continue.
+  subroutine append_data_line(card, line, loc, diag)
     type(card_t), intent(inout) :: card
     character(len=*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
+    type(diagnostics_t), intent(inout) :: diag
     type(data_line_t), allocatable :: grown(:)
     if (card%n_lines == size(card%lines)) then
       allocate (grown(2 * size(card%lines)))
@@ -305,9 +297,30 @@ contains
       call move_alloc(grown, card%lines)
     end if
     card%n_lines = card%n_lines + 1
-    call split_fields(line, card%lines(card%n_lines)%fields)
-    card%lines(card%n_lines)%loc = loc
+    associate (data => card%lines(card%n_lines))
+      call split_fields(without_trailing_comma(line), data%fields)
+      data%loc = loc
+      data%continued = ends_with_comma(line)
+      if (card%n_lines == 1 .and. card%trailing_comma .and. size(data%fields) > 0) then
+        if (index(data%fields(1)%s, '=') > 0) call diag%report(loc, '*' // card%keyword // &
+          ': this line continues the keyword line above (' // card%loc%file // ':' // &
+          str(card%loc%line) // '), but keyword lines do not continue, as in CalculiX: ' // &
+          'write the parameters on the keyword line')
+      end if
+    end associate
   end subroutine append_data_line
+
+  !> `line` without one trailing comma (and the blanks before it).
+  pure function without_trailing_comma(line) result(out)
+    character(len=*), intent(in) :: line
+    character(len=:), allocatable :: out
+    integer :: n
+    n = len_trim(line)
+    out = line(1:n)
+    if (n > 0) then
+      if (line(n:n) == ',') out = trim(line(1:n - 1))
+    end if
+  end function without_trailing_comma
 
   !> Index of parameter `name` on the card, 0 if absent.
   pure integer function card_find_param(this, name) result(k)

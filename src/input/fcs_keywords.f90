@@ -10,16 +10,32 @@ module fcs_keywords
   use fcs_friction_factory, only: friction_parameter_t, friction_parameters, friction_laws
   implicit none
   private
-  public :: keyword_spec_t, param_spec_t, keyword_table, find_keyword, find_param_spec
+  public :: keyword_spec_t, param_spec_t, keyword_table, find_keyword, find_param_spec, same_name
   public :: PARAM_FLAG, PARAM_TEXT, PARAM_NAME, PARAM_REAL, PARAM_INTEGER, PARAM_CHOICE, PARAM_FILE
+  public :: PARAM_IGNORED
   public :: CONTEXT_MODEL, CONTEXT_STEP, CONTEXT_ANY, param_kind_name, context_name
 
   !> Parameter kinds: a flag without value, free text, a (case-insensitive) name of a set or
-  !> material, a real or integer number, one of a list of choices, a file path.
+  !> material, a real or integer number, one of a list of choices, a file path; or a
+  !> parameter that CalculiX decks carry and CalculiX only warns about ("parameter not
+  !> recognized"): read with or without a value, ignored, and reported as a warning.
   integer, parameter :: PARAM_FLAG = 1, PARAM_TEXT = 2, PARAM_NAME = 3, PARAM_REAL = 4, &
-                        PARAM_INTEGER = 5, PARAM_CHOICE = 6, PARAM_FILE = 7
+                        PARAM_INTEGER = 5, PARAM_CHOICE = 6, PARAM_FILE = 7, PARAM_IGNORED = 8
   !> Where a keyword may appear: model definition (before the first *STEP), inside a step, or both.
   integer, parameter :: CONTEXT_MODEL = 1, CONTEXT_STEP = 2, CONTEXT_ANY = 3
+
+  !> Output parameters that fcs3d honours by what it always does.
+  character(len=*), parameter :: GLOBAL_ONLY = 'YES or NO give the same: fcs3d has no local ' // &
+    'systems (*TRANSFORM and *ORIENTATION are not supported), so every result is in the ' // &
+    'global system, as CalculiX prints it without them.'
+  character(len=*), parameter :: SOLIDS_IN_3D = 'CalculiX''s choice for expanded shell and ' // &
+    'beam elements; fcs3d''s solid elements are written in 3D either way (OUTPUT=2D is ' // &
+    'accepted with a warning).'
+  character(len=*), parameter :: WHOLE_FRAMES = 'Accepted with a warning: every result frame ' // &
+    'holds every node (and every contact node), so the set does not restrict it.'
+  !> The description of a PARAM_IGNORED parameter (also the text of its warning).
+  character(len=*), parameter :: IGNORED_AS_CALCULIX = 'ignored, as CalculiX ignores it ' // &
+    '("parameter not recognized")'
 
   type :: param_spec_t
     character(len=:), allocatable :: name
@@ -79,12 +95,14 @@ contains
       kw('NSET', CONTEXT_MODEL, 'CalculiX', 'Define or extend a node set.', &
          'node ids or names of node sets; with GENERATE: first, last[, increment].', &
          [p('NSET', PARAM_NAME, required=.true., description='Name of the set.'), &
-          p('GENERATE', PARAM_FLAG, description='Data lines are first, last, increment.')], &
+          p('GENERATE', PARAM_FLAG, description='Data lines are first, last, increment.'), &
+          p('FREQUENCY', PARAM_IGNORED, description=IGNORED_AS_CALCULIX)], &
          data_required=.true.), &
       kw('ELSET', CONTEXT_MODEL, 'CalculiX', 'Define or extend an element set.', &
          'element ids or names of element sets; with GENERATE: first, last[, increment].', &
          [p('ELSET', PARAM_NAME, required=.true., description='Name of the set.'), &
-          p('GENERATE', PARAM_FLAG, description='Data lines are first, last, increment.')], &
+          p('GENERATE', PARAM_FLAG, description='Data lines are first, last, increment.'), &
+          p('FREQUENCY', PARAM_IGNORED, description=IGNORED_AS_CALCULIX)], &
          data_required=.true.), &
       kw('SURFACE', CONTEXT_MODEL, 'CalculiX', 'Define a surface.', &
          'TYPE=ELEMENT: element id or element set, face S1..S6. TYPE=NODE: node id or node set.', &
@@ -112,7 +130,18 @@ contains
          [p('TYPE', PARAM_CHOICE, default='UMFPACK', &
             choices=[s('UMFPACK'), s('SKYLINE'), s('MUMPS')], &
             description='UMFPACK (SuiteSparse, default), SKYLINE (profile LU with reverse ' // &
-            'Cuthill-McKee numbering) or MUMPS. The command line option --solver overrides it.')]) &
+            'Cuthill-McKee numbering) or MUMPS. The command line option --solver overrides it.'), &
+          p('REUSE TOLERANCE', PARAM_REAL, default='0', unit='-', description='Relative ' // &
+            'residual |b - A x| / |b| to which a new tangent is solved with the factors of an ' // &
+            'earlier one, by GMRES preconditioned by them, instead of factorising it ' // &
+            '(doc/theory.md section 7.1); the factors are renewed when GMRES needs many ' // &
+            'iterations or does not converge, and when the sparsity pattern changes. 0 ' // &
+            '(default): factorise every tangent. Recommended when on: 1e-10, far below the ' // &
+            'equilibrium tolerance (1e-3 of the force scale); on the block-sliding test deck ' // &
+            'the results agree with those of fresh factorisations within 1e-12 of their ' // &
+            'scale. A restarted run starts from a fresh factorisation, so with reuse on it ' // &
+            'agrees with the uninterrupted run to that level, not bit for bit. Range ' // &
+            '[0, 1e-3]. The command line option --reuse-tolerance overrides it.')]) &
       ]
   end function model_keywords
 
@@ -170,10 +199,13 @@ contains
             'tan(beta)/3) sigma_c), uniaxial tension (d = (1 + tan(beta)/3) sigma_t) or pure ' // &
             'shear (d = sqrt(3) tau), as Abaqus defines them for K = 1.')], &
          data_required=.true.), &
-      kw('SOLID SECTION', CONTEXT_MODEL, 'CalculiX', 'Assign a material to an element set.', &
-         'optional, ignored for solids (CalculiX allows an empty line here).', &
+      kw('SOLID SECTION', CONTEXT_MODEL, 'CalculiX', 'Assign a material to an element set ' // &
+         '(the material may be defined after the section, as in CalculiX).', &
+         'optional: the thickness of plane elements; for solid elements it is ignored, with a ' // &
+         'warning, as CalculiX ignores it.', &
          [p('ELSET', PARAM_NAME, required=.true., description='Element set.'), &
           p('MATERIAL', PARAM_NAME, required=.true., description='Material name.'), &
+          p('OFFSET', PARAM_IGNORED, description=IGNORED_AS_CALCULIX), &
           p('FORMULATION', PARAM_CHOICE, default='FULL', choices=[s('FULL'), s('BBAR')], &
             description='FULL: 2x2x2 Gauss integration of everything (CalculiX C3D8). BBAR: ' // &
             'volumetric strain taken as its element mean (selective reduced integration, ' // &
@@ -185,11 +217,17 @@ contains
     type(keyword_spec_t), allocatable :: t(:)
     t = [ &
       kw('SURFACE INTERACTION', CONTEXT_MODEL, 'CalculiX', 'Start a contact interaction; ' // &
-         'the following *SURFACE BEHAVIOR and *FRICTION belong to it.', '', &
+         'the following *SURFACE BEHAVIOR and *FRICTION belong to it. It may follow the ' // &
+         '*CONTACT PAIR that names it, as in CalculiX.', '', &
          [p('NAME', PARAM_NAME, required=.true., description='Name of the interaction.')]), &
       kw('SURFACE BEHAVIOR', CONTEXT_MODEL, 'CalculiX', 'Normal behaviour of the current ' // &
          'interaction: penalty slope E_n of the contact pressure against the overclosure.', &
-         'slope E_n [stress/length] (further CalculiX values sigma_inf, c0 must be 0 or absent). ' // &
+         'slope K = E_n [stress/length][, sigma_inf [stress][, c0 [-]]]. fcs3d''s penalty is ' // &
+         'p = K max(overclosure, 0). sigma_inf and c0 are read and ignored, with a warning: ' // &
+         'CalculiX''s node-to-face law is smoothed, with a tension tending to sigma_inf at ' // &
+         'large clearance and p = K overclosure - sigma_inf at large overclosure (its ' // &
+         'penetrations exceed fcs3d''s by sigma_inf / K at the same pressure); c0 scales the ' // &
+         'clearance within which CalculiX makes contact elements. ' // &
          'Without *SURFACE BEHAVIOR, E_n = 10 E / h (E the master body''s Young''s modulus, ' // &
          'h the mean thickness of the master elements).', &
          [p('PRESSURE-OVERCLOSURE', PARAM_CHOICE, required=.true., &
@@ -197,12 +235,19 @@ contains
             description='LINEAR: penalty contact (opens under tension). TIED: the pair is ' // &
             'tied (no separation, no slip), the "stick" segments of the paper.')], &
          data_required=.true.), &
-      kw('FRICTION', CONTEXT_MODEL, 'CalculiX', 'Friction of the current interaction, treated ' // &
+      kw('FRICTION', CONTEXT_ANY, 'CalculiX', 'Friction of the current interaction, treated ' // &
          'like plasticity: stick with stiffness E_t, slip on the cone |f_t| = mu f_n with ' // &
          'mu = mu(f_n, V, phi) (paper eqs. 2-6). LAW= and the law''s parameters are fcs3d ' // &
-         'extensions; doc/friction.md gives each law.', &
+         'extensions; doc/friction.md gives each law. In a step, right after *CHANGE ' // &
+         'FRICTION: the new Coulomb friction of that interaction.', &
          'COULOMB only (the CalculiX form, instead of MU0=): mu, stick slope E_t [stress/length].', &
          friction_keyword_params()), &
+      kw('CHANGE FRICTION', CONTEXT_STEP, 'CalculiX', 'Change the friction of an interaction ' // &
+         'from this step on: the *FRICTION that follows (Coulomb: mu[, stick slope]) replaces ' // &
+         'it. At the start of the step every closed node takes the new mu; a friction force ' // &
+         'beyond the new cone is brought back onto it (the node slips), as a return mapping ' // &
+         'does. Only Coulomb friction can be changed.', '', &
+         [p('INTERACTION', PARAM_NAME, required=.true., description='The *SURFACE INTERACTION.')]), &
       kw('CONTACT PAIR', CONTEXT_MODEL, 'CalculiX', 'A node-to-point contact pair: the slave ' // &
          'surface''s nodes against the master surface''s 4-node faces.', &
          'slave surface (element-face or node based), master surface (element-face).', &
@@ -210,7 +255,13 @@ contains
           p('TYPE', PARAM_CHOICE, default='NODE TO SURFACE', choices=[s('NODE TO SURFACE')], &
             description='Only node-to-surface (node-to-point) contact is available.'), &
           p('NAME', PARAM_NAME, description='Name of the pair in the log and results ' // &
-            '(default: slave-master) (fcs3d extension).')], data_required=.true.), &
+            '(default: slave-master) (fcs3d extension).'), &
+          p('SMALL SLIDING', PARAM_FLAG, description='CalculiX then finds each slave ' // &
+            'node''s master face once per increment instead of in every iteration. Accepted ' // &
+            'with a warning: fcs3d always finds it once per increment (and keeps it through ' // &
+            'the increment''s equilibrium iterations) and follows the node over the master ' // &
+            'surface from increment to increment (finite sliding).')], &
+         data_required=.true.), &
       kw('TIE', CONTEXT_MODEL, 'CalculiX', 'Tie a slave surface to a master surface: no ' // &
          'relative motion ever (segment-to-segment penalty tie, penalty E_n = 10 E / h, ' // &
          'passing the patch test on non-matching meshes; doc/theory.md 4.7). Slave nodes of ' // &
@@ -267,7 +318,11 @@ contains
           p('DEFINITION', PARAM_CHOICE, default='TABULAR', choices=[s('TABULAR')], &
             description='Only tabular amplitudes are available.')], data_required=.true.), &
       kw('STEP', CONTEXT_MODEL, 'CalculiX', 'Start a step (a loading stage).', '', &
-         [p('NLGEOM', PARAM_CHOICE, default='NO', choices=[s('YES'), s('NO')], flag_value='YES', &
+         [p('AMPLITUDE', PARAM_CHOICE, default='RAMP', choices=[s('RAMP')], &
+            description='How loads without *AMPLITUDE change over the step: RAMP, linearly ' // &
+            'from their values at the end of the previous step (STEP, applied at once, is ' // &
+            'not available).'), &
+          p('NLGEOM', PARAM_CHOICE, default='NO', choices=[s('YES'), s('NO')], flag_value='YES', &
             description='Geometric nonlinearity: updated Lagrangian with the Jaumann rate ' // &
             '(paper eq. 1). Without it the step is small-strain and linear in geometry.'), &
           p('INC', PARAM_INTEGER, default='1000000', &
@@ -275,11 +330,25 @@ contains
             'the default is large: static-explicit runs take many small increments.'), &
           p('NAME', PARAM_TEXT, description='Name of the step (for the log and results).')]), &
       kw('STATIC', CONTEXT_STEP, 'CalculiX', 'Static step: the static-explicit R-minimum ' // &
-         'stepper drives it (no equilibrium iterations).', &
+         'stepper drives it (each increment scaled so that no state changes drastically ' // &
+         'within it; equilibrium iterations as *RMIN sets them).', &
          'initial time increment, step time period, minimum time increment, maximum time ' // &
          'increment [time]. Defaults: 1, 1, 1e-5 of the period, the period.', &
-         [p_none()]), &
+         [p('DIRECT', PARAM_FLAG, description='Fixed increments, as CalculiX''s DIRECT: ' // &
+            'every increment is tried with the initial time increment and never grows ' // &
+            'beyond it; the R-minimum step control may still shorten an increment to an ' // &
+            'event (contact, stick/slip, yield) or to its limits, down to the minimum ' // &
+            'increment (doc/user_guide.md, section 4).'), &
+          p('SOLVER', PARAM_TEXT, description='CalculiX''s linear solver (SPOOLES, PARDISO, ' // &
+            '...): ignored, with a warning; fcs3d''s solver is chosen by *SOLVER or --solver.')]), &
       kw('END STEP', CONTEXT_STEP, 'CalculiX', 'End the current step.', '', [p_none()]), &
+      kw('CONTROLS', CONTEXT_STEP, 'CalculiX', 'CalculiX''s controls of its Newton ' // &
+         'iterations and automatic increments. Read and ignored, with a warning: fcs3d''s ' // &
+         'increments and equilibrium iterations follow its R-minimum step control, whose ' // &
+         'limits *RMIN sets.', 'CalculiX''s values for PARAMETERS= (ignored).', &
+         [p('PARAMETERS', PARAM_CHOICE, choices=[s('TIME INCREMENTATION'), s('FIELD'), &
+            s('LINE SEARCH'), s('CONTACT')], description='The group of CalculiX controls.'), &
+          p('RESET', PARAM_FLAG, description='Reset CalculiX''s controls to their defaults.')]), &
       kw('RMIN', CONTEXT_STEP, 'fcs3d', 'Limits of the R-minimum step control of this step ' // &
          '(each increment is scaled so that no state changes drastically within it).', '', &
          [p('MAX STRAIN INCREMENT', PARAM_REAL, default='2e-3', unit='-', &
@@ -354,6 +423,15 @@ contains
          [p('OP', PARAM_CHOICE, default='MOD', choices=[s('MOD'), s('NEW')], &
             description='MOD keeps earlier loads; NEW removes all earlier ones first.'), &
           p('AMPLITUDE', PARAM_NAME, description='Scale the value by this amplitude.')], &
+         data_required=.true.), &
+      kw('DLOAD', CONTEXT_STEP, 'CalculiX', 'Distributed load: pressure on element faces, ' // &
+         'as *DSLOAD (the same list of face pressures: OP=NEW of either removes both). The ' // &
+         'body loads GRAV, CENTRIF, BX, BY, BZ and user loads PnNU are refused (not ' // &
+         'available yet).', 'element or element set, Pn (face n, numbered as S1..S6 of ' // &
+         '*SURFACE), magnitude [stress].', &
+         [p('OP', PARAM_CHOICE, default='MOD', choices=[s('MOD'), s('NEW')], &
+            description='MOD keeps earlier loads; NEW removes all earlier ones first.'), &
+          p('AMPLITUDE', PARAM_NAME, description='Scale the value by this amplitude.')], &
          data_required=.true.) &
       ]
   end function step_keywords
@@ -371,6 +449,8 @@ contains
       kw('NODE PRINT', CONTEXT_STEP, 'CalculiX', 'Print nodal results to <job>.dat in ' // &
          'CalculiX''s layout.', 'U (displacements), RF (reaction forces).', &
          [p('NSET', PARAM_NAME, required=.true., description='Node set to print.'), &
+          p('GLOBAL', PARAM_CHOICE, default='YES', choices=[s('YES'), s('NO')], &
+            description=GLOBAL_ONLY), &
           p('FREQUENCY', PARAM_INTEGER, default='0', description='Also print every N ' // &
             'increments (0: only at the end of the step and at the time points).'), &
           p('TIME POINTS', PARAM_NAME, description='Print at these times.'), &
@@ -383,20 +463,36 @@ contains
          [p('ELSET', PARAM_NAME, required=.true., description='Element set to print.'), &
           p('FREQUENCY', PARAM_INTEGER, default='0', description='Also print every N ' // &
             'increments (0: only at the end of the step and at the time points).'), &
-          p('TIME POINTS', PARAM_NAME, description='Print at these times.')], &
+          p('TIME POINTS', PARAM_NAME, description='Print at these times.'), &
+          p('TOTALS', PARAM_CHOICE, default='NO', choices=[s('NO'), s('YES'), s('ONLY')], &
+            description='CalculiX sums whole-element variables (ELSE, EVOL, ...), which ' // &
+            'fcs3d does not compute; S, E and PE have no totals, so their tables are printed ' // &
+            'as without TOTALS, as CalculiX prints them (a warning says so).'), &
+          p('GLOBAL', PARAM_CHOICE, default='YES', choices=[s('YES'), s('NO')], &
+            description=GLOBAL_ONLY)], &
          data_required=.true.), &
       kw('CONTACT PRINT', CONTEXT_STEP, 'CalculiX', 'Print the state of every closed contact ' // &
-         'node to <job>.dat in CalculiX''s layout.', 'CDIS (relative contact displacement: ' // &
-         'normal gap, tangential components), CSTR (contact pressure and shear traction ' // &
-         'components); CDISP, CSTRESS are accepted as aliases.', &
+         'node to <job>.dat in CalculiX''s layout and frame: tangential components on t1, the ' // &
+         'global x axis projected on the contact plane (the z axis when the master normal n ' // &
+         'is along x), and t2 = n x t1.', 'CDIS (relative contact displacement: normal gap, ' // &
+         'then the accumulated tangential displacement on t1, t2), CSTR (contact pressure, ' // &
+         'then the shear on t1, t2 with the sign of the elastic slip, as CalculiX prints it: ' // &
+         'the shear the slave exerts on the master); CDISP, CSTRESS are accepted as aliases.', &
          [p('FREQUENCY', PARAM_INTEGER, default='0', description='Also print every N ' // &
             'increments (0: only at the end of the step and at the time points).'), &
-          p('TIME POINTS', PARAM_NAME, description='Print at these times.')], &
+          p('TIME POINTS', PARAM_NAME, description='Print at these times.'), &
+          p('TOTALS', PARAM_CHOICE, default='NO', choices=[s('NO'), s('YES'), s('ONLY')], &
+            description='CDIS and CSTR have no totals (CalculiX sums contact energies only): ' // &
+            'YES prints the tables as without TOTALS, ONLY prints nothing, as in CalculiX (a ' // &
+            'warning says so).'), &
+          p('NSET', PARAM_IGNORED, description=IGNORED_AS_CALCULIX // ': the tables list ' // &
+            'every closed contact node')], &
          data_required=.true.), &
       kw('CONTACT FILE', CONTEXT_STEP, 'CalculiX', 'As *NODE FILE, for contact variables ' // &
          '(every frame holds the contact fields of every pair).', 'CDIS, CSTR, ...', &
          [p('FREQUENCY', PARAM_INTEGER, default='0', description='Also write every N increments.'), &
-          p('TIME POINTS', PARAM_NAME, description='Write at these times.')]), &
+          p('TIME POINTS', PARAM_NAME, description='Write at these times.'), &
+          p('NSET', PARAM_NAME, description=WHOLE_FRAMES)]), &
       kw('HISTORY', CONTEXT_MODEL, 'fcs3d', 'History output through the whole run, in ' // &
          '<job>_<name>.csv and /history/<name> of <job>.h5: one row per sample, the first ' // &
          'column the time.', 'NSET, <set>, U (mean displacement, 3 columns) | NSET, <set>, RF ' // &
@@ -421,12 +517,26 @@ contains
          'Every frame holds all fields (displacement, reactions, stresses, Mises stress); ' // &
          'the variables listed are checked, not used to select.', 'U, RF, ...', &
          [p('FREQUENCY', PARAM_INTEGER, default='0', description='Also write every N increments.'), &
-          p('TIME POINTS', PARAM_NAME, description='Write at these times.')]), &
+          p('TIME POINTS', PARAM_NAME, description='Write at these times.'), &
+          p('NSET', PARAM_NAME, description=WHOLE_FRAMES), &
+          p('GLOBAL', PARAM_CHOICE, default='YES', choices=[s('YES'), s('NO')], &
+            description=GLOBAL_ONLY), &
+          p('OUTPUT', PARAM_CHOICE, default='3D', choices=[s('2D'), s('3D')], &
+            description=SOLIDS_IN_3D), &
+          p('CONTACT ELEMENTS', PARAM_IGNORED, description='ignored: CalculiX writes the ' // &
+            'contact elements it generates to <job>.cel; fcs3d''s contact state is in the ' // &
+            'frames of <job>.h5')]), &
       kw('EL FILE', CONTEXT_STEP, 'CalculiX', 'As *NODE FILE, for element variables ' // &
          '(with a plastic material, every frame also holds PEEQ, PE and the back stress ALPHA).', &
          'S, E, PEEQ, PE, ...', &
          [p('FREQUENCY', PARAM_INTEGER, default='0', description='Also write every N increments.'), &
-          p('TIME POINTS', PARAM_NAME, description='Write at these times.')]) &
+          p('TIME POINTS', PARAM_NAME, description='Write at these times.'), &
+          p('GLOBAL', PARAM_CHOICE, default='YES', choices=[s('YES'), s('NO')], &
+            description=GLOBAL_ONLY), &
+          p('OUTPUT', PARAM_CHOICE, default='3D', choices=[s('2D'), s('3D')], &
+            description=SOLIDS_IN_3D), &
+          p('POSITION', PARAM_IGNORED, description=IGNORED_AS_CALCULIX // ': fcs3d writes ' // &
+            'integration-point values and their nodal averages')]) &
       ]
   end function output_keywords
 
@@ -495,25 +605,43 @@ contains
     out%s = text
   end function s
 
-  !> Index of keyword `name` (upper case) in `table`, 0 if unknown.
+  !> Index of keyword `name` in `table`, 0 if unknown (compared as `same_name`).
   pure integer function find_keyword(table, name) result(k)
     type(keyword_spec_t), intent(in) :: table(:)
     character(len=*), intent(in) :: name
     do k = 1, size(table)
-      if (table(k)%name == to_upper(name)) return
+      if (same_name(table(k)%name, name)) return
     end do
     k = 0
   end function find_keyword
 
-  !> Index of parameter `name` of keyword `spec`, 0 if unknown.
+  !> Index of parameter `name` of keyword `spec`, 0 if unknown (compared as `same_name`).
   pure integer function find_param_spec(spec, name) result(k)
     type(keyword_spec_t), intent(in) :: spec
     character(len=*), intent(in) :: name
     do k = 1, size(spec%params)
-      if (spec%params(k)%name == name) return
+      if (same_name(spec%params(k)%name, name)) return
     end do
     k = 0
   end function find_param_spec
+
+  !> True when two keyword, parameter or choice names are the same name for CalculiX, which
+  !> ignores case and blanks in them: *ENDSTEP is *END STEP, *SOLIDSECTION is *SOLID SECTION,
+  !> TIMEPOINTS= is TIME POINTS=, TYPE=NODETOSURFACE is TYPE=NODE TO SURFACE.
+  pure logical function same_name(a, b)
+    character(len=*), intent(in) :: a, b
+    same_name = without_blanks(to_upper(a)) == without_blanks(to_upper(b))
+  end function same_name
+
+  pure function without_blanks(text) result(out)
+    character(len=*), intent(in) :: text
+    character(len=:), allocatable :: out
+    integer :: i
+    out = ''
+    do i = 1, len(text)
+      if (text(i:i) /= ' ') out = out // text(i:i)
+    end do
+  end function without_blanks
 
   pure function param_kind_name(kind) result(name)
     integer, intent(in) :: kind
@@ -531,6 +659,8 @@ contains
       name = 'choice'
     case (PARAM_FILE)
       name = 'file'
+    case (PARAM_IGNORED)
+      name = 'ignored'
     case default
       name = 'text'
     end select

@@ -12,7 +12,7 @@ module fcs_model
   private
   public :: model_t, material_def_t, section_t, amplitude_t, time_points_t, dof_condition_t
   public :: face_load_t, output_request_t, step_t, rmin_settings_t
-  public :: friction_def_t, interaction_def_t, contact_pair_def_t, checkpoint_settings_t
+  public :: friction_def_t, friction_change_t, interaction_def_t, contact_pair_def_t, checkpoint_settings_t
   public :: history_item_t, history_request_t, HISTORY_NSET_U, HISTORY_NSET_RF
   public :: HISTORY_CONTACT, HISTORY_ENERGY, HISTORY_RESIDUAL
   public :: BC_DISPLACEMENT, BC_VELOCITY, FORMULATION_FULL, FORMULATION_BBAR
@@ -50,10 +50,12 @@ module fcs_model
     type(source_loc_t) :: plastic_loc, cyclic_loc, drucker_prager_loc, dp_hardening_loc
   end type material_def_t
 
-  !> *SOLID SECTION: a material and a formulation for an element set.
+  !> *SOLID SECTION: a material and a formulation for an element set. The material may be
+  !> defined after the section (as CalculiX allows): its name is resolved after the last card.
   type :: section_t
     integer :: element_set = 0
     integer :: material = 0
+    character(len=:), allocatable :: material_name
     integer :: formulation = FORMULATION_FULL
     type(source_loc_t) :: loc
   end type section_t
@@ -135,6 +137,16 @@ module fcs_model
     logical :: carry_unbalanced = .false.
   end type rmin_settings_t
 
+  !> *CHANGE FRICTION in a step: the Coulomb friction of interaction `interaction` from this
+  !> step on (until a later change).
+  type :: friction_change_t
+    integer :: interaction = 0
+    type(friction_def_t) :: friction
+    !> Stick slope E_t [stress/length]; <= 0: the pair keeps its own.
+    real(dp) :: stick_stiffness = 0.0_dp
+    type(source_loc_t) :: loc
+  end type friction_change_t
+
   !> One step (loading stage). The condition lists are complete: they hold every condition
   !> active in this step, after applying OP=NEW/MOD to those of the previous steps.
   type :: step_t
@@ -145,6 +157,9 @@ module fcs_model
     real(dp) :: period = 1.0_dp
     real(dp) :: min_increment = 1.0e-5_dp
     real(dp) :: max_increment = 1.0_dp
+    !> *STATIC, DIRECT: every increment is tried with initial_increment and never grows beyond
+    !> it (the R-minimum control may still shorten it).
+    logical :: direct = .false.
     type(rmin_settings_t) :: rmin
     !> Whether *STATIC and *RMIN were given in the step (each at most once).
     logical :: has_procedure = .false.
@@ -153,6 +168,8 @@ module fcs_model
     type(dof_condition_t), allocatable :: loads(:)
     type(face_load_t), allocatable :: pressures(:)
     type(output_request_t), allocatable :: outputs(:)
+    !> *CHANGE FRICTION of this step (the changes of earlier steps still hold).
+    type(friction_change_t), allocatable :: friction_changes(:)
     type(source_loc_t) :: loc
   end type step_t
 
@@ -179,7 +196,10 @@ module fcs_model
     !> Slave: a surface (element-face or node based); master: an element-face surface.
     integer :: slave_surface = 0
     integer :: master_surface = 0
+    !> The *SURFACE INTERACTION, which may come after the pair (as CalculiX allows): its name
+    !> is resolved after the last card.
     integer :: interaction = 0
+    character(len=:), allocatable :: interaction_name
     logical :: tied = .false.
     !> *TIE: slave nodes farther than this from the master are not tied (<= 0: default).
     real(dp) :: position_tolerance = 0.0_dp
@@ -238,6 +258,8 @@ module fcs_model
     character(len=:), allocatable :: solver_name
     !> True when the deck chose the solver (*SOLVER); otherwise a parallel run takes MUMPS.
     logical :: solver_chosen = .false.
+    !> *SOLVER, REUSE TOLERANCE: relative residual of a solve with reused factors (0: off).
+    real(dp) :: reuse_tolerance = 0.0_dp
     type(interaction_def_t), allocatable :: interactions(:)
     type(contact_pair_def_t), allocatable :: contact_pairs(:)
     !> Checksums of the model definition (its cards and the mesh) and of each step's cards,
@@ -250,6 +272,9 @@ module fcs_model
     real(dp) :: event_threshold = 0.0_dp
     !> Events whose largest slip stays below this are not catalogued [length].
     real(dp) :: event_min_slip = 0.0_dp
+    !> The reader's warnings ("file:line: text"): input read, but not quite as written (a
+    !> parameter CalculiX ignores, an undefined id skipped in a set); the driver logs them.
+    type(string_t), allocatable :: warnings(:)
   end type model_t
 
 end module fcs_model

@@ -13,13 +13,15 @@ module fcs_model_builder
   use fcs_deck_lexer, only: deck_t, card_t, param_t, read_deck
   use fcs_diagnostics, only: diagnostics_t
   use fcs_keywords, only: keyword_spec_t, param_spec_t, keyword_table, find_keyword, &
-                          find_param_spec, PARAM_FLAG, PARAM_NAME, PARAM_REAL, PARAM_INTEGER, &
-                          PARAM_CHOICE, PARAM_FILE, CONTEXT_MODEL, CONTEXT_STEP
+                          find_param_spec, same_name, PARAM_FLAG, PARAM_NAME, PARAM_REAL, &
+                          PARAM_INTEGER, PARAM_CHOICE, PARAM_FILE, PARAM_IGNORED, CONTEXT_MODEL, &
+                          CONTEXT_STEP
   use fcs_builder_state, only: builder_t
   use fcs_build_mesh, only: handle_node, handle_element, handle_nset, handle_elset, &
                             handle_surface, handle_mesh
   use fcs_build_material, only: handle_material, handle_elastic, handle_density, &
-                                handle_solid_section, handle_solver, handle_restart
+                                handle_solid_section, handle_solver, handle_restart, &
+                                resolve_section_materials
   use fcs_build_plasticity, only: handle_plastic, handle_cyclic_hardening, handle_drucker_prager, &
                                   handle_drucker_prager_hardening
   use fcs_build_step, only: handle_step, handle_static, handle_end_step, handle_boundary, &
@@ -27,7 +29,8 @@ module fcs_model_builder
                             handle_rmin
   use fcs_build_output, only: handle_output_request, handle_history, handle_event_catalog
   use fcs_build_contact, only: handle_surface_interaction, handle_surface_behavior, &
-                               handle_friction, handle_contact_pair, handle_tie
+                               handle_friction, handle_contact_pair, handle_tie, &
+                               resolve_pair_interactions, handle_change_friction
   use fcs_model, only: model_t, step_t
   use fcs_model_checks, only: check_model
   use fcs_deck_hash, only: hash_deck
@@ -59,6 +62,7 @@ contains
     call state%loads%clear()
     call state%pressures%clear()
     table = keyword_table()
+    call canonical_spellings(deck, table)
     last_step_end = end_of_last_step(deck)
     do i = 1, deck%n_cards
       if (i > last_step_end) then
@@ -78,13 +82,29 @@ contains
       call diag%report(state%step%loc, '*STEP: the step is not closed (add *END STEP at the end)')
     end if
     model%steps = state%steps
+    if (.not. diag%is_full()) call resolve_section_materials(model, diag)
+    if (.not. diag%is_full()) call resolve_pair_interactions(model, diag)
     if (.not. diag%has_errors()) call check_model(model, diag, deck)
+    model%warnings = diag%warning_list()
     if (diag%has_errors()) then
       call diag%to_error(err)
       return
     end if
     call hash_deck(deck, model)
   end subroutine build_model
+
+  !> Spell every keyword as the keyword table (or the list of refused CalculiX keywords) does:
+  !> CalculiX ignores blanks in keywords, so that *ENDSTEP is *END STEP and *SOLIDSECTION is
+  !> *SOLID SECTION.
+  subroutine canonical_spellings(deck, table)
+    type(deck_t), intent(inout) :: deck
+    type(keyword_spec_t), intent(in) :: table(:)
+    integer :: i, k
+    do i = 1, deck%n_cards
+      k = find_keyword(table, deck%cards(i)%keyword)
+      if (k > 0) deck%cards(i)%keyword = table(k)%name
+    end do
+  end subroutine canonical_spellings
 
   !> Index of the last *END STEP card when no *STEP follows it; past the last card otherwise.
   pure integer function end_of_last_step(deck) result(last)
@@ -143,7 +163,7 @@ contains
     call model%mesh%init()
     allocate (model%materials(0), model%sections(0), model%amplitudes(0), &
               model%time_points(0), model%steps(0), model%interactions(0), model%contact_pairs(0), &
-              model%histories(0))
+              model%histories(0), model%warnings(0))
   end subroutine init_model
 
   !> After a card with errors: still open or close its step, or mark the step's procedure as
@@ -194,7 +214,7 @@ contains
     case ('MESH')
       call handle_mesh(card, model, diag)
     case ('SOLVER')
-      call handle_solver(card, model)
+      call handle_solver(card, model, diag)
     case ('RESTART')
       call handle_restart(card, model, diag)
     case ('MATERIAL')
@@ -219,6 +239,8 @@ contains
       call handle_surface_behavior(card, model, state, diag)
     case ('FRICTION')
       call handle_friction(card, model, state, diag)
+    case ('CHANGE FRICTION')
+      call handle_change_friction(card, model, state, diag)
     case ('CONTACT PAIR')
       call handle_contact_pair(card, model, diag)
     case ('TIE')
@@ -233,13 +255,16 @@ contains
       call handle_static(card, state, diag)
     case ('RMIN')
       call handle_rmin(card, state, diag)
+    case ('CONTROLS')
+      call diag%warn(card%loc, '*CONTROLS is ignored: it tunes CalculiX''s Newton iterations ' // &
+        'and increments; fcs3d''s follow its R-minimum step control (*RMIN sets its limits)')
     case ('END STEP')
       call handle_end_step(card, state, diag)
     case ('BOUNDARY')
       call handle_boundary(card, model, state, diag)
     case ('CLOAD')
       call handle_cload(card, model, state, diag)
-    case ('DSLOAD')
+    case ('DSLOAD', 'DLOAD')
       call handle_dsload(card, model, state, diag)
     case ('HISTORY')
       call handle_history(card, model, diag)
@@ -297,12 +322,22 @@ contains
       if (len(spec%data) == 0 .and. card%n_lines > 0) then
         call diag%report(card%lines(1)%loc, '*' // card%keyword // ' takes no data lines ' // &
                          '(is a "*" missing at the start of the next keyword line?)')
-      else if (spec%data_required .and. card%n_lines == 0) then
+      else if (spec%data_required .and. card%n_lines == 0 .and. .not. removes_all(card)) then
         call diag%report(card%loc, '*' // card%keyword // ': missing data lines: ' // spec%data)
       end if
     end associate
     ok = diag%count == n_before
   end function valid_card
+
+  !> True for a card with OP=NEW (*BOUNDARY, *CLOAD, *DSLOAD): without data lines it removes
+  !> every earlier condition of its kind, as in CalculiX.
+  pure logical function removes_all(card)
+    type(card_t), intent(in) :: card
+    integer :: k
+    k = card%find_param('OP')
+    removes_all = .false.
+    if (k > 0) removes_all = card%params(k)%value == 'NEW'
+  end function removes_all
 
   !> Check each given parameter and add defaults of the absent ones.
   subroutine check_params(card, spec, diag)
@@ -317,6 +352,12 @@ contains
       if (j == 0) then
         call diag%report(card%loc, '*' // card%keyword // ': unknown parameter "' // &
                          card%params(i)%name // '"; ' // expected_params(spec))
+        cycle
+      end if
+      card%params(i)%name = spec%params(j)%name
+      if (spec%params(j)%kind == PARAM_IGNORED) then
+        call diag%warn(card%loc, '*' // card%keyword // ': ' // card%params(i)%name // ' is ' // &
+                       spec%params(j)%description)
         cycle
       end if
       call check_param_value(card, card%params(i), spec%params(j), diag)
@@ -362,7 +403,10 @@ contains
     case (PARAM_CHOICE)
       param%value = to_upper(param%value)
       do i = 1, size(spec%choices)
-        if (spec%choices(i)%s == param%value) return
+        if (same_name(spec%choices(i)%s, param%value)) then
+          param%value = spec%choices(i)%s
+          return
+        end if
       end do
       call diag%report(card%loc, prefix // '=' // param%value // ' is not valid; expected ' // &
                        join_strings(spec%choices, ', ') // '. ' // spec%description)
@@ -423,34 +467,52 @@ contains
     end if
   end function unknown_keyword_message
 
-  !> Why a keyword of CalculiX/Abaqus is refused ('' when it is simply unknown).
+  !> Why a keyword of CalculiX/Abaqus is refused ('' when it is simply unknown). Names are
+  !> compared as CalculiX compares them (`same_name`: *RIGIDBODY is *RIGID BODY).
   function unsupported_keyword_reason(keyword) result(reason)
     character(len=*), intent(in) :: keyword
     character(len=:), allocatable :: reason
-    select case (keyword)
-    case ('DYNAMIC', 'MODAL DYNAMIC', 'FREQUENCY', 'BUCKLE', 'HEAT TRANSFER', 'VISCO', &
-          'COUPLED TEMPERATURE-DISPLACEMENT', 'UNCOUPLED TEMPERATURE-DISPLACEMENT', &
-          'STEADY STATE DYNAMICS', 'GREEN', 'SENSITIVITY', 'COMPLEX FREQUENCY', 'ELECTROMAGNETICS')
+    if (is_one_of(keyword, [character(len=34) :: 'DYNAMIC', 'MODAL DYNAMIC', 'FREQUENCY', &
+        'BUCKLE', 'HEAT TRANSFER', 'VISCO', 'COUPLED TEMPERATURE-DISPLACEMENT', &
+        'UNCOUPLED TEMPERATURE-DISPLACEMENT', 'STEADY STATE DYNAMICS', 'GREEN', 'SENSITIVITY', &
+        'COMPLEX FREQUENCY', 'ELECTROMAGNETICS'])) then
       reason = 'fcs3d solves quasi-static problems with its static-explicit stepper only (*STATIC)'
-    case ('SHELL SECTION', 'BEAM SECTION', 'MEMBRANE SECTION', 'SPRING', 'DASHPOT', 'MASS', &
-          'USER ELEMENT', 'GAP')
+    else if (is_one_of(keyword, [character(len=34) :: 'SHELL SECTION', 'BEAM SECTION', &
+             'MEMBRANE SECTION', 'SPRING', 'DASHPOT', 'MASS', 'USER ELEMENT', 'GAP'])) then
       reason = 'fcs3d has 8-node hexahedra (C3D8) only'
-    case ('EQUATION', 'MPC', 'RIGID BODY', 'COUPLING', 'DISTRIBUTING', 'KINEMATIC', 'TRANSFORM')
+    else if (is_one_of(keyword, [character(len=34) :: 'EQUATION', 'MPC', 'RIGID BODY', &
+             'COUPLING', 'DISTRIBUTING', 'KINEMATIC', 'TRANSFORM', 'CYCLIC SYMMETRY MODEL'])) then
       reason = 'constraints other than *BOUNDARY are not available yet'
-    case ('ORIENTATION', 'EXPANSION', 'CONDUCTIVITY', 'SPECIFIC HEAT', 'HYPERELASTIC', &
-          'HYPERFOAM', 'CREEP', 'USER MATERIAL', 'DEFORMATION PLASTICITY', 'RATE DEPENDENT', &
-          'CAP PLASTICITY', 'MOHR COULOMB', 'DRUCKER PRAGER CREEP')
+    else if (is_one_of(keyword, [character(len=34) :: 'ORIENTATION', 'EXPANSION', &
+             'CONDUCTIVITY', 'SPECIFIC HEAT', 'HYPERELASTIC', 'HYPERFOAM', 'CREEP', &
+             'USER MATERIAL', 'DEFORMATION PLASTICITY', 'RATE DEPENDENT', 'CAP PLASTICITY', &
+             'MOHR COULOMB', 'DRUCKER PRAGER CREEP'])) then
       reason = 'materials are isotropic hypoelastic (*ELASTIC), with von Mises (*PLASTIC) or ' // &
                'linear Drucker-Prager (*DRUCKER PRAGER) plasticity'
-    case ('INITIAL CONDITIONS', 'TEMPERATURE', 'DLOAD', 'CFLUX', 'DFLUX', 'FILM', 'RADIATE')
+    else if (is_one_of(keyword, [character(len=34) :: 'INITIAL CONDITIONS', 'TEMPERATURE', &
+             'CFLUX', 'DFLUX', 'FILM', 'RADIATE'])) then
       reason = 'this load or initial condition is not available yet'
-    case ('NODE OUTPUT', 'ELEMENT OUTPUT', 'OUTPUT', 'CONTACT OUTPUT', 'SECTION PRINT', &
-          'FACE PRINT')
+    else if (is_one_of(keyword, [character(len=34) :: 'CHANGE SURFACE BEHAVIOR', &
+             'CHANGE CONTACT TYPE'])) then
+      reason = 'changing a contact interaction between steps is not available yet, except ' // &
+               'its Coulomb friction (*CHANGE FRICTION)'
+    else if (is_one_of(keyword, [character(len=34) :: 'NODE OUTPUT', 'ELEMENT OUTPUT', &
+             'OUTPUT', 'CONTACT OUTPUT', 'SECTION PRINT', 'FACE PRINT'])) then
       reason = 'use *NODE PRINT / *EL PRINT (text) or *NODE FILE / *EL FILE (results file)'
-    case default
+    else
       reason = ''
-    end select
+    end if
   end function unsupported_keyword_reason
+
+  !> True when `keyword` is one of `names` (compared as `same_name`).
+  pure logical function is_one_of(keyword, names)
+    character(len=*), intent(in) :: keyword, names(:)
+    integer :: i
+    is_one_of = .false.
+    do i = 1, size(names)
+      if (same_name(keyword, trim(names(i)))) is_one_of = .true.
+    end do
+  end function is_one_of
 
   !> Levenshtein distance between two short strings.
   pure integer function edit_distance(a, b) result(d)

@@ -4,7 +4,8 @@ module fcs_command_line
   use fcs_error, only: error_t, input_error
   use fcs_run_options, only: run_options_t
   use fcs_solver_factory, only: LINEAR_SOLVER_NAMES
-  use fcs_strings, only: to_upper, basename, path_stem, join_path
+  use fcs_kinds, only: dp
+  use fcs_strings, only: to_upper, basename, path_stem, join_path, parse_real
   use fcs_version, only: FCS3D_IDENTITY
   use fcs_files, only: directory_exists
   implicit none
@@ -53,7 +54,7 @@ contains
         options%check_only = .true.
       case ('-q', '--quiet')
         options%quiet = .true.
-      case ('--solver', '--restart', '-o', '--output-dir')
+      case ('--solver', '--restart', '-o', '--output-dir', '--reuse-tolerance')
         if (i == n) then
           call input_error(err, 'option ' // arg // ' needs a value (fcs3d --help)')
           return
@@ -74,6 +75,9 @@ contains
           end if
         case ('--restart')
           options%restart_file = argument(i)
+        case ('--reuse-tolerance')
+          call parse_reuse_tolerance(argument(i), options, err)
+          if (allocated(err)) return
         case default
           output_dir = argument(i)
         end select
@@ -118,10 +122,28 @@ contains
       text = 'UMFPACK, SKYLINE or MUMPS'
     case ('--restart')
       text = 'the checkpoint to continue from, e.g. job.rst.h5; without --restart the run starts afresh'
+    case ('--reuse-tolerance')
+      text = 'a number in [0, 1e-3], e.g. 1e-10 (0: factorise every tangent)'
     case default
       text = 'an existing directory for the output files; without -o they go next to the deck'
     end select
   end function option_value_text
+
+  !> --reuse-tolerance VALUE: a relative residual in [0, 1e-3] (as *SOLVER, REUSE TOLERANCE).
+  subroutine parse_reuse_tolerance(text, options, err)
+    character(len=*), intent(in) :: text
+    type(run_options_t), intent(inout) :: options
+    type(error_t), allocatable, intent(out) :: err
+    real(dp) :: value
+    logical :: ok
+    call parse_real(text, value, ok)
+    if (.not. ok .or. .not. (value >= 0.0_dp .and. value <= 1.0e-3_dp)) then
+      call input_error(err, '--reuse-tolerance ' // text // ': expected ' // &
+                       option_value_text('--reuse-tolerance'))
+      return
+    end if
+    options%reuse_tolerance = value
+  end subroutine parse_reuse_tolerance
 
   subroutine print_keywords(markdown)
     use fcs_keyword_docs, only: print_keyword_list, print_keyword_reference
@@ -162,6 +184,10 @@ contains
       '  --solver NAME         linear solver: UMFPACK (default; MUMPS in a parallel run), SKYLINE', &
       '                        or MUMPS', &
       '  --restart FILE        continue from a checkpoint (job.rst.h5)', &
+      '  --reuse-tolerance TOL', &
+      '                        relative residual of a tangent solved by GMRES with the factors', &
+      '                        of an earlier one (default 0: factorise every tangent; 1e-10', &
+      '                        recommended when on); overrides *SOLVER, REUSE TOLERANCE', &
       '  -o, --output-dir DIR  write the output files into DIR (which must exist)', &
       '  -q, --quiet           no progress on the terminal (warnings and errors still shown)', &
       '', &

@@ -19,8 +19,10 @@ module fcs_driver
   use fcs_mumps, only: mumps_solver_t
   use fcs_solver_factory, only: create_linear_solver
   use fcs_linear_solver, only: solver_stats_t
+  use fcs_factor_reuse, only: reuse_settings_t
   use fcs_results, only: results_file_t, GRID_POINTS
   use fcs_contact_system, only: pair_totals_t
+  use fcs_contact_friction_change, only: apply_friction_changes
   use fcs_dat_output, only: dat_file_t
   use fcs_echo, only: write_echo
   use fcs_log, only: logger_t, format_duration
@@ -140,12 +142,17 @@ contains
     real(dp), intent(in) :: t_start
     character(len=*), intent(in) :: memory_note
     type(error_t), allocatable, intent(out) :: err
+    integer :: i
     call start_log(options, run, memory_note, err)
     if (allocated(err)) return
     call set_activity('reading the deck ' // options%deck_path)
     call build_model(options%deck_path, model, deck, err)
     if (allocated(err)) return
+    do i = 1, size(model%warnings)
+      call run%log%warn(model%warnings(i)%s)
+    end do
     if (len(options%solver) > 0) model%solver_name = to_upper(options%solver)
+    if (options%reuse_tolerance >= 0.0_dp) model%reuse_tolerance = options%reuse_tolerance
     if (run%analysis%comm%size > 1 .and. len(options%solver) == 0 .and. .not. model%solver_chosen) &
       model%solver_name = 'MUMPS'
     if (run%writer) call write_echo(options%job // '.echo', deck, model, err)
@@ -227,6 +234,7 @@ contains
       call create_linear_solver(model%solver_name, a%solver, err)
       if (allocated(err)) return
       a%solver%node_id = model%mesh%node_id(1:model%mesh%n_nodes)
+      call a%reuse%init(reuse_settings_t(tolerance=model%reuse_tolerance), a%comm)
       select type (solver => a%solver)
       type is (mumps_solver_t)
         call solver%set_comm(a%comm)
@@ -528,8 +536,8 @@ contains
     associate (state => run%analysis%state)
       do while (state%step <= size(model%steps))
         k = state%step
-        call begin_step(run, model, k)
-        call run_increments(run, model, k, err)
+        call begin_step(run, model, k, err)
+        if (.not. allocated(err)) call run_increments(run, model, k, err)
         if (allocated(err)) return
         state%step_time = model%steps(k)%period
         call sample_histories(run, model, .true., err)
@@ -631,12 +639,17 @@ contains
     call run%log%detail(err%message)
   end subroutine stop_on_signal
 
-  subroutine begin_step(run, model, k)
+  subroutine begin_step(run, model, k, err)
     type(run_t), intent(inout) :: run
     type(model_t), intent(in) :: model
     integer, intent(in) :: k
+    type(error_t), allocatable, intent(out) :: err
     associate (state => run%analysis%state)
       call build_step_loading(model, k, state%time - state%step_time, run%analysis%loading)
+      ! *CHANGE FRICTION of this and the earlier steps (again when resuming within the step).
+      if (run%analysis%contact%n_slaves() > 0) call apply_friction_changes(run%analysis%contact, &
+        model, k, state%contact, err)
+      if (allocated(err)) return
       if (state%step_time == 0.0_dp) then
         state%step_start_u = state%u
         state%step_increment = 0
@@ -671,6 +684,7 @@ contains
         trim(merge(' (floor)', '        ', record%floored)) // ' events ' // &
         str(record%n_events_taken) // optional_count(' switches ', record%n_switches) // &
         optional_count(' iterations ', record%iterations) // optional_count(' cuts ', record%cuts) // &
+        optional_count(' krylov ', record%krylov_iterations) // &
         ' residual ' // str(record%residual_ratio) // trim(merge(' (carried)', '          ', record%carried))
       call run%log%detail(trim(line))
       call run%log%progress('time ' // str(state%time) // ' of ' // str(run%total_time) // ', inc ' // &
@@ -964,6 +978,7 @@ contains
         call run%log%info('  ' // phases(i) // ': ' // format_duration(a%timers%total(trim(phases(i)))))
       end do
       call log_solver_stats(run, a%solver%stats)
+      call run%log%info('  ' // a%reuse%summary())
       call run%monitors%report_open_events(a, run%log)
     end associate
   end subroutine summary

@@ -1,5 +1,6 @@
 !> What the command line asks for: the deck, where results go, solver override, modes.
 module fcs_run_options
+  use fcs_kinds, only: dp
   implicit none
   private
   public :: run_options_t
@@ -13,6 +14,8 @@ module fcs_run_options
     character(len=:), allocatable :: solver
     !> Checkpoint to restart from ('' = start from the beginning).
     character(len=:), allocatable :: restart_file
+    !> *SOLVER, REUSE TOLERANCE given on the command line (negative: the deck's).
+    real(dp) :: reuse_tolerance = -1.0_dp
     logical :: quiet = .false.
     logical :: check_only = .false.
   end type run_options_t

@@ -10,12 +10,13 @@
 !>      event happens (yield, contact, stick/slip ...) and the strain and rotation limits;
 !>   4. scale the increment by r_min and update stresses (Hughes-Winget), geometry and time.
 module fcs_static_explicit
-  use fcs_kinds, only: dp
+  use fcs_kinds, only: dp, i8
   use fcs_error, only: error_t, fatal_error
   use fcs_model, only: model_t, step_t
   use fcs_state, only: state_t
   use fcs_sparse, only: sparse_matrix_t
   use fcs_linear_solver, only: linear_solver_t
+  use fcs_factor_reuse, only: factor_reuse_t
   use fcs_mumps, only: mumps_solver_t
   use fcs_metis_order, only: metis_equation_order
   use fcs_loading, only: step_loading_t
@@ -54,6 +55,8 @@ module fcs_static_explicit
     !> not converge.
     integer :: iterations = 0
     integer :: cuts = 0
+    !> GMRES iterations of the increment's solves with reused factors (fcs_factor_reuse).
+    integer :: krylov_iterations = 0
     !> Out-of-balance force left at the end of the increment: its ratio to the force scale,
     !> and where it is largest (node index, direction 1..3).
     real(dp) :: residual_ratio = 0.0_dp
@@ -84,6 +87,8 @@ module fcs_static_explicit
     logical :: materials_have_states = .false.
     type(sparse_matrix_t) :: matrix
     class(linear_solver_t), allocatable :: solver
+    !> Reuse of the solver's factors across tangents (GMRES preconditioned by them).
+    type(factor_reuse_t) :: reuse
     type(step_loading_t) :: loading
     real(dp), allocatable :: f_int(:), f_ext0(:), f_ext1(:), rhs(:), du(:), prescribed(:)
     !> The two parts of the trial solution: du_load for the load increment over the trial
@@ -130,6 +135,8 @@ contains
     type(state_t) :: start
     real(dp) :: t0, dt, r
     logical :: limited_by_friction, converged
+    integer(i8) :: krylov_before
+    krylov_before = a%reuse%stats%krylov_iterations
     associate (step => model%steps(a%state%step))
       call trial_time_increment(a, step, t0, dt, limited_by_friction)
       record%trial_increment = dt
@@ -185,6 +192,7 @@ contains
       end do
       record%r = r
       record%n_events_taken = count_taken(a, r)
+      record%krylov_iterations = int(a%reuse%stats%krylov_iterations - krylov_before)
       a%state%residual_norm = record%residual_ratio
       a%state%increment = a%state%increment + 1
       a%state%force_scale = a%state%force_scale + (record%force_scale - a%state%force_scale) / &
@@ -485,14 +493,8 @@ contains
     a%correction = 0.0_dp
     call constrain_system(a, a%correction)
     a%rhs = merge(0.0_dp, residual, a%constrained)
-    call a%timers%start('factorisation')
-    call a%solver%factor(a%matrix, err)
-    call a%timers%stop('factorisation')
-    if (.not. allocated(err)) then
-      call a%timers%start('solve')
-      call a%solver%solve(a%matrix, a%rhs, a%correction, err)
-      call a%timers%stop('solve')
-    end if
+    call a%reuse%prepare(a%solver, a%matrix, a%timers, err)
+    if (.not. allocated(err)) call a%reuse%solve(a%solver, a%matrix, a%rhs, a%correction, a%timers, err)
     if (.not. allocated(err)) call check_finite(a%correction, model%mesh%node_id, err)
     call a%comm%agree_error(err)
   end subroutine correction
@@ -832,20 +834,20 @@ contains
     end do
   end subroutine prescribed_increments
 
-  !> Factorise once and solve for both parts of the trial increment; a non-finite solution is
-  !> an error.
+  !> Factorise once (or reuse the factors, `fcs_factor_reuse`) and solve for both parts of the
+  !> trial increment; a non-finite solution is an error. With reused factors the out-of-balance
+  !> part, which is added to the load part, is solved to the tolerance relative to the load
+  !> part's right-hand side.
   subroutine solve_system(a, node_id, err)
     type(analysis_t), intent(inout) :: a
     integer, intent(in) :: node_id(:)
     type(error_t), allocatable, intent(out) :: err
-    call a%timers%start('factorisation')
-    call a%solver%factor(a%matrix, err)
-    call a%timers%stop('factorisation')
+    call a%reuse%prepare(a%solver, a%matrix, a%timers, err)
     if (allocated(err)) return
-    call a%timers%start('solve')
-    call a%solver%solve(a%matrix, a%rhs, a%du_load, err)
-    if (.not. allocated(err)) call a%solver%solve(a%matrix, a%rhs_residual, a%du_residual, err)
-    call a%timers%stop('solve')
+    call a%reuse%solve(a%solver, a%matrix, a%rhs, a%du_load, a%timers, err)
+    if (.not. allocated(err)) &
+      call a%reuse%solve(a%solver, a%matrix, a%rhs_residual, a%du_residual, a%timers, err, &
+                         reference_norm=norm2(a%rhs))
     if (allocated(err)) return
     call check_finite(a%du_load, node_id, err)
     if (.not. allocated(err)) call check_finite(a%du_residual, node_id, err)

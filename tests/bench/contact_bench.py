@@ -5,6 +5,7 @@ tests/bench/run_bench.sh).
 Usage: contact_bench.py --fcs3d BIN [--fcs3d-mpi BIN] [--sizes 13,24,35] [--work DIR]
                         [--threads 2] [--ranks 2] [--timeout 3600] [--skyline-limit 30000]
                         [--markdown FILE] [--skip 'ccx@35,...'] [--no-estimate]
+                        [--solvers UMFPACK,MUMPS] [--reuse 0,1e-10]
 
 For each size N, the deck of tests/bench/contact_deck.py (a block of N x N x (N+1)//2 C3D8
 pressed on a larger block with a non-matching mesh, then pushed sideways until it slides
@@ -43,6 +44,12 @@ Figures per run:
   T vs ccx              (T - T_ccx) / T_ccx, against ccx on the same deck.
   ratios                ccx (same deck) divided by the row's figure: above 1, the row is faster
                         (smaller) than CalculiX.
+--reuse 0,1e-10 runs every fcs3d row once per factorisation-reuse tolerance (--reuse-tolerance
+of fcs3d; 0: factorise every tangent), labelled "reuse off" / "reuse 1e-10", one after the
+other in the same script run; without it fcs3d runs with its default. After the table, the
+"factorisation reuse" line of each fcs3d log (solves, GMRES iterations, factorisations) is
+printed. --solvers limits the fcs3d solvers (default: SKYLINE up to --skyline-limit, UMFPACK,
+MUMPS).
 Runs that exceed --timeout are stopped with SIGINT (fcs3d writes a checkpoint and exits; ccx
 stops); their row keeps the increments done, the time reached and the time per increment, and
 has no time to the final load. Memory guard as in tests/bench/bench.py: every run is limited to
@@ -180,13 +187,22 @@ def fill_common(row, result, time_file, outdir, job):
         row["force"], row["normal"] = forces[1], forces[2]
 
 
-def run_fcs3d(binary, deck, solver, workdir, env, timeout, limit_mib, ranks=None):
-    label = f"fcs3d {solver}" + (f" {ranks} ranks" if ranks else "")
-    outdir = os.path.join(workdir, label.split(" ", 1)[1].replace(" ", "_").lower())
+def reuse_label(tolerance):
+    """', reuse off' / ', reuse 1e-10' for a --reuse-tolerance, '' for fcs3d's default."""
+    if tolerance is None:
+        return ""
+    return ", reuse off" if float(tolerance) == 0.0 else f", reuse {tolerance}"
+
+
+def run_fcs3d(binary, deck, solver, workdir, env, timeout, limit_mib, ranks=None, reuse=None):
+    label = f"fcs3d {solver}" + (f" {ranks} ranks" if ranks else "") + reuse_label(reuse)
+    outdir = os.path.join(workdir, re.sub(r"[^a-z0-9.-]+", "_", label.split(" ", 1)[1].lower()))
     os.makedirs(outdir, exist_ok=True)
     job = os.path.splitext(os.path.basename(deck))[0]
     time_file = os.path.join(outdir, "time.txt")
     command = [binary, "-q", "--solver", solver, "-o", outdir, deck]
+    if reuse is not None:
+        command[2:2] = ["--reuse-tolerance", str(reuse)]
     rank_name = None
     if ranks:
         command = ["mpirun", "--oversubscribe", "-np", str(ranks)] + command
@@ -211,6 +227,9 @@ def run_fcs3d(binary, deck, solver, workdir, env, timeout, limit_mib, ranks=None
         row["increments"], row["time"] = int(increments[-1][0]), float(increments[-1][1])
     if factorisations:
         row["factorisations"] = int(factorisations.group(1))
+    reuse_line = re.search(r"^\s*(factorisation reuse.*)$", text, re.M)
+    if reuse_line:
+        row["reuse"] = reuse_line.group(1)
     return row
 
 
@@ -334,7 +353,12 @@ def main():
     parser.add_argument("--no-estimate", action="store_true",
                         help="start every run, even when the scaled memory would not fit "
                              "(the memory limit still applies)")
+    parser.add_argument("--solvers", help="fcs3d solvers to run, e.g. 'UMFPACK,MUMPS' "
+                        "(default: SKYLINE up to --skyline-limit, UMFPACK, MUMPS)")
+    parser.add_argument("--reuse", help="factorisation-reuse tolerances: each fcs3d run once "
+                        "per value, e.g. '0,1e-10' (0: off); default: fcs3d's own default")
     args = parser.parse_args()
+    tolerances = [t.strip() for t in args.reuse.split(",")] if args.reuse else [None]
     skip = {item.strip() for item in args.skip.split(",") if item.strip()}
     threads = str(args.threads)
     env = dict(os.environ, OMP_NUM_THREADS=threads, OPENBLAS_NUM_THREADS=threads,
@@ -376,9 +400,13 @@ def main():
             results.setdefault(program, []).append((dofs, row))
         return row
 
+    reuse_notes = []
+
     def emit(dofs, row, reference):
         lines.append(table_row(dofs, row, reference))
         print(lines[-1], flush=True)
+        if row.get("reuse"):
+            reuse_notes.append(f"- {dofs:,} DOF, {row['program']}: {row['reuse']}")
 
     for n in (int(s) for s in args.sizes.split(",")):
         dofs = contact_deck.dofs(n)
@@ -396,21 +424,30 @@ def main():
                  lambda: run_ccx(own, workdir, "ccx own increments", env, args.timeout,
                                  limit_mib))]
         solvers = (["SKYLINE"] if dofs <= args.skyline_limit else []) + ["UMFPACK", "MUMPS"]
-        runs += [(f"fcs3d {s}", lambda s=s: run_fcs3d(args.fcs3d, deck, s, workdir, env,
-                                                       args.timeout, limit_mib))
-                 for s in solvers]
+        if args.solvers:
+            solvers = [s.strip().upper() for s in args.solvers.split(",")]
+        runs += [(f"fcs3d {s}{reuse_label(t)}",
+                  lambda s=s, t=t: run_fcs3d(args.fcs3d, deck, s, workdir, env, args.timeout,
+                                             limit_mib, reuse=t))
+                 for s in solvers for t in tolerances]
         if args.fcs3d_mpi:
-            runs.append((f"fcs3d MUMPS {args.ranks} ranks",
-                         lambda: run_fcs3d(args.fcs3d_mpi, deck, "MUMPS", workdir, mpi_env,
-                                           args.timeout, limit_mib, ranks=args.ranks)))
+            runs += [(f"fcs3d MUMPS {args.ranks} ranks{reuse_label(t)}",
+                      lambda t=t: run_fcs3d(args.fcs3d_mpi, deck, "MUMPS", workdir, mpi_env,
+                                            args.timeout, limit_mib, ranks=args.ranks,
+                                            reuse=t))
+                     for t in tolerances]
         for program, run in runs:
             emit(dofs, attempt(program, n, dofs, run), reference)
+    if reuse_notes:
+        reuse_notes = ["", "Factorisation reuse (the summary line of each fcs3d log):", ""] + \
+            reuse_notes
+        print("\n".join(reuse_notes), flush=True)
     growth = ["", "Growth with size, cost ~ DOF^p (least squares on log-log; in brackets the "
               "number of sizes fitted):", ""] + growth_table(results)
     print("\n".join(growth), flush=True)
     if args.markdown:
         with open(args.markdown, "w") as handle:
-            handle.write("\n".join(notes + [""] + lines + growth) + "\n")
+            handle.write("\n".join(notes + [""] + lines + reuse_notes + growth) + "\n")
     return 0
 
 

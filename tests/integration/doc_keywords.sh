@@ -43,7 +43,7 @@ ALLOWED = {'KEYWORD', 'DYNAMIC', 'FRICTION', 'PLASTIC', 'EQUATION', 'COUPLING', 
            'CONDUCTIVITY', 'SPECIFIC HEAT', 'CHANGE FRICTION', 'MODEL CHANGE', 'NODAL THICKNESS',
            'MODAL DYNAMIC', 'STEADY STATE DYNAMICS', 'COMPLEX FREQUENCY', 'ELECTROMAGNETICS',
            'GREEN', 'SENSITIVITY', 'SUBSTRUCTURE GENERATE', 'NO ANALYSIS', 'CFD', 'TRANSFORM',
-           'UNCOUPLED TEMPERATURE-DISPLACEMENT'}
+           'UNCOUPLED TEMPERATURE-DISPLACEMENT', 'CHANGE SURFACE BEHAVIOR', 'CYCLIC SYMMETRY MODEL'}
 docs = [p for p in [os.path.join(root, 'README.md')] if os.path.exists(p)] + glob.glob(os.path.join(root, 'doc', '**', '*.md'),
                                                       recursive=True)
 for path in docs:

@@ -10,7 +10,7 @@ out=$("$FCS3D" --check -o . "$deck" 2>&1); status=$?
 fail=0
 [ "$status" -eq 2 ] || { echo "exit status $status, expected 2"; fail=1; }
 for expected in \
-  'multiple_errors.inp:12: *NODE: expected id, x, y, z; found 5 fields' \
+  'multiple_errors.inp:12: *NODE: coordinate z must be a number, not "2z"' \
   "multiple_errors.inp:21: *ELASTIC: Poisson's ratio must lie in (-1, 0.5)" \
   'multiple_errors.inp:26: *BOUNDARY: degrees of freedom must satisfy' \
   'multiple_errors.inp:29: *NODE PRINT: unknown parameter "FREQ"' \

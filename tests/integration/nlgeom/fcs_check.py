@@ -176,7 +176,7 @@ ELEMENT_LIMITS = ('strain-limit', 'rotation-limit', 'yield', 'plastic-strain-lim
 NUMBER = r'[-+0-9.Ee]+'
 INCREMENT_LINE = re.compile(
     r'^inc (\d+) step (\d+) time (%s) dt (%s) r (%s) limit (\S+)( element \d+ ip \d+| node \d+)?'
-    r'( \(floor\))? events (\d+)( switches \d+)?( iterations \d+)?( cuts \d+)? residual (%s)$'
+    r'( \(floor\))? events (\d+)( switches \d+)?( iterations \d+)?( cuts \d+)?(?: krylov \d+)? residual (%s)$'
     % (NUMBER, NUMBER, NUMBER, NUMBER))
 
 
