@@ -11,6 +11,13 @@
 !> the master), slip on the cone |f_t| = mu f_n (eqs. 3, 5), return mapping
 !> f^tr = f_old - E_t A du~ (eq. 5), f = mu f_n f^tr/|f^tr| when outside.
 !>
+!> Radiation damping (the quasi-dynamic approximation of Rice 1993, eq. 5; Rice & Ben-Zion
+!> 1996): a slipping node resists with its frictional strength plus eta A V, eta = G/(2 c_s)
+!> for one elastic material (fcs_model_checks), A its area and V its slip rate, so that the
+!> friction stress it can hold, tau = f - eta V in Rice's notation, is the strength f less the
+!> stress the radiated shear waves would carry away. It enters the return mapping (a viscous
+!> spring eta A / dt in parallel with the rate term) and the rate term of the tangent.
+!>
 !> `contact_linearise` gives the derivatives of every contact quantity with respect to the
 !> 15 nodal displacements on the current configuration: the gap, the natural coordinates of
 !> the contact point (delta xi = A^-1 [a.du~ + g n.delta a], A = m - g h: the metric and
@@ -54,6 +61,9 @@ module fcs_contact_element
     !> respect to the natural coordinates: the normal force is support * E_n A max(0, -g).
     real(dp) :: support = 1.0_dp
     real(dp) :: dsupport(2) = 0.0_dp
+    !> Radiation damping eta [stress time/length] (0: none): a slipping node resists with
+    !> mu f_n + eta A V.
+    real(dp) :: damping = 0.0_dp
   end type contact_params_t
 
   !> The state of one slave node at the start of an increment.
@@ -107,16 +117,17 @@ contains
   !> Linearisation of a closed (stick, slip or tied) contact node at the current state.
   !> x5(3,5): slave then the 4 master nodes; p: the contact point; gap: current gap; node:
   !> its state (normal force, friction components, status, |f^tr|); params: area, E_n, E_t;
-  !> fr: mu and its derivatives at the current state; dt: the time increment the rate term
-  !> of eq. (6) refers to (0: no rate term).
+  !> fr: mu and its derivatives at the current state (dmu/dV = 0 for a law with an explicit
+  !> rate); dt: the time increment the rate term of eq. (6) refers to (0: no rate term).
   !>
-  !> Slip (eqs. 5-6): along the slip direction eta the force is f_n mu(V), V = dlambda/dt
-  !> with dlambda the plastic slip, so with k_v = f_n dmu/dV / dt the consistent response is
-  !> d(f_n mu) = E_t A / (E_t A + k_v) [ (mu + f_n dmu/dp / A) df_n - k_v eta.ds ]
+  !> Slip (eqs. 5-6): along the slip direction eta the force is F = f_n mu(V) + eta_r A V
+  !> (eta_r the radiation damping), V = dlambda/dt with dlambda the plastic slip, so with
+  !> k_v = (f_n dmu/dV + eta_r A) / dt the consistent response is
+  !> dF = E_t A / (E_t A + k_v) [ (mu + f_n dmu/dp / A) df_n - k_v eta.ds ]
   !> (a spring E_t A in series with the rate term; k_v = 0 gives the rate-independent cone);
-  !> across eta the stiffness is mu f_n E_t A / |f^tr| (I - eta eta). The rate term is
+  !> across eta the stiffness is F E_t A / |f^tr| (I - eta eta). The rate term is
   !> linearised about the node's last slip rate V_old (node%slip_rate): a slip V_old dt keeps
-  !> mu, so the force of a slipping node is the predictor f_n mu - E_t A k_v/(E_t A + k_v)
+  !> F, so the force of a slipping node is the predictor F - E_t A k_v/(E_t A + k_v)
   !> V_old dt along eta.
   !>
   !> Within the equilibrium iterations of an increment the node's state is an iterate that has
@@ -134,7 +145,7 @@ contains
     type(contact_linear_t), intent(out) :: lin
     real(dp), intent(in), optional :: slip(3), shape_start(4)
     real(dp) :: dn(3, 15), de(3, 15, 2), eta(2), eta_vec(3), ft_vec(3), f(3), factor
-    real(dp) :: k_t, k_v, series, mu_eff, penetration, dtrial(3, 15)
+    real(dp) :: k_t, k_v, series, mu_eff, penetration, dtrial(3, 15), strength
     call contact_kinematics(p, gap, lin, dn, de)
     dtrial = trial_slip_derivative(p, lin%dslip, de, slip, shape_start)
     k_t = params%stick_stiffness * params%area
@@ -160,17 +171,19 @@ contains
     case (CONTACT_SLIP)
       eta = node%friction / norm2(node%friction)
       eta_vec = eta(1) * p%e(:, 1) + eta(2) * p%e(:, 2)
-      ! mu f_n / |f^tr| <= 1 on the cone; held there when the cone has moved since (explicit
-      ! rates, a new normal force).
-      factor = min(1.0_dp, fr%mu * node%normal_force / max(node%trial_norm, norm2(node%friction)))
+      ! The returned force F = mu f_n + eta_r A V_old; F / |f^tr| <= 1 on the cone; held there
+      ! when the cone has moved since (explicit rates, a new normal force).
+      strength = fr%mu * node%normal_force + params%damping * params%area * node%slip_rate
+      factor = min(1.0_dp, strength / max(node%trial_norm, norm2(node%friction)))
       k_v = 0.0_dp
-      if (dt > 0.0_dp) k_v = max(node%normal_force * fr%dmu_drate / dt, -MAX_WEAKENING * k_t)
+      if (dt > 0.0_dp) k_v = max((node%normal_force * fr%dmu_drate + params%damping * params%area) / dt, &
+                                 -MAX_WEAKENING * k_t)
       series = k_t / (k_t + k_v)
       mu_eff = fr%mu + node%normal_force * fr%dmu_dpressure / params%area
       lin%df = outer(eta_vec, series * (mu_eff * lin%dfn - k_v * matmul(eta_vec, dtrial))) &
                - factor * k_t * matmul(identity3() - outer3(p%normal, p%normal) &
                                        - outer3(eta_vec, eta_vec), dtrial) &
-               + fr%mu * node%normal_force * (eta(1) * de(:, :, 1) + eta(2) * de(:, :, 2))
+               + strength * (eta(1) * de(:, :, 1) + eta(2) * de(:, :, 2))
       ! Linearised about V_old, not V = 0: the friction predicted for a slip s of the
       ! increment is f_n mu(V_old) + k_v (s - V_old dt) (in series with E_t A). Without the
       ! V_old dt term, steady sliding keeps an out-of-balance force f_n V dmu/dV (in series)
@@ -297,9 +310,9 @@ contains
   !> difference), the node's old state, the friction law. The elastic trial
   !> f^tr = f_old - E_t A ds is inside the cone |f| <= mu(p, 0, phi) f_n (stick) or is
   !> returned to it: the plastic slip dlambda solves
-  !>   |f^tr| - E_t A dlambda = f_n mu(p, dlambda/dt, phi(dlambda))
+  !>   |f^tr| - E_t A dlambda = f_n mu(p, dlambda/dt, phi(dlambda)) + eta_r A dlambda/dt
   !> (rate and state evaluated at the end of the increment, the state evolved over it at
-  !> the constant slip rate dlambda/dt; a rate-independent law gives dlambda directly).
+  !> the constant slip rate dlambda/dt, eta_r the radiation damping).
   !> Tied nodes keep a bilateral normal spring about their tied gap and never slip. Whether
   !> a node with zero normal force is open is decided by the caller (fcs_contact_system).
   pure function contact_update(p_new, gap_new, p_old_on_new, node, params, law, dt) result(out)
@@ -327,22 +340,26 @@ contains
     ! ever sees a compressive force.
     signed_force = params%support * params%normal_stiffness * params%area * (-gap_new)
     out%normal_force = max(0.0_dp, signed_force)
-    call friction_return(out, trial, k_t, params%area, law, node, dt)
+    call friction_return(out, trial, k_t, params%area, params%damping, law, node, dt)
     if (node%bilateral) out%normal_force = signed_force
   end function contact_update
 
   !> The friction part of the return mapping of a closed node with normal force
   !> out%normal_force (compressive): stick inside the cone of the static friction
-  !> mu(p, 0, phi), else the plastic slip of eq. (5) (explicit or implicit rate).
-  pure subroutine friction_return(out, trial, k_t, area, law, node, dt)
+  !> mu(p, 0, phi), else the plastic slip of eq. (5) (explicit or implicit rate), resisted by
+  !> the radiation damping eta_r A V (damping = eta_r [stress time/length]; Rice 1993).
+  pure subroutine friction_return(out, trial, k_t, area, damping, law, node, dt)
     type(contact_update_t), intent(inout) :: out
-    real(dp), intent(in) :: trial(2), k_t, area, dt
+    real(dp), intent(in) :: trial(2), k_t, area, damping, dt
     class(friction_law_t), intent(in) :: law
     type(contact_node_t), intent(in) :: node
-    real(dp) :: pressure, mu_static, state_static
+    real(dp) :: pressure, mu_static, state_static, k_damping
     pressure = out%normal_force / area
+    ! The damping force eta_r A dlambda/dt of a slip dlambda over dt: a viscous spring.
+    k_damping = 0.0_dp
+    if (dt > 0.0_dp) k_damping = damping * area / dt
     if (law%explicit_rate) then
-      call explicit_return(out, trial, pressure, k_t, law, node, dt)
+      call explicit_return(out, trial, pressure, k_t, k_damping, law, node, dt)
       return
     end if
     state_static = law%evolve_state(node%friction_state, 0.0_dp, max(dt, 0.0_dp))
@@ -355,20 +372,22 @@ contains
       return
     end if
     out%status = CONTACT_SLIP
-    call return_to_cone(out%trial_norm, out%normal_force, pressure, k_t, law, node%friction_state, &
-                        dt, out%plastic_slip, out%mu, out%friction_state)
-    out%friction = out%mu * out%normal_force * trial / out%trial_norm
+    call return_to_cone(out%trial_norm, out%normal_force, pressure, k_t, k_damping, law, &
+                        node%friction_state, dt, out%plastic_slip, out%mu, out%friction_state)
+    out%friction = (out%mu * out%normal_force + k_damping * out%plastic_slip) * trial / out%trial_norm
     if (dt > 0.0_dp) out%slip_rate = out%plastic_slip / dt
   end subroutine friction_return
 
   !> The return mapping of a law with an explicit rate: the cone is mu_e = mu(p, V_prev,
   !> phi_old), V_prev the slip rate of the previous increment (0 after stick), so that the
-  !> plastic slip is (|f^tr| - mu_e f_n) / (E_t A) as for Coulomb friction. The state evolves
+  !> plastic slip is (|f^tr| - mu_e f_n) / (E_t A + k_damping) as for Coulomb friction
+  !> (k_damping = eta_r A / dt, the radiation damping over the increment). The state evolves
   !> over the increment at the new rate. `mu` is mu_e for a slipping node (the force is
-  !> mu_e f_n) and the static mu(p, 0, phi) for a sticking one (the cone of its next increment).
-  pure subroutine explicit_return(out, trial, pressure, k_t, law, node, dt)
+  !> mu_e f_n + eta_r A V) and the static mu(p, 0, phi) for a sticking one (the cone of its
+  !> next increment).
+  pure subroutine explicit_return(out, trial, pressure, k_t, k_damping, law, node, dt)
     type(contact_update_t), intent(inout) :: out
-    real(dp), intent(in) :: trial(2), pressure, k_t, dt
+    real(dp), intent(in) :: trial(2), pressure, k_t, k_damping, dt
     class(friction_law_t), intent(in) :: law
     type(contact_node_t), intent(in) :: node
     real(dp) :: mu_e
@@ -381,22 +400,24 @@ contains
       return
     end if
     out%status = CONTACT_SLIP
-    out%plastic_slip = (out%trial_norm - mu_e * out%normal_force) / k_t
+    out%plastic_slip = (out%trial_norm - mu_e * out%normal_force) / (k_t + k_damping)
     out%mu = mu_e
-    out%friction = mu_e * out%normal_force * trial / out%trial_norm
+    out%friction = (mu_e * out%normal_force + k_damping * out%plastic_slip) * trial / out%trial_norm
     if (dt > 0.0_dp) out%slip_rate = out%plastic_slip / dt
     out%friction_state = law%evolve_state(node%friction_state, out%slip_rate, max(dt, 0.0_dp))
   end subroutine explicit_return
 
   !> Plastic slip of a slipping node: the smallest root in (0, |f^tr|/k_t] of
-  !> g(l) = |f^tr| - k_t l - f_n mu(p, l/dt, phi(l)), by the Illinois variant of regula
-  !> falsi (g(0) > 0 > g(|f^tr|/k_t) bracket a root; no derivatives of the state update are
-  !> needed). With dt = 0 the rate is taken as zero. g may have three roots (rate-and-state:
+  !> g(l) = |f^tr| - (k_t + k_damping) l - f_n mu(p, l/dt, phi(l)) (k_damping = eta_r A / dt,
+  !> the radiation damping), by the Illinois variant of regula falsi (g(0) > 0 > g(|f^tr|/k_t)
+  !> bracket a root; no derivatives of the state update are needed). With dt = 0 the rate is
+  !> taken as zero. g may have three roots (rate-and-state:
   !> the direct effect raises mu with l, the state evolution then lowers it); the smallest is
   !> the one the slip reaches continuously as the trial force grows from the cone, so it is
   !> bracketed first by marching up from a negligible slip in factors of 2.
-  pure subroutine return_to_cone(trial_norm, fn, pressure, k_t, law, state_old, dt, slip, mu, state)
-    real(dp), intent(in) :: trial_norm, fn, pressure, k_t, state_old, dt
+  pure subroutine return_to_cone(trial_norm, fn, pressure, k_t, k_damping, law, state_old, dt, &
+                                 slip, mu, state)
+    real(dp), intent(in) :: trial_norm, fn, pressure, k_t, k_damping, state_old, dt
     class(friction_law_t), intent(in) :: law
     real(dp), intent(out) :: slip, mu, state
     real(dp) :: lo, hi, g_lo, g_hi, x, g
@@ -445,7 +466,7 @@ contains
       real(dp), intent(in) :: l
       real(dp) :: m, st
       call evaluate(l, m, st)
-      residual = trial_norm - k_t * l - fn * m
+      residual = trial_norm - (k_t + k_damping) * l - fn * m
     end function residual
     pure subroutine evaluate(l, m, st)
       real(dp), intent(in) :: l

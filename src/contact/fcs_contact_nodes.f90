@@ -43,6 +43,7 @@ contains
     params%area = this%area(s)
     params%normal_stiffness = this%pairs(this%slave_pair(s))%normal_stiffness
     params%stick_stiffness = this%pairs(this%slave_pair(s))%stick_stiffness
+    params%damping = this%pairs(this%slave_pair(s))%radiation_damping
     if (present(face) .and. present(xi)) call edge_support(xi, &
       this%pairs(this%slave_pair(s))%free_edge(:, face), params%support, params%dsupport)
   end procedure params_of
@@ -53,7 +54,7 @@ contains
     type(friction_derivatives_t) :: fr
     type(contact_node_t) :: node
     type(contact_params_t) :: params
-    real(dp) :: x5(3, 5), dt_rate
+    real(dp) :: x5(3, 5)
     integer :: start_face
     associate (pair => this%pairs(this%slave_pair(s)))
       x5(:, 1) = x(:, this%slave_node(s))
@@ -65,20 +66,21 @@ contains
       node = node_of(cstate, s, cstate%status(s))
       node%bilateral = hold_mode(this, s) == HOLD_CLOSED
       params = params_of(this, s, cstate%face(s), cstate%xi(:, s))
-      ! An explicit rate is known at the start of the increment: no rate term in the tangent.
-      dt_rate = merge(0.0_dp, dt, pair%law%explicit_rate)
+      ! An explicit rate is known at the start of the increment: no dmu/dV in the tangent (its
+      ! rate term is then the radiation damping's alone, 0 without damping).
+      if (pair%law%explicit_rate) fr%dmu_drate = 0.0_dp
       start_face = 0
       if (this%holding) start_face = this%start_face(s)
       if (start_face == 0) then
-        call contact_linearise(x5, p, cstate%gap(s), node, params, fr, dt_rate, lin)
+        call contact_linearise(x5, p, cstate%gap(s), node, params, fr, dt, lin)
       else
         ! An iterate of the equilibrium iterations: it has slipped since the start point.
         p_start = segment_point(x(:, pair%face_nodes(:, start_face)), this%start_xi(:, s))
         if (start_face == cstate%face(s)) then
-          call contact_linearise(x5, p, cstate%gap(s), node, params, fr, dt_rate, lin, &
+          call contact_linearise(x5, p, cstate%gap(s), node, params, fr, dt, lin, &
                                  p%x - p_start%x, p_start%shape)
         else
-          call contact_linearise(x5, p, cstate%gap(s), node, params, fr, dt_rate, lin, &
+          call contact_linearise(x5, p, cstate%gap(s), node, params, fr, dt, lin, &
                                  p%x - p_start%x)
         end if
       end if

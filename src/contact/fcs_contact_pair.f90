@@ -38,6 +38,8 @@ module fcs_contact_pair
     !> Mean thickness h of the master elements and the modulus E the defaults come from.
     real(dp) :: master_thickness = 0.0_dp
     real(dp) :: master_modulus = 0.0_dp
+    !> Resolved radiation damping eta [stress time/length] of this pair (0: none).
+    real(dp) :: radiation_damping = 0.0_dp
     type(source_loc_t) :: loc
   end type contact_pair_def_t
 
@@ -46,6 +48,8 @@ module fcs_contact_pair
     logical :: tied = .false.
     real(dp) :: normal_stiffness = 0.0_dp
     real(dp) :: stick_stiffness = 0.0_dp
+    !> Radiation damping eta [stress time/length] of the pair (0: none).
+    real(dp) :: radiation_damping = 0.0_dp
     !> Mean master face size; search reach for open nodes; tie position tolerance.
     real(dp) :: face_size = 0.0_dp
     real(dp) :: reach = 0.0_dp
@@ -85,6 +89,7 @@ contains
     pair%normal_stiffness = def%normal_stiffness
     pair%stick_stiffness = def%stick_stiffness
     pair%position_tolerance = def%position_tolerance
+    pair%radiation_damping = def%radiation_damping
     associate (surface => mesh%surfaces(def%master_surface))
       nf = size(surface%element)
       allocate (pair%face_nodes(4, nf))

@@ -119,9 +119,11 @@ module fcs_contact_system
     type(tie_set_t) :: ties
     real(dp), allocatable :: reference(:, :)
     !> Largest changes over the last increment at nodes slipping before and after it: of
-    !> ln V, of mu and of ln(state), and the node where each happened.
-    real(dp) :: change(3) = 0.0_dp
-    integer :: change_node(3) = 0
+    !> ln V, of mu and of ln(state); and the largest slip of the increment over the law's
+    !> characteristic slip L at any slipping node (rate-and-state laws); and the node where
+    !> each happened.
+    real(dp) :: change(4) = 0.0_dp
+    integer :: change_node(4) = 0
   contains
     procedure :: init => system_init
     procedure :: n_slaves => system_n_slaves
@@ -846,11 +848,12 @@ contains
   end function system_needs_pattern
 
   !> The largest changes over the last increment at nodes slipping before and after it, of
-  !> ln V, of mu and of the friction law's state measure (0: none), and the node of each.
+  !> ln V, of mu and of the friction law's state measure, and the largest slip of a slipping
+  !> node over its law's characteristic slip L (0: none), and the node of each.
   pure subroutine system_friction_changes(this, change, node)
     class(contact_system_t), intent(in) :: this
-    real(dp), intent(out) :: change(3)
-    integer, intent(out) :: node(3)
+    real(dp), intent(out) :: change(4)
+    integer, intent(out) :: node(4)
     change = this%change
     node = this%change_node
   end subroutine system_friction_changes

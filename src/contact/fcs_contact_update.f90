@@ -46,6 +46,7 @@ contains
       end if
       if (was_slipping .and. cstate%status(s) == CONTACT_SLIP .and. cstate%slip_rate(s) > 0.0_dp) &
         call record_friction_changes(this, s, old_rate, old_mu, old_state, cstate)
+      if (cstate%status(s) == CONTACT_SLIP) call record_slip_increment(this, s, cstate%slip_rate(s) * dt)
     end do
     call leave_to_twins(this, cstate)
   end procedure system_update
@@ -117,6 +118,22 @@ contains
                                     law%state_change(old_state, cstate%friction_state(s))])
     end associate
   end subroutine record_friction_changes
+
+  !> The slip of slipping node s over the increment in units of the characteristic slip L of
+  !> its law (rate-and-state laws; the R-minimum limit MAX SLIP INCREMENT: the next increment
+  !> is at most xi L / V_max, Lapusta et al. 2000).
+  subroutine record_slip_increment(this, s, slip)
+    type(contact_system_t), intent(inout) :: this
+    integer, intent(in) :: s
+    real(dp), intent(in) :: slip
+    real(dp) :: length
+    length = this%pairs(this%slave_pair(s))%law%characteristic_slip()
+    if (length <= 0.0_dp) return
+    if (slip / length > this%change(4)) then
+      this%change(4) = slip / length
+      this%change_node(4) = this%slave_node(s)
+    end if
+  end subroutine record_slip_increment
 
   !> Keep the largest changes of ln V, mu, ln(state) and where they happened.
   subroutine record_changes(this, s, changes)

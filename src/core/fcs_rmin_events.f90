@@ -12,7 +12,7 @@ module fcs_rmin_events
   public :: EVENT_YIELD, EVENT_CONTACT_CLOSE, EVENT_CONTACT_OPEN, EVENT_STICK_TO_SLIP
   public :: EVENT_SLIP_TO_STICK, EVENT_SEGMENT_CHANGE, EVENT_SLIP_RATE_CHANGE
   public :: EVENT_FRICTION_CHANGE, EVENT_STATE_CHANGE, EVENT_PENETRATION_LIMIT
-  public :: EVENT_PLASTIC_STRAIN_LIMIT
+  public :: EVENT_PLASTIC_STRAIN_LIMIT, EVENT_SLIP_INCREMENT
 
   !> Event kinds. FULL_INCREMENT: nothing limited the trial increment. STRAIN_LIMIT,
   !> ROTATION_LIMIT and PLASTIC_STRAIN_LIMIT are limits (never widened to near-simultaneous
@@ -21,7 +21,7 @@ module fcs_rmin_events
     EVENT_ROTATION_LIMIT = 3, EVENT_YIELD = 4, EVENT_CONTACT_CLOSE = 5, EVENT_CONTACT_OPEN = 6, &
     EVENT_STICK_TO_SLIP = 7, EVENT_SLIP_TO_STICK = 8, EVENT_SEGMENT_CHANGE = 9, &
     EVENT_SLIP_RATE_CHANGE = 10, EVENT_FRICTION_CHANGE = 11, EVENT_STATE_CHANGE = 12, &
-    EVENT_PENETRATION_LIMIT = 13, EVENT_PLASTIC_STRAIN_LIMIT = 14
+    EVENT_PENETRATION_LIMIT = 13, EVENT_PLASTIC_STRAIN_LIMIT = 14, EVENT_SLIP_INCREMENT = 15
 
   !> One event: its fraction r of the trial increment, kind, and the entity (element or node
   !> index) with a detail (integration point, contact pair).
@@ -171,6 +171,8 @@ contains
       name = 'penetration-limit'
     case (EVENT_PLASTIC_STRAIN_LIMIT)
       name = 'plastic-strain-limit'
+    case (EVENT_SLIP_INCREMENT)
+      name = 'slip-increment'
     case default
       name = 'none'
     end select

@@ -36,6 +36,7 @@ module fcs_friction_law
     procedure :: initial_state => friction_law_initial_state
     procedure :: evolve_state => friction_law_evolve_state
     procedure :: state_change => friction_law_state_change
+    procedure :: characteristic_slip => friction_law_characteristic_slip
     procedure :: rate_dependent => friction_law_rate_dependent
     procedure :: mu => friction_law_mu
   end type friction_law_t
@@ -93,6 +94,13 @@ contains
     real(dp), intent(in) :: old, new
     change = 0.0_dp
   end function friction_law_state_change
+
+  !> The slip over which the law's state follows a change of slip rate [length] (L = D_c of
+  !> the Dieterich-Ruina laws), for the R-minimum limit MAX SLIP INCREMENT; 0: none.
+  pure real(dp) function friction_law_characteristic_slip(this) result(length)
+    class(friction_law_t), intent(in) :: this
+    length = 0.0_dp
+  end function friction_law_characteristic_slip
 
   !> Whether mu depends on the slip rate (the R-minimum rate limits apply only then).
   pure logical function friction_law_rate_dependent(this)

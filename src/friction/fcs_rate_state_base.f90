@@ -40,6 +40,7 @@ module fcs_rate_state_base
     procedure :: initial_state => rate_state_initial_state
     procedure :: evolve_state => rate_state_evolve_state
     procedure :: state_change => rate_state_state_change
+    procedure :: characteristic_slip => rate_state_characteristic_slip
     procedure :: rate_dependent => always_rate_dependent
   end type rate_state_base_t
 
@@ -100,6 +101,12 @@ contains
     psi = log(rate) + log(max(theta, tiny(theta))) - log(dc)
     new_theta = theta * exp(psi * exp_minus_one(-rate * dt / dc))
   end function slip_state_update
+
+  !> L = D_c [length].
+  pure real(dp) function rate_state_characteristic_slip(this) result(length)
+    class(rate_state_base_t), intent(in) :: this
+    length = this%dc
+  end function rate_state_characteristic_slip
 
   !> e^x - 1 without cancellation for small |x| (Kahan's trick: (u - 1) x / ln u with u = e^x;
   !> Higham, Accuracy and Stability of Numerical Algorithms, 2nd ed., sec. 1.14.1).

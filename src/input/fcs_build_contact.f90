@@ -105,7 +105,8 @@ contains
     type(builder_t), intent(inout) :: state
     type(diagnostics_t), intent(inout) :: diag
     type(friction_def_t) :: def
-    real(dp) :: stick
+    real(dp) :: stick, damping
+    logical :: from_material
     if (state%in_step) then
       call handle_step_friction(card, state, diag)
       return
@@ -116,11 +117,14 @@ contains
                        ' already has friction')
       return
     end if
+    if (.not. radiation_damping(card, damping, from_material, diag)) return
     if (.not. read_friction(card, def, stick, diag)) return
     associate (interaction => model%interactions(state%interaction))
       interaction%has_friction = .true.
       interaction%friction = def
       interaction%stick_stiffness = stick
+      interaction%radiation_damping = damping
+      interaction%damping_from_material = from_material
     end associate
   end subroutine handle_friction
 
@@ -197,6 +201,11 @@ contains
     change%interaction = state%changed_interaction
     change%loc = card%loc
     state%changed_interaction = 0
+    if (card%find_param('RADIATION DAMPING') > 0) then
+      call diag%report(card%loc, '*FRICTION in a step: RADIATION DAMPING cannot be changed ' // &
+                       'between steps (give it on the *FRICTION of the interaction)')
+      return
+    end if
     if (.not. read_friction(card, change%friction, change%stick_stiffness, diag)) return
     if (change%friction%law /= 'COULOMB') then
       call diag%report(card%loc, '*FRICTION: only Coulomb friction (mu[, stick slope]) can ' // &
@@ -206,6 +215,35 @@ contains
     if (.not. allocated(state%step%friction_changes)) allocate (state%step%friction_changes(0))
     state%step%friction_changes = [state%step%friction_changes, change]
   end subroutine handle_step_friction
+
+  !> RADIATION DAMPING= of *FRICTION: eta >= 0 [stress time/length], or MATERIAL (eta from the
+  !> bodies on either side of each pair, resolved with the model: fcs_model_checks). Absent: 0.
+  logical function radiation_damping(card, damping, from_material, diag) result(ok)
+    type(card_t), intent(in) :: card
+    real(dp), intent(out) :: damping
+    logical, intent(out) :: from_material
+    type(diagnostics_t), intent(inout) :: diag
+    character(len=:), allocatable :: text
+    logical :: is_number
+    ok = .true.
+    damping = 0.0_dp
+    from_material = .false.
+    if (card%find_param('RADIATION DAMPING') == 0) return
+    text = param_upper(card, 'RADIATION DAMPING')
+    if (text == 'MATERIAL') then
+      from_material = .true.
+      return
+    end if
+    call parse_real(text, damping, is_number)
+    if (.not. is_number .or. .not. (damping >= 0.0_dp .and. damping <= huge(damping))) then
+      call diag%report(card%loc, '*FRICTION: RADIATION DAMPING = "' // &
+        param_value(card, 'RADIATION DAMPING') // '" is not valid; expected MATERIAL (eta = ' // &
+        'G / (2 c_s) from the elastic bodies of each pair) or a number eta >= 0 [stress ' // &
+        'time/length]')
+      damping = 0.0_dp
+      ok = .false.
+    end if
+  end function radiation_damping
 
   !> The law's parameters from the keyword line; STICK SLOPE into `stick`.
   logical function set_law_parameters(card, def, stick, diag) result(ok)
@@ -220,7 +258,7 @@ contains
     ok = .true.
     do k = 1, size(card%params)
       associate (param => card%params(k))
-        if (param%name == 'LAW') cycle
+        if (param%name == 'LAW' .or. param%name == 'RADIATION DAMPING') cycle
         if (param%name == 'STICK SLOPE') then
           call parse_real(param%value, stick, is_number)
           if (stick <= 0.0_dp) then

@@ -147,6 +147,7 @@ contains
     type(builder_t), intent(inout) :: state
     type(diagnostics_t), intent(inout) :: diag
     real(dp) :: strain, rotation, tolerance, rate_change, mu_change, state_change, balance, plastic
+    real(dp) :: slip_increment
     logical :: ok
     integer :: n_before, iterations
     if (state%step%has_rmin) then
@@ -164,6 +165,13 @@ contains
     call parse_real(param_value(card, 'MAX STATE CHANGE'), state_change, ok)
     call parse_real(param_value(card, 'EQUILIBRIUM TOLERANCE'), balance, ok)
     call parse_int(param_value(card, 'MAX ITERATIONS'), iterations, ok)
+    slip_increment = 0.0_dp
+    if (card%find_param('MAX SLIP INCREMENT') > 0) then
+      call parse_real(param_value(card, 'MAX SLIP INCREMENT'), slip_increment, ok)
+      if (.not. (slip_increment > 0.0_dp .and. slip_increment <= 10.0_dp)) &
+        call diag%report(card%loc, '*RMIN: MAX SLIP INCREMENT must lie in (0, 10] (a fraction of ' // &
+                         'the characteristic slip L)')
+    end if
     if (strain <= 0.0_dp .or. strain > 0.1_dp) &
       call diag%report(card%loc, '*RMIN: MAX STRAIN INCREMENT must lie in (0, 0.1]')
     if (rotation <= 0.0_dp .or. rotation > 10.0_dp) &
@@ -186,6 +194,7 @@ contains
     state%step%rmin%max_log_rate_change = rate_change
     state%step%rmin%max_friction_change = mu_change
     state%step%rmin%max_state_change = state_change
+    state%step%rmin%max_slip_increment = slip_increment
     state%step%rmin%max_strain_increment = strain
     state%step%rmin%max_rotation_increment = rotation * acos(-1.0_dp) / 180.0_dp
     state%step%rmin%event_tolerance = tolerance

@@ -288,7 +288,13 @@ contains
     params = [p('LAW', PARAM_CHOICE, default='COULOMB', choices=friction_laws(), &
                 description='Friction law.'), &
               p('STICK SLOPE', PARAM_REAL, unit='stress/length', description='Stick stiffness ' // &
-                'E_t (default: E_n, the normal penalty).')]
+                'E_t (default: E_n, the normal penalty).'), &
+              p('RADIATION DAMPING', PARAM_TEXT, unit='stress time/length', description='Radiation ' // &
+                'damping eta of the quasi-dynamic approximation (Rice 1993): a slipping node ' // &
+                'resists with mu f_n + eta A V. MATERIAL: eta = G / (2 c_s) from the elastic ' // &
+                'bodies on either side of each pair (1/eta = 1/Z_slave + 1/Z_master with ' // &
+                'Z = sqrt(G rho) = G / c_s; needs *DENSITY), or a number eta >= 0. Default: none ' // &
+                '(fcs3d extension; doc/theory.md, section 5, "Radiation damping").')]
     do i = 1, size(catalogue)
       if (size(catalogue(i)%choices) > 0) then
         params = [params, p(catalogue(i)%name, PARAM_CHOICE, choices=catalogue(i)%choices, &
@@ -370,6 +376,12 @@ contains
             'change of mu of a slipping node from one increment to the next.'), &
           p('MAX STATE CHANGE', PARAM_REAL, default='0.2', unit='-', description='Largest ' // &
             'change of ln(state) (rate-and-state laws) from one increment to the next.'), &
+          p('MAX SLIP INCREMENT', PARAM_REAL, unit='L', description='Largest slip of a ' // &
+            'slipping node in one increment, as a fraction xi of the characteristic slip L (DC) ' // &
+            'of its rate-and-state law: the next trial increment is then at most xi L / V_max ' // &
+            '(V_max the largest slip rate; Lapusta et al. 2000), so that the state evolution ' // &
+            'of a fast event is resolved in time. Default: none (laws without L are never ' // &
+            'limited by it).'), &
           p('EQUILIBRIUM TOLERANCE', PARAM_REAL, default='1e-3', unit='-', description='Largest ' // &
             'out-of-balance force left at the end of an increment: the largest nodal ' // &
             'residual over the mean nodal internal force flux. An increment that leaves more ' // &

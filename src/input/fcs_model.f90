@@ -123,6 +123,10 @@ module fcs_model
     real(dp) :: max_log_rate_change = 1.0_dp
     real(dp) :: max_friction_change = 5.0e-3_dp
     real(dp) :: max_state_change = 0.2_dp
+    !> MAX SLIP INCREMENT: largest slip of a slipping node in one increment, in units of the
+    !> characteristic slip L of its rate-and-state law (xi of Lapusta et al. 2000: the next
+    !> increment is at most xi L / V_max) [-]; 0: none (the default).
+    real(dp) :: max_slip_increment = 0.0_dp
     !> Largest out-of-balance force left at the end of an increment, relative to the model's
     !> force scale (the mean nodal internal force flux) [-]; an increment that leaves more is
     !> corrected by equilibrium iterations.
@@ -181,6 +185,10 @@ module fcs_model
     !> PRESSURE-OVERCLOSURE=TIED: the pairs using it never separate nor slip.
     logical :: tied = .false.
     type(friction_def_t) :: friction
+    !> *FRICTION, RADIATION DAMPING=: eta [stress time/length] as given (0: none), or from the
+    !> elastic bodies on either side of each pair (damping_from_material: MATERIAL).
+    real(dp) :: radiation_damping = 0.0_dp
+    logical :: damping_from_material = .false.
     type(source_loc_t) :: loc
   end type interaction_def_t
 

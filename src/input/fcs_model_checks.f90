@@ -8,6 +8,7 @@ module fcs_model_checks
   use fcs_error, only: error_t, input_error
   use fcs_element_loops, only: element_jacobian_ratio, element_volume_of, element_face_area_of
   use fcs_model, only: model_t
+  use fcs_mesh, only: SURFACE_FACES
   use fcs_model_supports, only: check_supports
   use fcs_build_plasticity, only: check_plasticity
   use fcs_strings, only: str, parse_int
@@ -191,9 +192,66 @@ contains
         end if
         if (pair%tied .and. pair%position_tolerance <= 0.0_dp) &
           pair%position_tolerance = 0.05_dp * face_size / size(master%element)
+        if (pair%interaction > 0 .and. .not. pair%tied) then
+          pair%radiation_damping = model%interactions(pair%interaction)%radiation_damping
+          if (model%interactions(pair%interaction)%damping_from_material) &
+            call resolve_damping(model, k, diag)
+        end if
       end associate
     end do
   end subroutine resolve_contact
+
+  !> RADIATION DAMPING=MATERIAL of contact pair k: the damping of two elastic half-spaces
+  !> sliding past each other (Rice 1993; quasi-dynamic approximation), eta = 1 / (1/Z_s + 1/Z_m)
+  !> with the shear impedances Z = rho c_s = sqrt(G rho), G = E / (2 (1 + nu)), of the slave
+  !> and master sides (the mean over the elements of each surface; a node-based slave surface
+  !> takes the master side's). For one material, eta = G / (2 c_s). Every material involved
+  !> needs *DENSITY.
+  subroutine resolve_damping(model, k, diag)
+    type(model_t), intent(inout) :: model
+    integer, intent(in) :: k
+    type(diagnostics_t), intent(inout) :: diag
+    real(dp) :: impedance_master, impedance_slave
+    logical :: ok
+    associate (pair => model%contact_pairs(k))
+      call side_impedance(model%mesh%surfaces(pair%master_surface)%element, impedance_master, ok)
+      if (.not. ok) return
+      impedance_slave = impedance_master
+      if (model%mesh%surfaces(pair%slave_surface)%kind == SURFACE_FACES) then
+        call side_impedance(model%mesh%surfaces(pair%slave_surface)%element, impedance_slave, ok)
+        if (.not. ok) return
+      end if
+      pair%radiation_damping = impedance_slave * impedance_master / (impedance_slave + impedance_master)
+    end associate
+  contains
+    !> Mean shear impedance sqrt(G rho) of the elements; ok false (reported) when a material
+    !> has no *DENSITY.
+    subroutine side_impedance(elements, impedance, ok)
+      integer, intent(in) :: elements(:)
+      real(dp), intent(out) :: impedance
+      logical, intent(out) :: ok
+      integer :: j, s
+      real(dp) :: shear_modulus
+      impedance = 0.0_dp
+      ok = .false.
+      do j = 1, size(elements)
+        s = model%element_section(elements(j))
+        if (s == 0) return
+        associate (m => model%materials(model%sections(s)%material))
+          if (.not. m%has_density .or. .not. (m%density > 0.0_dp)) then
+            call diag%report(model%interactions(model%contact_pairs(k)%interaction)%friction%loc, &
+              '*FRICTION: RADIATION DAMPING=MATERIAL needs the density of material ' // m%name // &
+              ' (*DENSITY), on a side of contact pair ' // model%contact_pairs(k)%name)
+            return
+          end if
+          shear_modulus = m%youngs_modulus / (2.0_dp * (1.0_dp + m%poisson_ratio))
+          impedance = impedance + sqrt(shear_modulus * m%density)
+        end associate
+      end do
+      impedance = impedance / max(size(elements), 1)
+      ok = impedance > 0.0_dp
+    end subroutine side_impedance
+  end subroutine resolve_damping
 
   !> Volume of element e and area of its face f (reference configuration).
   subroutine element_volume_and_face_area(model, e, f, volume, area)

@@ -4,6 +4,7 @@
 !>
 !> Written atomically (fcs_text_file): a failed write leaves the previous echo, if any.
 module fcs_echo
+  use fcs_kinds, only: dp
   use fcs_error, only: error_t
   use fcs_text_file, only: text_file_t
   use fcs_deck_lexer, only: deck_t, card_t
@@ -51,6 +52,7 @@ contains
     type(model_t), intent(in) :: model
     type(error_t), allocatable, intent(out) :: err
     integer :: i
+    character(len=:), allocatable :: damping
     call file%write('** ' // FCS3D_IDENTITY, err)
     if (.not. allocated(err)) call file%write('** fcs3d echo of ' // model%deck_path // &
       ': the deck as read, with every default filled in', err)
@@ -60,10 +62,13 @@ contains
     do i = 1, size(model%contact_pairs)
       if (allocated(err)) return
       associate (pair => model%contact_pairs(i))
+        damping = ''
+        if (pair%radiation_damping > 0.0_dp) damping = '; radiation damping eta = ' // &
+          str(pair%radiation_damping) // ' [stress time/length]'
         call file%write('** contact pair ' // pair%name // merge(' (tied)', '       ', pair%tied) // &
           ': E_n = ' // str(pair%normal_stiffness) // ', E_t = ' // str(pair%stick_stiffness) // &
           ' [stress/length]; master elements: E = ' // str(pair%master_modulus) // ', mean ' // &
-          'thickness h = ' // str(pair%master_thickness) // ' (default E_n = 10 E / h)', err)
+          'thickness h = ' // str(pair%master_thickness) // ' (default E_n = 10 E / h)' // damping, err)
       end associate
     end do
   end subroutine write_summary

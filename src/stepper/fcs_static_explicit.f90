@@ -25,7 +25,7 @@ module fcs_static_explicit
   use fcs_rmin_events, only: rmin_collector_t, rmin_event_t, EVENT_STRAIN_LIMIT, &
                              EVENT_ROTATION_LIMIT, event_kind_name, &
                              EVENT_FULL_INCREMENT, EVENT_SLIP_RATE_CHANGE, EVENT_FRICTION_CHANGE, &
-                             EVENT_STATE_CHANGE, EVENT_PLASTIC_STRAIN_LIMIT
+                             EVENT_STATE_CHANGE, EVENT_PLASTIC_STRAIN_LIMIT, EVENT_SLIP_INCREMENT
   use fcs_timer, only: phase_timer_t
   use fcs_contact_system, only: contact_system_t
   use fcs_comm, only: comm_t
@@ -523,24 +523,31 @@ contains
 
   !> The trial time increment for the next increment from the friction changes over the last
   !> one (duration dt): each change of ln V, mu, state at a slipping node may be at most its
-  !> *RMIN limit; the increment grows by at most a factor 2 when the changes are small, and
-  !> is not limited when no node slips. Scaling an increment does not change its slip rate,
-  !> so rate effects are controlled through the time increment (method notes 1.6).
+  !> *RMIN limit, and with MAX SLIP INCREMENT = xi the slip of a slipping node at most xi L
+  !> (L the characteristic slip of its rate-and-state law), so that the next increment is at
+  !> most xi L / V_max (Lapusta et al. 2000, eq. 17 with a constant xi); the increment grows
+  !> by at most a factor 2 when the changes are small, and is not limited when no node slips.
+  !> Scaling an increment does not change its slip rate, so rate effects are controlled
+  !> through the time increment (method notes 1.6).
   subroutine friction_step_control(a, step, dt)
     type(analysis_t), intent(inout) :: a
     type(step_t), intent(in) :: step
     real(dp), intent(in) :: dt
-    real(dp) :: limits(3), factors(3), change(3)
-    integer :: i, worst, change_node(3)
-    integer, parameter :: kinds(3) = [EVENT_SLIP_RATE_CHANGE, EVENT_FRICTION_CHANGE, EVENT_STATE_CHANGE]
+    real(dp) :: limits(4), factors(4), change(4)
+    integer :: i, worst, change_node(4)
+    integer, parameter :: kinds(4) = [EVENT_SLIP_RATE_CHANGE, EVENT_FRICTION_CHANGE, EVENT_STATE_CHANGE, &
+                                      EVENT_SLIP_INCREMENT]
     call a%contact%friction_changes(change, change_node)
+    ! MAX SLIP INCREMENT is an option (0: none).
+    if (step%rmin%max_slip_increment <= 0.0_dp) change(4) = 0.0_dp
     if (all(change <= 0.0_dp) .or. dt <= 0.0_dp) then
       a%state%friction_dt = 0.0_dp
       return
     end if
-    limits = [step%rmin%max_log_rate_change, step%rmin%max_friction_change, step%rmin%max_state_change]
+    limits = [step%rmin%max_log_rate_change, step%rmin%max_friction_change, step%rmin%max_state_change, &
+              step%rmin%max_slip_increment]
     factors = 2.0_dp
-    do i = 1, 3
+    do i = 1, 4
       if (change(i) > 0.0_dp) factors(i) = min(2.0_dp, limits(i) / change(i))
     end do
     worst = minloc(factors, 1)

@@ -1,13 +1,16 @@
 !> Unit test of the Dieterich-Ruina state evolution (fcs_rate_state_base, through fcs_rate_state
 !> and fcs_rate_state_arcsinh): approach to steady state, the exact update against an
 !> independent RK4 integration for piecewise-constant rates, a velocity step under rigid loading
-!> against its closed form, and the limits V dt/D_c -> 0 and V = 0.
+!> against its closed form, Ruina's slip law with the paper's parameters (its steady state is
+!> the paper's mu = 0.60 + (0.010 - 0.025) ln(V/0.001); a velocity step relaxes over the
+!> characteristic slip L), and the limits V dt/D_c -> 0 and V = 0.
 program test_fcs_friction_rate_state
   use fcs_kinds, only: dp
   use fcs_rate_state_base, only: rate_state_base_t, STATE_LAW_AGEING, STATE_LAW_SLIP, &
                                  ageing_state_update, slip_state_update
   use fcs_rate_state, only: rate_state_t
   use fcs_rate_state_arcsinh, only: rate_state_arcsinh_t
+  use fcs_rate_dependent, only: rate_dependent_t, REGULARISATION_FLOOR
   use fcs_test_assertions, only: test_suite_t
   implicit none
   type(test_suite_t) :: suite
@@ -21,6 +24,7 @@ program test_fcs_friction_rate_state
   call check_against_rk4(suite)
   call check_velocity_step(suite)
   call check_limits(suite)
+  call check_paper_slip_law(suite)
   call suite%report()
 
 contains
@@ -224,5 +228,52 @@ contains
     call suite%close_to(slip_state_update(1.0e6_dp, 1.0_dp, 1.0e6_dp, DC), DC, 1.0e-14_dp, &
                         'slip update, V dt/DC = 1e8')
   end subroutine check_limits
+
+  !> RATE STATE with STATE LAW=SLIP (Ruina 1983) and the paper's parameters (Xing et al. 2003,
+  !> sec. 4: MU0 = 0.60, A = 0.010, B = 0.025, V0 = 0.001 mm/s) and L = D_c = 0.05 mm.
+  !> 1. At steady state theta = L/V its mu is the paper's law, RATE DEPENDENT's
+  !>    mu_ss = MU0 + (A - B) ln(V/V0), for V from 1e-6 to 100 mm/s (the same formula: 1e-14).
+  !> 2. Velocity step V1 = 1e-3 -> V2 = 1e-1 mm/s from steady state, in increments of L/20 of
+  !>    slip: with psi = ln(V theta/L), the slip law gives dpsi/d(delta) = -psi/L at constant V,
+  !>    so psi = ln(V2/V1) e^{-delta/L} and
+  !>      mu(delta) = mu_ss(V2) + B ln(V2/V1) e^{-delta/L},
+  !>    the exponential approach over L (Ruina 1983, eq. 8 integrated). Checked at delta = L/2,
+  !>    L, 2 L, 5 L and 20 L; the exact update composes, so rounding (1e-13 after 400
+  !>    increments) is all that separates them: tolerance 1e-12.
+  subroutine check_paper_slip_law(suite)
+    type(test_suite_t), intent(inout) :: suite
+    real(dp), parameter :: PAPER_MU0 = 0.60_dp, PAPER_A = 0.010_dp, PAPER_B = 0.025_dp
+    real(dp), parameter :: PAPER_V0 = 1.0e-3_dp, L = 0.05_dp
+    real(dp), parameter :: rates(5) = [1.0e-6_dp, 1.0e-4_dp, 1.0e-3_dp, 1.0_dp, 100.0_dp]
+    real(dp), parameter :: v1 = 1.0e-3_dp, v2 = 1.0e-1_dp
+    integer, parameter :: checked(5) = [10, 20, 40, 100, 400]
+    type(rate_state_t) :: law
+    type(rate_dependent_t) :: paper
+    real(dp) :: theta, dt, closed, mu_ss2
+    integer :: i, step
+    character(len=60) :: what
+    law = rate_state_t(mu0=PAPER_MU0, a=PAPER_A, b=PAPER_B, dc=L, v0=PAPER_V0, theta0=L / v1, &
+                       state_law=STATE_LAW_SLIP, cutoff_rate=1.0e-12_dp)
+    paper = rate_dependent_t(mu0=PAPER_MU0, a=PAPER_A, b=PAPER_B, v0=PAPER_V0, &
+                             cutoff_rate=1.0e-12_dp, regularisation=REGULARISATION_FLOOR)
+    do i = 1, size(rates)
+      write (what, '(a,es8.1,a)') 'slip law, paper: steady state at V =', rates(i), ' mm/s'
+      call suite%close_to(law%mu(0.0_dp, rates(i), L / rates(i)), paper%mu(0.0_dp, rates(i), 0.0_dp), &
+                          1.0e-14_dp, trim(what))
+    end do
+    mu_ss2 = PAPER_MU0 + (PAPER_A - PAPER_B) * log(v2 / PAPER_V0)
+    theta = law%initial_state()
+    dt = L / (20.0_dp * v2)
+    step = 0
+    do i = 1, size(checked)
+      do while (step < checked(i))
+        theta = law%evolve_state(theta, v2, dt)
+        step = step + 1
+      end do
+      closed = mu_ss2 + PAPER_B * log(v2 / v1) * exp(-step * v2 * dt / L)
+      write (what, '(a,f5.2,a)') 'slip law, paper: velocity step, mu at ', step / 20.0_dp, ' L'
+      call suite%close_to(law%mu(0.0_dp, v2, theta), closed, 1.0e-12_dp, trim(what))
+    end do
+  end subroutine check_paper_slip_law
 
 end program test_fcs_friction_rate_state

@@ -34,6 +34,13 @@ which is mu_ss(V) + 0.00996 instead of mu_ss at that commit.
 
 --rates chooses the load rates of the steps (default 1e-3 1e-2 1e-4 mm/s); --rmin adds an
 *RMIN card (e.g. "MAX FRICTION CHANGE=2e-4, MAX LOG RATE CHANGE=0.05") to every sliding step.
+
+--max-slip-increment XI (with --rmin "MAX SLIP INCREMENT=XI" in the deck) also checks the
+option's bound: the mean slip of every increment is at most 1.01 XI DC (the next increment is
+XI DC / V of the last one's rate; within a step the rate changes by less than 1 % from one
+increment to the next, measured 2e-4 at most), and in the steady windows it binds: the median
+slip per increment lies within 1 % of XI DC (without the option it is the step's maximum
+increment, 0.25 DC).
 """
 import argparse
 import os
@@ -85,9 +92,30 @@ def step_windows(h, rates):
     return out
 
 
-def check(job, state_law, rates, tolerance, body):
+def check_slip_increment(checker, h, rates, xi):
+    """MAX SLIP INCREMENT = xi: every increment's mean slip <= 1.01 xi DC, and xi DC binds in
+    the steady windows (median within 1 %)."""
+    dc = fc.RS['DC']
+    per_increment = np.diff(h.slip) / dc
+    checker.check(per_increment.max() <= 1.01 * xi, 'MAX SLIP INCREMENT = %g: largest slip of an '
+                  'increment %.5f DC (bound %.4f DC)' % (xi, per_increment.max(), 1.01 * xi))
+    for v, window, last, start, end in step_windows(h, rates):
+        inside = window[1:].copy()
+        if last is not None and last >= 1:
+            inside[last - 1] = False
+        if inside.sum() < 5:
+            checker.check(False, 'V = %g: too few samples for the slip-increment check' % v)
+            continue
+        median = np.median(per_increment[inside])
+        checker.check(abs(median / xi - 1) <= 0.01, 'V = %g mm/s: median slip per increment in '
+                      'the steady window %.5f DC (xi %g binds)' % (v, median, xi))
+
+
+def check(job, state_law, rates, tolerance, body, slip_increment=None):
     checker = fc.Checker()
     h = fc.History(job)
+    if slip_increment:
+        check_slip_increment(checker, h, rates, slip_increment)
     frame_t, frame_mu = fc.contact_fields(job, 'mu')
     for v, window, last, start, end in step_windows(h, rates):
         mu_ss = fc.mu_steady(v)
@@ -145,11 +173,13 @@ def main():
     c.add_argument('--tolerance', type=float, default=1e-6)
     c.add_argument('--rates', type=float, nargs='+', default=RATES)
     c.add_argument('--body', action='store_true')
+    c.add_argument('--max-slip-increment', type=float)
     args = parser.parse_args()
     if args.command == 'deck':
         make_deck(args.path, args.state_law, args.rates, args.rmin)
     else:
-        check(args.job, args.state_law, args.rates, args.tolerance, args.body)
+        check(args.job, args.state_law, args.rates, args.tolerance, args.body,
+              args.max_slip_increment)
 
 
 if __name__ == '__main__':
