@@ -224,7 +224,9 @@ contains
     end if
     if (dh < 0.0_dp) roots(3) = -h / dh
     do i = 1, 3
-      if (.not. (roots(i) > 0.0_dp)) cycle
+      ! Only positive roots below the best so far (huge(1.0_dp) marks no root: r starts there,
+      ! and p + roots(i) * dp_ would overflow on it).
+      if (.not. (roots(i) > 0.0_dp .and. roots(i) < r)) cycle
       if (this%tan_friction * (p + roots(i) * dp_) + d < -YIELD_TOLERANCE * d) cycle
       r = min(r, roots(i))
     end do
