@@ -212,11 +212,9 @@ contains
         if (allocated(err)) return
         s = order(i)
         if (.not. closed(s)) cycle
-        if (request%variables(v)%s == 'CDIS') then
-          write (line, '(i10,3es14.6)') model%mesh%node_id(node(s)), displacement(:, s)
-        else
-          write (line, '(i10,3es14.6)') model%mesh%node_id(node(s)), stress(:, s)
-        end if
+        ! An internal write (to `line`); the file write below is the checked one.
+        write (line, '(i10,3es14.6)') model%mesh%node_id(node(s)), &
+          merge(displacement(:, s), stress(:, s), request%variables(v)%s == 'CDIS')
         call this%file%write(trim(line), err)
       end do
       if (allocated(err)) return
