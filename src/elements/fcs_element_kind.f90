@@ -33,7 +33,7 @@ module fcs_element_kind
   use fcs_error, only: error_t, fatal_error, add_context
   use fcs_element_basis, only: polynomial_basis_t, solve_linear_system
   use fcs_face_kind, only: face_kind_t, face_shape_nodes, MAX_FACE_NODES
-  use fcs_quadrature, only: quadrature_rule_t
+  use fcs_quadrature, only: quadrature_rule_t, gauss_cube
   implicit none
   private
   public :: element_kind_t, element_face_t, kind_definition_t, face_definition_t
@@ -176,6 +176,11 @@ module fcs_element_kind
     !> xi eta zeta at node a (Flanagan & Belytschko 1981, the Gamma vectors).
     integer :: n_hourglass = 0
     real(dp), allocatable :: hourglass_base(:, :)
+    !> C3D8R: mean_derivatives(i, a, p) = dN_a/dxi_i at the 2x2x2 Gauss points p (weights 1),
+    !> which integrate the element volume and the mean gradient (1/V) int grad N_a dV of a
+    !> trilinear hexahedron exactly (Flanagan & Belytschko 1981, eqs. 15-16: integrands of
+    !> degree at most 3 in each natural coordinate).
+    real(dp), allocatable :: mean_derivatives(:, :, :)
     integer :: gmsh_type = 0
     integer, allocatable :: gmsh_order(:)
   contains
@@ -637,6 +642,7 @@ contains
   subroutine build_formulation_tables(this, err)
     type(element_kind_t), intent(inout) :: this
     type(error_t), allocatable, intent(out) :: err
+    type(quadrature_rule_t) :: exact_rule
     integer :: q, m, a
     real(dp) :: xi(3)
     select case (this%formulation)
@@ -667,6 +673,11 @@ contains
         xi = this%node_xi(:, a)
         this%hourglass_base(a, :) = [xi(2) * xi(3), xi(1) * xi(3), xi(1) * xi(2), &
                                      xi(1) * xi(2) * xi(3)]
+      end do
+      exact_rule = gauss_cube(2)
+      allocate (this%mean_derivatives(3, 8, exact_rule%n))
+      do q = 1, exact_rule%n
+        call this%basis%derivatives(exact_rule%points(:, q), this%mean_derivatives(:, :, q))
       end do
     case default
       call fatal_error(err, 'unknown formulation')

@@ -13,19 +13,23 @@
 !>     `face_pressure`: what outputs, monitors, the sparse pattern and the loads need.
 !> The loops own the material objects (one per material of the model) and know, for every
 !> element, its kind, nodes, material and formulation, and which elements this process works
-!> on (`mine`). Kinds come from the model's element catalogue (fcs_element_catalogue); those
-!> whose formulation the loops do not implement yet (C3D8R hourglass control, C3D8I
-!> incompatible modes) are refused by `init`.
+!> on (`mine`). Kinds come from the model's element catalogue (fcs_element_catalogue), with
+!> their formulations (doc/theory.md 1.5): C3D8R's hourglass force and stiffness are added in
+!> `assemble` (from the total displacements, as CalculiX), C3D8I's incompatible modes are
+!> condensed in the tangent and found element by element in `update` (`update_modes`: the
+!> modes' generalised forces vanish at the end of every increment), and predicted from the
+!> condensed tangent for the trial increments of `collect_events` and `count_unloading`.
 module fcs_element_loops
   use fcs_kinds, only: dp
-  use fcs_error, only: error_t, fatal_error, input_error
+  use fcs_error, only: error_t, fatal_error
   use fcs_mesh, only: mesh_t, mesh_kind_t, MESH_MAX_FACES, MESH_MAX_FACE_NODES
-  use fcs_element_kind, only: element_kind_t, MAX_NODES, MAX_POINTS, FORMULATION_STANDARD
+  use fcs_element_kind, only: element_kind_t, MAX_NODES, MAX_POINTS, FORMULATION_HOURGLASS
   use fcs_element_catalogue, only: element_catalogue_t
   use fcs_element_kernels, only: element_geometry_t, element_geometry, element_internal_force, &
     element_tangent, element_strain_increments, element_point_volumes, element_extrapolate, &
     element_min_jacobian_ratio, element_volume, element_face_nodes, element_face_pressure, &
-    element_face_area
+    element_face_area, element_hourglass_force, element_hourglass_stiffness, &
+    element_mode_residual, element_mode_correction, MAX_MODES
   use fcs_element_state, only: element_state_t
   use fcs_hex8_element, only: hex8_rotate_stress, mises_stress
   use fcs_material, only: material_t, material_slot_t
@@ -38,6 +42,13 @@ module fcs_element_loops
   private
   public :: element_loops_t, event_limits_t, update_point, mesh_kinds, mises_stress
   public :: element_jacobian_ratio, element_volume_of, element_face_area_of
+
+  !> C3D8I: the modes of an increment are iterated until their generalised forces are below
+  !> MODE_TOLERANCE times the sum of the magnitudes of their terms (round-off of an elastic
+  !> increment is about 1e-15; a return mapping converges quadratically with its consistent
+  !> tangent), at most MAX_MODE_ITERATIONS Newton corrections.
+  real(dp), parameter :: MODE_TOLERANCE = 1.0e-10_dp
+  integer, parameter :: MAX_MODE_ITERATIONS = 25
 
   !> The R-minimum limits of an increment at the integration points (doc/theory.md 6.4):
   !> largest equivalent strain increment [-], rotation increment [rad] and growth of the
@@ -139,8 +150,7 @@ contains
 
   !> Set up the loops over the elements of `mesh`, of the kinds of `catalogue`; element e has
   !> material material(e) of `materials` (moved in) and the B-bar formulation when bbar(e).
-  !> Every element is this process's until `set_share`. An element of a kind whose formulation
-  !> the loops do not implement is an input error.
+  !> Every element is this process's until `set_share`.
   subroutine loops_init(this, catalogue, mesh, material, bbar, materials, err)
     class(element_loops_t), intent(inout) :: this
     type(element_catalogue_t), intent(in) :: catalogue
@@ -165,15 +175,7 @@ contains
     used(this%kind) = .true.
     this%max_points = 0
     do k = 1, catalogue%size()
-      if (.not. used(k)) cycle
-      associate (kind => catalogue%kinds(k))
-        if (kind%formulation /= FORMULATION_STANDARD) then
-          call input_error(err, 'element type ' // kind%name // ': its formulation (' // &
-            kind%summary // ') is not implemented by the element loops')
-          return
-        end if
-        this%max_points = max(this%max_points, kind%n_points)
-      end associate
+      if (used(k)) this%max_points = max(this%max_points, catalogue%kinds(k)%n_points)
     end do
   end subroutine loops_init
 
@@ -276,7 +278,7 @@ contains
     real(dp), intent(out), optional :: flux(:)
     type(element_geometry_t) :: geo
     real(dp) :: xe(3, MAX_NODES), f(3 * MAX_NODES), k(3 * MAX_NODES, 3 * MAX_NODES)
-    real(dp) :: c(6, 6, MAX_POINTS)
+    real(dp) :: c(6, 6, MAX_POINTS), youngs
     integer :: e, q, a, node, i, n
     logical :: ok, missing
     f_int = 0.0_dp
@@ -292,6 +294,11 @@ contains
           return
         end if
         call element_internal_force(kind, geo, fields%stress(:, :, e), this%bbar(e), f(1:3 * n))
+        if (kind%formulation == FORMULATION_HOURGLASS) then
+          youngs = youngs_modulus(this%materials(this%material(e))%m)
+          call element_hourglass_force(kind, geo, x(:, this%nodes(1:n, e)) - &
+                                       this%x_reference(:, this%nodes(1:n, e)), youngs, f(1:3 * n))
+        end if
         do a = 1, n
           node = this%nodes(a, e)
           f_int(3 * node - 2:3 * node) = f_int(3 * node - 2:3 * node) + f(3 * a - 2:3 * a)
@@ -315,6 +322,8 @@ contains
         end associate
         call element_tangent(kind, geo, fields%stress(:, :, e), c(:, :, 1:kind%n_points), &
                              this%bbar(e), nlgeom, k(1:3 * n, 1:3 * n))
+        if (kind%formulation == FORMULATION_HOURGLASS) &
+          call element_hourglass_stiffness(kind, geo, youngs, k(1:3 * n, 1:3 * n))
         call matrix%add_matrix(this%nodes(1:n, e), k(1:3 * n, 1:3 * n), missing)
       end associate
     end do
@@ -340,6 +349,11 @@ contains
         n = kind%n_nodes
         call element_increment(this, e, du, du_e)
         call element_x(this, e, x, nlgeom, xe)
+        if (kind%n_modes > 0) then
+          call update_modes(this, e, xe(:, 1:n), du_e(:, 1:n), fields, nlgeom, err)
+          if (allocated(err)) return
+          cycle
+        end if
         if (nlgeom) xe(:, 1:n) = xe(:, 1:n) + 0.5_dp * du_e(:, 1:n)
         call element_geometry(kind, xe(:, 1:n), geo, ok)
         if (.not. ok) then
@@ -357,6 +371,115 @@ contains
       end associate
     end do
   end subroutine loops_update
+
+  !> C3D8I element e: the update of its points (`update_point`) for nodal increments du_e from
+  !> start coordinates xe (the reference ones without NLGEOM), with mode increments that make
+  !> the modes' generalised forces vanish on the end configuration (doc/theory.md 1.5):
+  !> predicted from the condensed tangent at the start state, then corrected by Newton
+  !> iterations with the points' consistent tangents (the material part on the end
+  !> configuration; one correction at most for an elastic increment without NLGEOM). The
+  !> result depends only on the start state and du_e (an increment recomputed from its start
+  !> gives the same stresses), so the modes are no state of their own.
+  subroutine update_modes(this, e, xe, du_e, fields, nlgeom, err)
+    type(element_loops_t), intent(in) :: this
+    integer, intent(in) :: e
+    real(dp), intent(in) :: xe(:, :), du_e(:, :)
+    type(element_state_t), intent(inout) :: fields
+    logical, intent(in) :: nlgeom
+    type(error_t), allocatable, intent(out) :: err
+    type(element_geometry_t) :: geo_mid, geo_end
+    real(dp) :: strain(6, MAX_POINTS), spin(3, 3, MAX_POINTS), equivalent(MAX_POINTS)
+    real(dp) :: angle(MAX_POINTS), c(6, 6, MAX_POINTS), stress(6, MAX_POINTS)
+    real(dp) :: total_strain(6, MAX_POINTS), state(size(fields%material_state, 1), MAX_POINTS)
+    real(dp) :: modes(3, MAX_MODES), correction(3, MAX_MODES), residual(3 * MAX_MODES)
+    real(dp) :: scale
+    integer :: q, np, iteration
+    logical :: ok_mid, ok_end, ok
+    associate (kind => this%catalogue%kinds(this%kind(e)), &
+               material => this%materials(this%material(e))%m)
+      np = kind%n_points
+      if (nlgeom) then
+        call element_geometry(kind, xe + 0.5_dp * du_e, geo_mid, ok_mid)
+        call element_geometry(kind, xe + du_e, geo_end, ok_end)
+      else
+        call element_geometry(kind, xe, geo_mid, ok_mid)
+        geo_end = geo_mid
+        ok_end = ok_mid
+      end if
+      if (.not. (ok_mid .and. ok_end)) then
+        call inverted_element_error(this, e, err)
+        return
+      end if
+      do q = 1, np
+        c(:, :, q) = material%tangent(fields%stress(:, q, e), fields%material_state(:, q, e))
+      end do
+      residual = 0.0_dp
+      call element_mode_correction(kind, geo_end, fields%stress(:, :, e), c(:, :, 1:np), &
+                                   this%bbar(e), .false., du_e, residual, modes, ok)
+      do iteration = 0, MAX_MODE_ITERATIONS
+        call element_strain_increments(kind, geo_mid, du_e, this%bbar(e), strain, spin, &
+                                       equivalent, angle, modes)
+        stress(:, 1:np) = fields%stress(:, 1:np, e)
+        total_strain(:, 1:np) = fields%strain(:, 1:np, e)
+        state(:, 1:np) = fields%material_state(:, 1:np, e)
+        do q = 1, np
+          call update_point(material, nlgeom, strain(:, q), spin(:, :, q), stress(:, q), &
+                            total_strain(:, q), state(:, q), c(:, :, q))
+        end do
+        call element_mode_residual(kind, geo_end, stress(:, 1:np), this%bbar(e), residual)
+        scale = 0.0_dp
+        do q = 1, np
+          scale = scale + maxval(abs(stress(:, q))) * geo_end%dv(q) * &
+                  maxval(abs(geo_end%grad(:, kind%n_nodes + 1:geo_end%n_columns, q)))
+        end do
+        if (maxval(abs(residual(1:3 * kind%n_modes))) <= MODE_TOLERANCE * scale) exit
+        if (iteration == MAX_MODE_ITERATIONS) exit
+        call element_mode_correction(kind, geo_end, stress(:, 1:np), c(:, :, 1:np), this%bbar(e), &
+                                     .false., 0.0_dp * du_e, residual, correction, ok)
+        if (.not. ok) exit
+        modes(:, 1:kind%n_modes) = modes(:, 1:kind%n_modes) + correction(:, 1:kind%n_modes)
+      end do
+      fields%stress(:, 1:np, e) = stress(:, 1:np)
+      fields%strain(:, 1:np, e) = total_strain(:, 1:np)
+      fields%material_state(:, 1:np, e) = state(:, 1:np)
+    end associate
+  end subroutine update_modes
+
+  !> C3D8I element e: the mode increments that go with nodal increments du_e in the condensed
+  !> tangent on `geo` (the trial increments of the R-minimum events); zero for other kinds.
+  subroutine trial_modes(this, e, geo, fields, du_e, nlgeom, modes)
+    type(element_loops_t), intent(in) :: this
+    integer, intent(in) :: e
+    type(element_geometry_t), intent(in) :: geo
+    type(element_state_t), intent(in) :: fields
+    real(dp), intent(in) :: du_e(:, :)
+    logical, intent(in) :: nlgeom
+    real(dp), intent(out) :: modes(:, :)
+    real(dp) :: c(6, 6, MAX_POINTS), residual(3 * MAX_MODES)
+    integer :: q
+    logical :: ok
+    modes = 0.0_dp
+    associate (kind => this%catalogue%kinds(this%kind(e)), &
+               material => this%materials(this%material(e))%m)
+      if (kind%n_modes == 0) return
+      do q = 1, kind%n_points
+        c(:, :, q) = material%tangent(fields%stress(:, q, e), fields%material_state(:, q, e))
+      end do
+      residual = 0.0_dp
+      call element_mode_correction(kind, geo, fields%stress(:, :, e), c(:, :, 1:kind%n_points), &
+                                   this%bbar(e), nlgeom, du_e, residual, modes, ok)
+    end associate
+  end subroutine trial_modes
+
+  !> Young's modulus of a material's elastic part, E = 9 K G / (3 K + G) (the modulus of
+  !> CalculiX's hourglass stiffness, elas(1)).
+  pure real(dp) function youngs_modulus(material) result(youngs)
+    class(material_t), intent(in) :: material
+    real(dp) :: k, g
+    k = material%bulk_modulus()
+    g = material%shear_modulus()
+    youngs = 9.0_dp * k * g / (3.0_dp * k + g)
+  end function youngs_modulus
 
   !> The objective update of one integration point (doc/theory.md, 1.4): strain increment
   !> and spin increment on the mid-increment configuration; `stress`, `strain` (accumulated,
@@ -453,7 +576,7 @@ contains
     type(element_geometry_t) :: geo
     real(dp) :: strain(6, MAX_POINTS), spin(3, 3, MAX_POINTS), equivalent(MAX_POINTS)
     real(dp) :: angle(MAX_POINTS), du_e(3, MAX_NODES), strain_fixed(6, MAX_POINTS)
-    real(dp) :: xe(3, MAX_NODES), r_yield, r_plastic
+    real(dp) :: xe(3, MAX_NODES), r_yield, r_plastic, modes(3, MAX_MODES)
     integer :: e, q, i, n, np
     logical :: ok, states
     states = this%has_states()
@@ -470,8 +593,9 @@ contains
           return
         end if
         call element_increment(this, e, du_load, du_e)
+        call trial_modes(this, e, geo, fields, du_e(:, 1:n), nlgeom, modes)
         call element_strain_increments(kind, geo, du_e(:, 1:n), this%bbar(e), strain, spin, &
-                                       equivalent, angle)
+                                       equivalent, angle, modes)
         if (nlgeom) then
           if (maxval(equivalent(1:np)) > 0.0_dp) call collector%offer(limits%strain / &
             maxval(equivalent(1:np)), EVENT_STRAIN_LIMIT, e, maxloc(equivalent(1:np), 1))
@@ -480,8 +604,9 @@ contains
         end if
         if (.not. states) cycle
         call element_increment(this, e, du_residual, du_e)
+        call trial_modes(this, e, geo, fields, du_e(:, 1:n), nlgeom, modes)
         call element_strain_increments(kind, geo, du_e(:, 1:n), this%bbar(e), strain_fixed, &
-                                       spin, equivalent, angle)
+                                       spin, equivalent, angle, modes)
         associate (material => this%materials(this%material(e))%m)
           do q = 1, np
             call material%point_events(fields%stress(:, q, e), fields%material_state(:, q, e), &
@@ -509,7 +634,7 @@ contains
     real(dp) :: n_new
     type(element_geometry_t) :: geo
     real(dp) :: strain(6, MAX_POINTS), spin(3, 3, MAX_POINTS), equivalent(MAX_POINTS)
-    real(dp) :: angle(MAX_POINTS), du_e(3, MAX_NODES), xe(3, MAX_NODES)
+    real(dp) :: angle(MAX_POINTS), du_e(3, MAX_NODES), xe(3, MAX_NODES), modes(3, MAX_MODES)
     integer :: e, q, i, n
     logical :: ok
     n_new = 0.0_dp
@@ -521,8 +646,9 @@ contains
         call element_geometry(kind, xe(:, 1:n), geo, ok)
         if (.not. ok) cycle
         call element_increment(this, e, du, du_e)
+        call trial_modes(this, e, geo, fields, du_e(:, 1:n), nlgeom, modes)
         call element_strain_increments(kind, geo, du_e(:, 1:n), this%bbar(e), strain, spin, &
-                                       equivalent, angle)
+                                       equivalent, angle, modes)
         associate (material => this%materials(this%material(e))%m)
           do q = 1, kind%n_points
             if (unloading(q, e)) cycle
