@@ -83,13 +83,6 @@ contains
     type_name = param_upper(card, 'TYPE')
     kind = model%mesh%find_kind(type_name)
     if (kind == 0) return ! the keyword table has refused the TYPE already
-    if (.not. formulation_available(type_name)) then
-      call diag%report(card%loc, '*ELEMENT: TYPE=' // type_name // ' is not available yet ' // &
-                       '(its formulation - ' // trim(formulation_missing(type_name)) // &
-                       ' - is not implemented); C3D8 with *SOLID SECTION, FORMULATION=BBAR ' // &
-                       'is the nearest available kind')
-      return
-    end if
     n = model%mesh%kinds(kind)%n_nodes
     allocate (nodes(n))
     needs = '*ELEMENT: a ' // type_name // ' element needs its id and ' // str(n) // ' node ids; '
@@ -152,26 +145,6 @@ contains
     if (card%find_param('ELSET') > 0) &
       call model%mesh%add_to_element_set(param_upper(card, 'ELSET'), added(1:n_added))
   end subroutine handle_element
-
-  !> False for the kinds whose formulation the element loops do not have yet.
-  pure logical function formulation_available(type_name)
-    character(len=*), intent(in) :: type_name
-    formulation_available = len_trim(formulation_missing(type_name)) == 0
-  end function formulation_available
-
-  !> The missing formulation of a kind ('' when it is available).
-  pure function formulation_missing(type_name) result(text)
-    character(len=*), intent(in) :: type_name
-    character(len=40) :: text
-    select case (type_name)
-    case ('C3D8R')
-      text = 'one-point rule with hourglass control'
-    case ('C3D8I')
-      text = 'incompatible modes'
-    case default
-      text = ''
-    end select
-  end function formulation_missing
 
   !> *NSET: node ids, node set names, or GENERATE ranges.
   subroutine handle_nset(card, model, diag)

@@ -1,5 +1,5 @@
 #!/bin/sh
-# Every element kind through the deck (issue 16): for C3D4, C3D6, C3D10, C3D15, C3D20, C3D20R
+# Every element kind through the deck (issue 16): for C3D4, C3D6, C3D8R, C3D8I, C3D10, C3D15, C3D20, C3D20R
 # and two mixed meshes (C3D8 + C3D6, C3D20 + C3D15), a distorted 4x4x4 grid of the box
 # [0,2]x[0,1.5]x[0,1] cut into elements of the kind (tests/tools/kind_meshes.py) with the
 # linear displacement field u = u0 + A x prescribed on its boundary must reproduce the constant
@@ -12,7 +12,7 @@ here=$(cd "$(dirname "$0")/../.." && pwd)
 py=${PYTHON:-/usr/bin/python3}
 tool="$here/tests/tools/patch_test.py"
 fail=0
-for kind in C3D4 C3D6 C3D10 C3D15 C3D20 C3D20R MIXED MIXED20; do
+for kind in C3D4 C3D6 C3D8R C3D8I C3D10 C3D15 C3D20 C3D20R MIXED MIXED20; do
   job=kind_$kind
   "$py" "$tool" deck "$job.inp" --kind "$kind" || exit 1
   for solver in UMFPACK SKYLINE; do
