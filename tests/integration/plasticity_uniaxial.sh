@@ -4,6 +4,7 @@
 # loading, elastic unloading (slope E, the unloading points switched to the elastic tangent),
 # reverse yield at b - R (Bauschinger), every increment at full precision from job.h5 within
 # 1e-10 of s_y; and NLGEOM to 10 % strain against the same curve in logarithmic strain (1e-6).
+# The isotropic case also with every other element kind (C3D4 ... C3D20R), to 1e-10.
 # Details in plasticity/uniaxial.py. By hand:
 #   FCS3D=$PWD/bin/fcs3d sh -c 'cd $(mktemp -d) && sh '$PWD'/tests/integration/plasticity_uniaxial.sh'
 set -u

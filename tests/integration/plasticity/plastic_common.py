@@ -19,6 +19,31 @@ try:
 except ImportError:
     h5py = None
 
+#: Every element kind but C3D8 (which fcs_check.Block writes), for the tests that run each kind.
+OTHER_KINDS = ['C3D4', 'C3D6', 'C3D8R', 'C3D8I', 'C3D10', 'C3D15', 'C3D20', 'C3D20R']
+
+
+def kind_mesh_cards(size, cells, kind, node_sets):
+    """*NODE (NSET=ALL_NODES), *ELEMENT (ELSET=ALL_ELEMENTS) and *NSET cards of the box
+    [0, size] with `cells` hexahedral cells cut into elements of `kind` (tests/tools/
+    kind_meshes.py: the corner ids are those of fcs_check.Block with the same cells; mid-side
+    nodes follow). node_sets: name -> predicate(x, y, z) on the node coordinates."""
+    sys.path.insert(0, os.path.join(HERE, '..', '..', 'tools'))
+    import kind_meshes
+    coords, hexes, _ = kind_meshes.hex_grid(list(cells), list(size), 0.0, np.random.default_rng(0))
+    elements = kind_meshes.convert(coords, hexes, kind)
+    lines = ['*NODE, NSET=ALL_NODES']
+    lines += ['%d, %.17g, %.17g, %.17g' % (n, *x) for n, x in sorted(coords.items())]
+    cards, _ = kind_meshes.element_cards(elements, 'ALL_ELEMENTS')
+    lines += cards
+    for name, predicate in node_sets.items():
+        ids = [n for n, x in sorted(coords.items()) if predicate(*x)]
+        lines.append('*NSET, NSET=%s' % name)
+        for start in range(0, len(ids), 12):
+            lines.append(', '.join(str(n) for n in ids[start:start + 12]))
+    return lines
+
+
 #: Position, in XDMF's Tensor6 order (xx xy xz yy yz zz) as stored, of fcs3d's Voigt
 #: components xx yy zz xy xz yz.
 FROM_XDMF = [0, 3, 5, 1, 2, 4]

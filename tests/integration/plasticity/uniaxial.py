@@ -37,6 +37,12 @@ INCREMENT 2e-3, MAX PLASTIC STRAIN INCREMENT 1e-3) that is below 2e-3 of s_y (E 
 (measured: 7.5e-4 of s_y over every increment, 4.0e-5 over every fourth increment of the
 finer run; 1.2e-4 over all its increments, the first elastic increment's lateral stress), and
 the end state must agree within 1e-4 of s_y (measured 1.2e-5).
+
+Every element kind (issue 18): the ISOTROPIC case, small strain, on the same cube cut into
+each of C3D4, C3D6, C3D8R, C3D8I, C3D10, C3D15, C3D20, C3D20R (tests/tools/kind_meshes.py:
+six tetrahedra or two wedges per cell, mid-side nodes on straight edges) with the same checks
+at every integration point to 1e-10: the field is homogeneous, which every kind reproduces
+exactly (C3D8R's hourglass force vanishes, C3D8I's modes stay zero).
 """
 import os
 import subprocess
@@ -62,14 +68,19 @@ CASES = {
 }
 
 
-def deck(path, case, nlgeom=False, rmin=None, frequency=1):
+def deck(path, case, nlgeom=False, rmin=None, frequency=1, kind='C3D8'):
     hardening, curve, cyclic, _, _ = CASES[case]
-    block = fc.Block(nx=2, ny=2, nz=2)
-    sets = {'X0': block.face(0, 0), 'Y0': block.face(1, 0), 'Z0': block.face(2, 0),
-            'TOP': block.face(2, 1)}
-    lines = ['*HEADING', 'uniaxial stress, %s hardening (tests/integration/plasticity/uniaxial.py)'
-             % case]
-    lines += block.mesh_cards(sets)
+    lines = ['*HEADING', 'uniaxial stress, %s hardening, %s (tests/integration/plasticity/uniaxial.py)'
+             % (case, kind)]
+    if kind == 'C3D8':
+        block = fc.Block(nx=2, ny=2, nz=2)
+        sets = {'X0': block.face(0, 0), 'Y0': block.face(1, 0), 'Z0': block.face(2, 0),
+                'TOP': block.face(2, 1)}
+        lines += block.mesh_cards(sets)
+    else:
+        lines += pc.kind_mesh_cards((1.0, 1.0, 1.0), (2, 2, 2), kind, {
+            'X0': lambda x, y, z: x == 0.0, 'Y0': lambda x, y, z: y == 0.0,
+            'Z0': lambda x, y, z: z == 0.0, 'TOP': lambda x, y, z: z == 1.0})
     lines += pc.von_mises_cards(YOUNG, POISSON, curve, hardening, cyclic)
     lines += ['*BOUNDARY', 'X0, 1, 1', 'Y0, 2, 2', 'Z0, 3, 3']
     if nlgeom:
@@ -112,9 +123,9 @@ def closed_form(case, eps_path):
     return np.array(stress), np.array(alpha)
 
 
-def check_small_strain(work, case, checker):
-    job = os.path.join(work, 'uniaxial_' + case)
-    deck(job + '.inp', case)
+def check_small_strain(work, case, checker, kind='C3D8'):
+    job = os.path.join(work, 'uniaxial_' + case + ('' if kind == 'C3D8' else '_' + kind))
+    deck(job + '.inp', case, kind=kind)
     fc.run_fcs3d(job + '.inp')
     frames = pc.Frames(job + '.h5')
     records, _ = fc.read_increments(job + '.log')
@@ -127,15 +138,19 @@ def check_small_strain(work, case, checker):
     stress_error = np.abs(s[:, :, :, 2] - expected_stress[:, None, None]).max() / YIELD
     lateral = np.abs(s[:, :, :, [0, 1, 3, 4, 5]]).max() / YIELD
     peeq_error = np.abs(frames.peeq - expected_peeq[:, None, None]).max() / (YIELD / h)
-    label = '%s: %d increments' % (case, len(records))
+    if kind != 'C3D8':
+        case_label = '%s %s' % (kind, case)
+    else:
+        case_label = case
+    label = '%s: %d increments' % (case_label, len(records))
     checker.check(stress_error <= TOLERANCE, '%s: s_zz at every point of every increment vs the '
                   'closed form: %.2e of s_y (tolerance %.0e)' % (label, stress_error, TOLERANCE))
     checker.check(lateral <= TOLERANCE, '%s: lateral and shear stresses zero: %.2e of s_y'
-                  % (case, lateral))
+                  % (case_label, lateral))
     checker.check(peeq_error <= TOLERANCE, '%s: PEEQ vs the closed form: %.2e of s_y / H'
-                  % (case, peeq_error))
+                  % (case_label, peeq_error))
     checker.check(abs(eps[-1] + TOP) <= 1e-12 and eps.max() >= TOP * (1 - 1e-12),
-                  '%s: the path reaches +%g and ends at -%g' % (case, TOP, TOP))
+                  '%s: the path reaches +%g and ends at -%g' % (case_label, TOP, TOP))
     # Elastic unloading: the frames after the peak up to the reverse yield point lie on a line
     # of slope E through (eps_max, s_max).
     peak = int(np.argmax(eps))
@@ -146,7 +161,7 @@ def check_small_strain(work, case, checker):
                       for k in unloading) if unloading else 1.0
     checker.check(len(unloading) >= 2 and slope_error <= TOLERANCE,
                   '%s: elastic unloading over %d increments with slope E: %.2e of s_y'
-                  % (case, len(unloading), slope_error))
+                  % (case_label, len(unloading), slope_error))
     # Reverse yield on the closed-form stress b - R (isotropic -s_max, kinematic s_max - 2 s_y),
     # reached by an increment limited by a yield event.
     yield_incs = [r for r in records if r['limit'] == 'yield']
@@ -158,10 +173,10 @@ def check_small_strain(work, case, checker):
     checker.check(len(yield_incs) >= 2 and len(at_reverse) == 1,
                   '%s: first yield and reverse yield at %.6g (= b - R) end increments limited '
                   'by yield events (%d yield-limited increments, the log names %s)'
-                  % (case, reverse, len(yield_incs), yield_incs[0]['entity'] if yield_incs else '-'))
+                  % (case_label, reverse, len(yield_incs), yield_incs[0]['entity'] if yield_incs else '-'))
     text = open(job + '.log').read()
     checker.check(' switches ' in text, '%s: the first unloading increment switches the '
-                  'unloading points to the elastic tangent (log "switches")' % case)
+                  'unloading points to the elastic tangent (log "switches")' % case_label)
 
 
 def nlgeom_errors(work, name, rmin, frequency):
@@ -202,6 +217,8 @@ def main():
     for case in CASES:
         check_small_strain(work, case, checker)
     check_nlgeom(work, checker)
+    for kind in pc.OTHER_KINDS:
+        check_small_strain(work, 'isotropic', checker, kind)
     checker.finish()
 
 
