@@ -1,7 +1,7 @@
 """plasticity_restart.sh: a plastic run killed with SIGKILL at a random increment and restarted
 from its newest checkpoint ends with the one-go run's outputs, bit for bit.
 
-    restart_plastic.py WORKDIR
+    restart_plastic.py WORKDIR [KIND]
 
 The problem: a bar 6 x 2 x 2 (8 x 2 x 2 C3D8, B-bar) clamped at x = 0, its end x = 6 pushed
 sideways by 0.3 (NLGEOM) and back to -0.1 (about 160 increments, under a second): von Mises
@@ -17,6 +17,10 @@ from the clamp (yield events, the plastic strain limit); step 2 unloads and reve
    checkpoint to the end: every dataset and attribute of job.h5 (PEEQ, PE and ALPHA of every
    frame included), job.dat (S and PEEQ tables) byte for byte, and the frames of job.xdmf,
    equal the one-go run's; so does the final checkpoint's material state.
+With KIND (e.g. C3D20R, as plasticity_restart_quadratic.sh runs it) the bar's cells are
+elements of that kind (tests/tools/kind_meshes.py; no B-bar, 4 x 2 x 2 cells), so that the
+checkpoint carries the state of every point of a quadratic element (8 per C3D20R).
+
 3. The plastic fields are visible in ParaView: the one-go run's job.xdmf lists PEEQ (nodes and
    cells), PE and ALPHA (nodes), and VTK's vtkXdmfReader (ParaView's Xdmf reader) returns every
    array of every frame equal to the HDF5 data (post/check_xdmf_vtk.py; skipped without
@@ -38,13 +42,18 @@ fc = pc.fc
 JOB = 'job'
 
 
-def write_deck(path):
-    block = fc.Block(lx=6.0, ly=2.0, lz=2.0, nx=8, ny=2, nz=2)
-    sets = {'CLAMP': block.face(0, 0), 'END': block.face(0, 1)}
-    lines = ['*HEADING', 'bar bent into the plastic range and back (restart_plastic.py)']
-    lines += block.mesh_cards(sets)
+def write_deck(path, kind='C3D8'):
+    lines = ['*HEADING', 'bar bent into the plastic range and back (restart_plastic.py), ' + kind]
+    if kind == 'C3D8':
+        block = fc.Block(lx=6.0, ly=2.0, lz=2.0, nx=8, ny=2, nz=2)
+        sets = {'CLAMP': block.face(0, 0), 'END': block.face(0, 1)}
+        lines += block.mesh_cards(sets)
+    else:
+        lines += pc.kind_mesh_cards((6.0, 2.0, 2.0), (4, 2, 2), kind, {
+            'CLAMP': lambda x, y, z: x == 0.0, 'END': lambda x, y, z: x == 6.0})
     lines += pc.von_mises_cards(200000.0, 0.3, [(200.0, 0.0), (300.0, 0.05), (320.0, 0.5)],
-                                'COMBINED', cyclic=[(200.0, 0.0), (250.0, 0.1)], bbar=True)
+                                'COMBINED', cyclic=[(200.0, 0.0), (250.0, 0.1)],
+                                bbar=(kind == 'C3D8'))
     lines += ['*BOUNDARY', 'CLAMP, 1, 3', '*RESTART, WRITE, FREQUENCY=5, GENERATIONS=3',
               '*STEP, NLGEOM', '*STATIC', '0.05, 1.', '*BOUNDARY', 'END, 2, 2, 0.3',
               '*NODE FILE, FREQUENCY=10', 'U', '*EL FILE, FREQUENCY=10', 'S, PEEQ',
@@ -85,15 +94,16 @@ def main():
     rc.require_h5py()
     work = sys.argv[1]
     rng = rc.seeded_random('plasticity_restart')
+    kind = sys.argv[2] if len(sys.argv) > 2 else 'C3D8'
     reference = rc.fresh_dir(os.path.join(work, 'reference'))
-    write_deck(os.path.join(reference, JOB + '.inp'))
+    write_deck(os.path.join(reference, JOB + '.inp'), kind)
     t0 = time.monotonic()
     rc.run(reference, JOB)
     wall = time.monotonic() - t0
     records, _ = fc.read_increments(os.path.join(reference, JOB + '.log'))
     kinds = sorted({r['limit'] for r in records})
-    print('one-go run: %.2f s, %d increments (limits: %s), %d switching increments'
-          % (wall, len(records), ', '.join(kinds),
+    print('one-go run (%s): %.2f s, %d increments (limits: %s), %d switching increments'
+          % (kind, wall, len(records), ', '.join(kinds),
              sum(' switches ' in line for line in open(os.path.join(reference, JOB + '.log')))))
     killed = rc.fresh_dir(os.path.join(work, 'killed'))
     shutil.copy(os.path.join(reference, JOB + '.inp'), killed)
