@@ -44,6 +44,7 @@ module fcs_element_kernels
   public :: element_strain_increments, element_point_volumes, element_extrapolate
   public :: element_min_jacobian_ratio, element_volume, element_face_nodes, element_face_pressure
   public :: element_face_area, element_hourglass_force, element_hourglass_stiffness
+  public :: element_hourglass_increment
   public :: element_mode_residual, element_mode_correction, MAX_MODES, HOURGLASS_SCALE
 
   !> Nonzeros of the strain-displacement matrix B (as fcs_hex8_element): column (a, i) has
@@ -377,20 +378,30 @@ contains
     if (ok) modes(:, 1:kind%n_modes) = reshape(rhs(1:na, 1), [3, kind%n_modes])
   end subroutine element_mode_correction
 
-  !> C3D8R: the hourglass forces of nodal displacements u(3, 8) (total, from the reference
-  !> configuration) added to f (node-major), f_a = E a sum_k Gamma_a^k (sum_b Gamma_b^k u_b)
-  !> (CalculiX hgforce.f; Flanagan & Belytschko 1981, eq. 62 with the stiffness of
-  !> shape8hr.f), E the Young's modulus.
-  pure subroutine element_hourglass_force(kind, geo, u, youngs, f)
+  !> C3D8R: the increment of the generalised hourglass forces Q(i, k) = E a sum_b u_ib
+  !> Gamma_b^k (CalculiX hgforce.f's hglf; Flanagan & Belytschko 1981, eqs. 56-62 with the
+  !> stiffness of shape8hr.f) for nodal increments du(3, 8): dQ = E a du Gamma, E the Young's
+  !> modulus. Summed over the increments (the element loops keep Q as state) it is CalculiX's
+  !> E a u Gamma in small strain.
+  pure function element_hourglass_increment(kind, geo, du, youngs) result(dq)
     type(element_kind_t), intent(in) :: kind
     type(element_geometry_t), intent(in) :: geo
-    real(dp), intent(in) :: u(:, :), youngs
-    real(dp), intent(inout) :: f(:)
-    real(dp) :: generalised(3, 4), force(3, 8)
+    real(dp), intent(in) :: du(:, :), youngs
+    real(dp) :: dq(3, 4)
+    dq = 0.0_dp
     if (kind%formulation /= FORMULATION_HOURGLASS) return
-    generalised = youngs * geo%hourglass_factor * matmul(u(:, 1:8), geo%hourglass)
-    force = matmul(generalised, transpose(geo%hourglass))
-    f(1:24) = f(1:24) + reshape(force, [24])
+    dq = youngs * geo%hourglass_factor * matmul(du(:, 1:8), geo%hourglass)
+  end function element_hourglass_increment
+
+  !> C3D8R: the hourglass forces of the generalised hourglass forces q(3, 4) added to f
+  !> (node-major): f_a = sum_k q(:, k) Gamma_a^k (CalculiX hgforce.f).
+  pure subroutine element_hourglass_force(kind, geo, q, f)
+    type(element_kind_t), intent(in) :: kind
+    type(element_geometry_t), intent(in) :: geo
+    real(dp), intent(in) :: q(3, 4)
+    real(dp), intent(inout) :: f(:)
+    if (kind%formulation /= FORMULATION_HOURGLASS) return
+    f(1:24) = f(1:24) + reshape(matmul(q, transpose(geo%hourglass)), [24])
   end subroutine element_hourglass_force
 
   !> C3D8R: the hourglass stiffness E a Gamma Gamma^T (x) I_3 added to k (CalculiX

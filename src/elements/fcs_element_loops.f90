@@ -19,6 +19,12 @@
 !> condensed in the tangent and found element by element in `update` (`update_modes`: the
 !> modes' generalised forces vanish at the end of every increment), and predicted from the
 !> condensed tangent for the trial increments of `collect_events` and `count_unloading`.
+!> C3D8R's generalised hourglass forces (12 per element) are element state: `update` adds
+!> their increment (rotated with the element's spin under NLGEOM), `assemble` turns them into
+!> nodal forces. They are kept after the material's internal variables at the element's first
+!> point (`material_state(n + 1:n + 12, 1, e)`, n the material's own count), so that they are
+!> restored, gathered and checkpointed with them; `n_material_state` counts them,
+!> `has_states` does not (it tells whether a material has a yield surface).
 module fcs_element_loops
   use fcs_kinds, only: dp
   use fcs_error, only: error_t, fatal_error
@@ -29,6 +35,7 @@ module fcs_element_loops
     element_tangent, element_strain_increments, element_point_volumes, element_extrapolate, &
     element_min_jacobian_ratio, element_volume, element_face_nodes, element_face_pressure, &
     element_face_area, element_hourglass_force, element_hourglass_stiffness, &
+    element_hourglass_increment, &
     element_mode_residual, element_mode_correction, MAX_MODES
   use fcs_element_state, only: element_state_t
   use fcs_hex8_element, only: hex8_rotate_stress, mises_stress
@@ -49,6 +56,8 @@ module fcs_element_loops
   !> tangent), at most MAX_MODE_ITERATIONS Newton corrections.
   real(dp), parameter :: MODE_TOLERANCE = 1.0e-10_dp
   integer, parameter :: MAX_MODE_ITERATIONS = 25
+  !> C3D8R: generalised hourglass forces Q(3, 4) kept per element.
+  integer, parameter :: HOURGLASS_STATE = 12
 
   !> The R-minimum limits of an increment at the integration points (doc/theory.md 6.4):
   !> largest equivalent strain increment [-], rotation increment [rad] and growth of the
@@ -76,6 +85,8 @@ module fcs_element_loops
     real(dp), allocatable :: x_reference(:, :)
     !> The elements this process assembles and updates (all of them in a serial run).
     integer, allocatable :: mine(:)
+    !> Whether some element has hourglass control (C3D8R), whose forces are element state.
+    logical :: hourglass = .false.
   contains
     procedure :: init => loops_init
     procedure :: set_share => loops_set_share
@@ -174,8 +185,11 @@ contains
     used = .false.
     used(this%kind) = .true.
     this%max_points = 0
+    this%hourglass = .false.
     do k = 1, catalogue%size()
-      if (used(k)) this%max_points = max(this%max_points, catalogue%kinds(k)%n_points)
+      if (.not. used(k)) cycle
+      this%max_points = max(this%max_points, catalogue%kinds(k)%n_points)
+      if (catalogue%kinds(k)%formulation == FORMULATION_HOURGLASS) this%hourglass = .true.
     end do
   end subroutine loops_init
 
@@ -203,21 +217,37 @@ contains
     end do
   end function loops_point_counts
 
-  !> The largest number of internal variables a material keeps per integration point.
+  !> The number of internal variables kept per integration point: the largest number a
+  !> material keeps, and with C3D8R elements 12 more for their hourglass forces.
   pure integer function loops_n_material_state(this) result(n)
     class(element_loops_t), intent(in) :: this
+    n = largest_material_state(this)
+    if (this%hourglass) n = n + HOURGLASS_STATE
+  end function loops_n_material_state
+
+  !> The largest number of internal variables a material keeps per point.
+  pure integer function largest_material_state(this) result(n)
+    type(element_loops_t), intent(in) :: this
     integer :: k
     n = 0
     do k = 1, size(this%materials)
       n = max(n, this%materials(k)%m%n_state())
     end do
-  end function loops_n_material_state
+  end function largest_material_state
 
   !> Whether some material has internal variables (a yield surface).
   pure logical function loops_has_states(this) result(has)
     class(element_loops_t), intent(in) :: this
-    has = this%n_material_state() > 0
+    has = largest_material_state(this) > 0
   end function loops_has_states
+
+  !> C3D8R element e: where its hourglass forces Q(3, 4) lie in material_state(:, 1, e) (after
+  !> its material's internal variables).
+  pure integer function hourglass_first(this, e) result(first)
+    type(element_loops_t), intent(in) :: this
+    integer, intent(in) :: e
+    first = this%materials(this%material(e))%m%n_state() + 1
+  end function hourglass_first
 
   !> Nodal coordinates of element e: current ones x(3, n_nodes) with NLGEOM, else the
   !> reference ones.
@@ -278,8 +308,8 @@ contains
     real(dp), intent(out), optional :: flux(:)
     type(element_geometry_t) :: geo
     real(dp) :: xe(3, MAX_NODES), f(3 * MAX_NODES), k(3 * MAX_NODES, 3 * MAX_NODES)
-    real(dp) :: c(6, 6, MAX_POINTS), youngs
-    integer :: e, q, a, node, i, n
+    real(dp) :: c(6, 6, MAX_POINTS)
+    integer :: e, q, a, node, i, n, first
     logical :: ok, missing
     f_int = 0.0_dp
     if (present(flux)) flux = 0.0_dp
@@ -295,9 +325,9 @@ contains
         end if
         call element_internal_force(kind, geo, fields%stress(:, :, e), this%bbar(e), f(1:3 * n))
         if (kind%formulation == FORMULATION_HOURGLASS) then
-          youngs = youngs_modulus(this%materials(this%material(e))%m)
-          call element_hourglass_force(kind, geo, x(:, this%nodes(1:n, e)) - &
-                                       this%x_reference(:, this%nodes(1:n, e)), youngs, f(1:3 * n))
+          first = hourglass_first(this, e)
+          call element_hourglass_force(kind, geo, reshape(fields%material_state(first:first + &
+                                       HOURGLASS_STATE - 1, 1, e), [3, 4]), f(1:3 * n))
         end if
         do a = 1, n
           node = this%nodes(a, e)
@@ -322,8 +352,8 @@ contains
         end associate
         call element_tangent(kind, geo, fields%stress(:, :, e), c(:, :, 1:kind%n_points), &
                              this%bbar(e), nlgeom, k(1:3 * n, 1:3 * n))
-        if (kind%formulation == FORMULATION_HOURGLASS) &
-          call element_hourglass_stiffness(kind, geo, youngs, k(1:3 * n, 1:3 * n))
+        if (kind%formulation == FORMULATION_HOURGLASS) call element_hourglass_stiffness(kind, &
+          geo, youngs_modulus(this%materials(this%material(e))%m), k(1:3 * n, 1:3 * n))
         call matrix%add_matrix(this%nodes(1:n, e), k(1:3 * n, 1:3 * n), missing)
       end associate
     end do
@@ -368,9 +398,36 @@ contains
                               fields%strain(:, q, e), fields%material_state(:, q, e))
           end do
         end associate
+        if (kind%formulation == FORMULATION_HOURGLASS) &
+          call update_hourglass(this, e, geo, du_e(:, 1:n), spin(:, :, 1), nlgeom, fields)
       end associate
     end do
   end subroutine loops_update
+
+  !> C3D8R element e: its generalised hourglass forces Q go from the start to the end of the
+  !> increment: Q_{n+1} = R Q_n + E a du Gamma, with Gamma and a on the mid-increment
+  !> configuration `geo` and, with NLGEOM, R the Hughes-Winget rotation of the element's spin
+  !> increment (Q's first index is spatial; Flanagan & Belytschko 1981 rotate their hourglass
+  !> forces with the element). Without NLGEOM the sum of the increments is CalculiX's
+  !> E a u Gamma (hgforce.f) exactly; with NLGEOM CalculiX recomputes E a u_total Gamma on
+  !> the current configuration, which is not objective (doc/theory.md 1.5).
+  subroutine update_hourglass(this, e, geo, du_e, spin, nlgeom, fields)
+    type(element_loops_t), intent(in) :: this
+    integer, intent(in) :: e
+    type(element_geometry_t), intent(in) :: geo
+    real(dp), intent(in) :: du_e(:, :), spin(3, 3)
+    logical, intent(in) :: nlgeom
+    type(element_state_t), intent(inout) :: fields
+    real(dp) :: q(3, 4)
+    integer :: first
+    first = hourglass_first(this, e)
+    q = reshape(fields%material_state(first:first + HOURGLASS_STATE - 1, 1, e), [3, 4])
+    if (nlgeom) q = matmul(spin_rotation(spin), q)
+    associate (kind => this%catalogue%kinds(this%kind(e)))
+      q = q + element_hourglass_increment(kind, geo, du_e, youngs_modulus(this%materials(this%material(e))%m))
+    end associate
+    fields%material_state(first:first + HOURGLASS_STATE - 1, 1, e) = reshape(q, [HOURGLASS_STATE])
+  end subroutine update_hourglass
 
   !> C3D8I element e: the update of its points (`update_point`) for nodal increments du_e from
   !> start coordinates xe (the reference ones without NLGEOM), with mode increments that make
@@ -472,7 +529,7 @@ contains
   end subroutine trial_modes
 
   !> Young's modulus of a material's elastic part, E = 9 K G / (3 K + G) (the modulus of
-  !> CalculiX's hourglass stiffness, elas(1)).
+  !> CalculiX's hourglass stiffness, elas(1), for its isotropic materials).
   pure real(dp) function youngs_modulus(material) result(youngs)
     class(material_t), intent(in) :: material
     real(dp) :: k, g

@@ -21,7 +21,7 @@ program test_fcs_element_formulations
     TOPOLOGY_WEDGE
   use fcs_element_catalogue, only: element_catalogue_t, ELEMENT_KIND_NAMES
   use fcs_element_kernels, only: element_geometry_t, element_geometry, element_hourglass_force, &
-    element_hourglass_stiffness, HOURGLASS_SCALE
+    element_hourglass_stiffness, element_hourglass_increment, HOURGLASS_SCALE
   use fcs_element_loops, only: element_loops_t, mesh_kinds
   use fcs_element_state, only: element_state_t
   use fcs_element_basis, only: solve_linear_system
@@ -444,7 +444,7 @@ contains
           u = 0.0_dp
           u(i, :) = kind%hourglass_base(:, m)
           f = 0.0_dp
-          call element_hourglass_force(kind, geo, u, YOUNGS, f)
+          call element_hourglass_force(kind, geo, element_hourglass_increment(kind, geo, u, YOUNGS), f)
           expected = 8.0_dp * YOUNGS * geo%hourglass_factor * u
           call suite%close_array(f, reshape(expected, [24]), ROUND_OFF, 'C3D8R cube: hourglass force')
           k = 0.0_dp
@@ -455,7 +455,7 @@ contains
       end do
       u = matmul(H_PATCH, x)
       f = 0.0_dp
-      call element_hourglass_force(kind, geo, u, YOUNGS, f)
+      call element_hourglass_force(kind, geo, element_hourglass_increment(kind, geo, u, YOUNGS), f)
       call suite%check(maxval(abs(f)) <= ROUND_OFF * YOUNGS * geo%hourglass_factor * maxval(abs(u)), &
                        'C3D8R cube: no hourglass force under homogeneous strain')
     end associate
