@@ -10,7 +10,11 @@
 !>   stress rotates with the body, sigma = R sigma_0 R^T (the Hughes-Winget update is exact
 !>   for a rigid rotation), and the interior nodes stay force-free;
 !> - C3D8R: CalculiX's hourglass stiffness on a cube (the closed form E a h.h), no hourglass
-!>   force under homogeneous strain, f_int = K du for an element with hourglass modes;
+!>   force under homogeneous strain, f_int = K du for an element with hourglass modes; under
+!>   NLGEOM an hourglass-deformed element turned rigidly keeps its hourglass forces, turned
+!>   with it (f = R f_0; they are element state, rotated with the spin);
+!> - on a distorted and a parallelepiped hexahedron, fcs3d's hourglass vectors and mode
+!>   gradients against CalculiX's variants (which agree only on the parallelepiped);
 !> - C3D8I: pure bending of a rectangular element (nu = 0) is exact - strain energy
 !>   E kappa^2 I L / 2 and sigma_xx = E kappa z at every point after the update, where C3D8
 !>   locks - and f_int = K du on a distorted element (condensed tangent and mode solve agree).
@@ -18,7 +22,7 @@ program test_fcs_element_formulations
   use fcs_kinds, only: dp, i8
   use fcs_error, only: error_t
   use fcs_element_kind, only: element_kind_t, TOPOLOGY_HEXAHEDRON, TOPOLOGY_TETRAHEDRON, &
-    TOPOLOGY_WEDGE
+    TOPOLOGY_WEDGE, determinant3
   use fcs_element_catalogue, only: element_catalogue_t, ELEMENT_KIND_NAMES
   use fcs_element_kernels, only: element_geometry_t, element_geometry, element_hourglass_force, &
     element_hourglass_stiffness, element_hourglass_increment, HOURGLASS_SCALE
@@ -72,6 +76,8 @@ program test_fcs_element_formulations
   call check_hourglass_cube()
   call check_single_element_consistency('C3D8R')
   call check_single_element_consistency('C3D8I')
+  call check_hourglass_rotation()
+  call check_against_calculix_variants()
   call check_pure_bending()
   call suite%report()
 
@@ -499,6 +505,113 @@ contains
     call patch%loops%assemble(x + reshape(du, [3, 8]), patch%fields, .false., f_int, err)
     call suite%close_array(f_int, matmul(k, du), ROUND_OFF, name // ': f_int = K du (distorted element)')
   end subroutine check_single_element_consistency
+
+  !> Why fcs3d departs from ccx on distorted elements (doc/theory.md 1.5), on one distorted
+  !> hexahedron: fcs3d's hourglass vectors (all three terms of FB's appendix 2) are orthogonal
+  !> to a homogeneous strain field, ccx's (shape8hr.f keeps the j = 3 term only) are not; the
+  !> modes' gradients with Taylor's factor integrate to zero over the element, ccx's
+  !> (shape8hu.f, without the factor) do not. On a parallelepiped both pairs agree.
+  subroutine check_against_calculix_variants()
+    type(element_geometry_t) :: geo
+    real(dp) :: x(3, 8), noise(3, 8), u(3, 8), gamma_ccx(8, 4), integral(3), integral_ccx(3)
+    real(dp) :: det0, det_q
+    integer :: m, q, variant
+    logical :: ok
+    character(len=:), allocatable :: shape_name
+    do variant = 1, 2
+      shape_name = trim(merge('distorted     ', 'parallelepiped', variant == 1))
+      associate (kind => catalogue%kinds(catalogue%find('C3D8R')))
+        call random_number(noise)
+        x = matmul(reshape([1.0_dp, 0.2_dp, 0.0_dp, 0.1_dp, 1.1_dp, 0.1_dp, 0.0_dp, -0.2_dp, 0.9_dp], &
+                   [3, 3]), kind%node_xi)
+        if (variant == 1) x = x + 0.25_dp * (noise - 0.5_dp)
+        call element_geometry(kind, x, geo, ok)
+        u = matmul(H_PATCH, x)
+        gamma_ccx = kind%hourglass_base - matmul(transpose(geo%grad(3:3, 1:8, 1)), &
+                                                 matmul(x(3:3, :), kind%hourglass_base))
+        call suite%check(maxval(abs(matmul(u, geo%hourglass))) <= ROUND_OFF * maxval(abs(u)), &
+                         'C3D8R ' // shape_name // ': Gamma orthogonal to a homogeneous strain')
+        if (variant == 1) then
+          call suite%check(maxval(abs(matmul(u, gamma_ccx))) > 1.0e-3_dp * maxval(abs(u)), &
+                           'C3D8R distorted: ccx''s one-term vectors are not')
+        else
+          call suite%close_array(reshape(gamma_ccx, [32]), reshape(geo%hourglass, [32]), ROUND_OFF, &
+                                 'C3D8R parallelepiped: ccx''s vectors are the same')
+        end if
+      end associate
+      associate (kind => catalogue%kinds(catalogue%find('C3D8I')))
+        call element_geometry(kind, x, geo, ok)
+        det0 = determinant3(matmul(x, transpose(kind%centre_derivatives)))
+        do m = 1, 3
+          integral = 0.0_dp
+          integral_ccx = 0.0_dp
+          do q = 1, kind%n_points
+            det_q = geo%dv(q) / kind%weight(q)
+            integral = integral + geo%grad(:, 8 + m, q) * geo%dv(q)
+            integral_ccx = integral_ccx + geo%grad(:, 8 + m, q) * (det_q / det0) * geo%dv(q)
+          end do
+          call suite%check(maxval(abs(integral)) <= ROUND_OFF * geo%volume, 'C3D8I ' // &
+                           shape_name // ': mode gradients integrate to zero (Taylor)')
+          if (variant == 1) then
+            call suite%check(maxval(abs(integral_ccx)) > 1.0e-4_dp * geo%volume, &
+                             'C3D8I distorted: without Taylor''s factor (ccx) they do not')
+          else
+            call suite%check(maxval(abs(integral_ccx)) <= ROUND_OFF * geo%volume, &
+                             'C3D8I parallelepiped: without the factor they do too')
+          end if
+        end do
+      end associate
+    end do
+  end subroutine check_against_calculix_variants
+
+  !> One C3D8R element given an hourglass displacement (NLGEOM), then turned rigidly by 90
+  !> degrees in 9 increments: the internal forces turn with it, f = R f_0 (the generalised
+  !> hourglass forces rotate with the spin; Gamma and a are invariant under rotations).
+  subroutine check_hourglass_rotation()
+    integer, parameter :: STEPS = 9
+    type(patch_t) :: patch
+    type(material_slot_t), allocatable :: materials(:)
+    type(plastic_def_t) :: elastic
+    real(dp) :: x(3, 8), du(3, 8), f0(24), f(24), rotation(3, 3), turn(3, 3), centre(3)
+    integer :: a, step
+    logical :: duplicate
+    associate (kind => catalogue%kinds(catalogue%find('C3D8R')))
+      call patch%mesh%init(mesh_kinds(catalogue))
+      do a = 1, 8
+        call patch%mesh%add_node(a, kind%node_xi(:, a), duplicate)
+      end do
+      call patch%mesh%add_element(1, [(a, a = 1, 8)], duplicate, catalogue%find('C3D8R'))
+      call patch%mesh%compact()
+      allocate (materials(1))
+      call create_material(YOUNGS, POISSON, elastic, materials(1)%m, err)
+      call patch%loops%init(catalogue, patch%mesh, [1], [.false.], materials, err)
+      call patch%fields%init(patch%loops%max_points, 1, patch%loops%n_material_state())
+      call suite%equal_int(patch%loops%n_material_state(), 12, 'C3D8R: 12 hourglass forces as state')
+      call suite%check(.not. patch%loops%has_states(), 'C3D8R: no yield surface for it')
+      x = patch%mesh%x
+      du = 0.0_dp
+      du(1, :) = 1.0e-3_dp * kind%hourglass_base(:, 1)
+      du(3, :) = -2.0e-3_dp * kind%hourglass_base(:, 4)
+      call patch%loops%update(x, reshape(du, [24]), patch%fields, .true., err)
+      x = x + du
+      call patch%loops%assemble(x, patch%fields, .true., f0, err)
+      call suite%check(maxval(abs(f0)) > 0.0_dp, 'C3D8R: an hourglass mode carries force')
+      turn = axis_rotation([0.0_dp, 0.6_dp, 0.8_dp], 2.0_dp * atan(1.0_dp) / STEPS)
+      centre = [0.2_dp, -0.1_dp, 0.3_dp]
+      rotation = reshape([1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 1.0_dp], [3, 3])
+      do step = 1, STEPS
+        do a = 1, 8
+          du(:, a) = matmul(turn, x(:, a) - centre) + centre - x(:, a)
+        end do
+        call patch%loops%update(x, reshape(du, [24]), patch%fields, .true., err)
+        x = x + du
+        rotation = matmul(turn, rotation)
+      end do
+      call patch%loops%assemble(x, patch%fields, .true., f, err)
+      call suite%close_array(f, reshape(matmul(rotation, reshape(f0, [3, 8])), [24]), ROUND_OFF, &
+                             'C3D8R: hourglass forces turn with the element (NLGEOM)')
+    end associate
+  end subroutine check_hourglass_rotation
 
   !> Pure bending of one rectangular C3D8I element, length L, width W, height T, nu = 0: the
   !> nodal values of u_x = kappa x z, u_z = -kappa x^2 / 2 have the exact strain energy
