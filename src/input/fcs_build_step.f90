@@ -16,7 +16,7 @@ module fcs_build_step
   use fcs_builder_state, only: builder_t
   use fcs_mesh, only: SURFACE_FACES
   use fcs_model, only: model_t, step_t, dof_condition_t, face_load_t, amplitude_t, &
-                       time_points_t, BC_DISPLACEMENT, BC_VELOCITY
+                       time_points_t, BC_DISPLACEMENT, BC_VELOCITY, BC_FIXED
   use fcs_strings, only: to_upper, str, parse_int, parse_real
   implicit none
   private
@@ -234,6 +234,11 @@ contains
     integer :: i, j, first, last, dof, amplitude, origin, clash, n_clashes
     real(dp) :: value
     if (.not. amplitude_param(card, model, diag, amplitude)) return
+    if (has_flag(card, 'FIXED') .and. .not. state%in_step) then
+      call diag%report(card%loc, '*BOUNDARY, FIXED keeps the displacement at the start of a ' // &
+                       'step: it belongs in a step (between *STEP and *END STEP)')
+      return
+    end if
     n_clashes = 0
     if (param_upper(card, 'OP') == 'NEW' .and. .not. (state%in_step .and. state%boundary_renewed)) then
       call state%boundary%clear()
@@ -257,6 +262,12 @@ contains
         if (.not. line_optional_real(line, 4, value, 0.0_dp, 'value', 'BOUNDARY', diag)) cycle
         call resolve_nodes(model%mesh, line%fields(1)%s, line, 'BOUNDARY', diag, nodes)
         c%kind = merge(BC_VELOCITY, BC_DISPLACEMENT, param_upper(card, 'TYPE') == 'VELOCITY')
+        if (has_flag(card, 'FIXED')) then
+          c%kind = BC_FIXED
+          if (size(line%fields) >= 4) call diag%warn(line%loc, '*BOUNDARY, FIXED: the value ' // &
+            'is ignored (the displacement at the start of the step is kept, as in CalculiX)')
+          value = 0.0_dp
+        end if
         c%value = value
         c%amplitude = amplitude
         origin = record_line(state, line%loc)

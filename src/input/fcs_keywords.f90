@@ -415,7 +415,9 @@ contains
             choices=[s('DISPLACEMENT'), s('VELOCITY')], &
             description='DISPLACEMENT: the value is the displacement reached at the end of ' // &
             'the step (ramped over the step, or value x amplitude). VELOCITY: the value is a ' // &
-            'velocity [length/time] held through the step (x amplitude) (fcs3d extension).')], &
+            'velocity [length/time] held through the step (x amplitude) (fcs3d extension).'), &
+          p('FIXED', PARAM_FLAG, description='Keep the displacement the nodes have at the ' // &
+            'start of the step (CalculiX; in a step only; a value on the data line is ignored).')], &
          data_required=.true.), &
       kw('CLOAD', CONTEXT_STEP, 'CalculiX', 'Concentrated nodal forces.', &
          'node or node set, dof, magnitude [force].', &
