@@ -447,7 +447,7 @@ contains
     type(face_load_t), intent(inout) :: f
     type(diagnostics_t), intent(inout) :: diag
     integer :: j, k
-    k = model%mesh%find_surface(to_upper(line%fields(1)%s))
+    k = model%mesh%find_surface(to_upper(line%fields(1)%s), SURFACE_FACES)
     if (k == 0) then
       call diag%report(line%loc, '*' // card%keyword // ': surface "' // line%fields(1)%s // &
                        '" is not defined')
