@@ -226,7 +226,7 @@ contains
   !> *BOUNDARY: node or set, first dof, last dof, value.
   subroutine handle_boundary(card, model, state, diag)
     type(card_t), intent(in) :: card
-    type(model_t), intent(in) :: model
+    type(model_t), intent(inout) :: model
     type(builder_t), intent(inout) :: state
     type(diagnostics_t), intent(inout) :: diag
     type(dof_condition_t) :: c
@@ -354,7 +354,7 @@ contains
   !> *CLOAD: node or set, dof, magnitude (applied to every node of a set).
   subroutine handle_cload(card, model, state, diag)
     type(card_t), intent(in) :: card
-    type(model_t), intent(in) :: model
+    type(model_t), intent(inout) :: model
     type(builder_t), intent(inout) :: state
     type(diagnostics_t), intent(inout) :: diag
     type(dof_condition_t) :: c
@@ -400,7 +400,7 @@ contains
   !> pressures, as in CalculiX, so OP=NEW of either removes the pressures of both.
   subroutine handle_dsload(card, model, state, diag)
     type(card_t), intent(in) :: card
-    type(model_t), intent(in) :: model
+    type(model_t), intent(inout) :: model
     type(builder_t), intent(inout) :: state
     type(diagnostics_t), intent(inout) :: diag
     type(face_load_t) :: f
@@ -524,20 +524,53 @@ contains
   end function load_label_message
 
   !> The AMPLITUDE= parameter resolved to an index (0 if absent). False if undefined.
+  !> The amplitude of a load card (0: none). With TIME DELAY=d, a copy of the amplitude
+  !> shifted by d (its times + d: a(t - d), constant beyond the ends as every amplitude) is
+  !> added to the model once, named "<name> (TIME DELAY=d)", and is the card's amplitude.
   logical function amplitude_param(card, model, diag, amplitude) result(ok)
     type(card_t), intent(in) :: card
-    type(model_t), intent(in) :: model
+    type(model_t), intent(inout) :: model
     type(diagnostics_t), intent(inout) :: diag
     integer, intent(out) :: amplitude
+    real(dp) :: delay
     amplitude = 0
     ok = .true.
-    if (card%find_param('AMPLITUDE') == 0) return
+    if (card%find_param('AMPLITUDE') == 0) then
+      if (card%find_param('TIME DELAY') > 0) call diag%report(card%loc, '*' // card%keyword // &
+        ': TIME DELAY shifts an amplitude: give AMPLITUDE= too')
+      ok = card%find_param('TIME DELAY') == 0
+      return
+    end if
     amplitude = find_amplitude(model, param_upper(card, 'AMPLITUDE'))
     ok = amplitude > 0
-    if (.not. ok) call diag%report(card%loc, '*' // card%keyword // ': amplitude "' // &
-                                   param_value(card, 'AMPLITUDE') // '" is not defined ' // &
-                                   '(define it with *AMPLITUDE before it is used)')
+    if (.not. ok) then
+      call diag%report(card%loc, '*' // card%keyword // ': amplitude "' // &
+                       param_value(card, 'AMPLITUDE') // '" is not defined ' // &
+                       '(define it with *AMPLITUDE before it is used)')
+      return
+    end if
+    if (card%find_param('TIME DELAY') == 0) return
+    call parse_real(param_value(card, 'TIME DELAY'), delay, ok)
+    if (.not. ok) return ! the keyword table has reported the value
+    if (delay /= 0.0_dp) amplitude = delayed_amplitude(model, amplitude, delay)
   end function amplitude_param
+
+  !> Index of amplitude k shifted by `delay` (added to the model the first time).
+  integer function delayed_amplitude(model, k, delay) result(index)
+    type(model_t), intent(inout) :: model
+    integer, intent(in) :: k
+    real(dp), intent(in) :: delay
+    type(amplitude_t) :: shifted
+    character(len=32) :: text
+    write (text, '(g0)') delay
+    shifted = model%amplitudes(k)
+    shifted%name = model%amplitudes(k)%name // ' (TIME DELAY=' // trim(text) // ')'
+    shifted%time = model%amplitudes(k)%time + delay
+    index = find_amplitude(model, shifted%name)
+    if (index > 0) return
+    model%amplitudes = [model%amplitudes, shifted]
+    index = size(model%amplitudes)
+  end function delayed_amplitude
 
   pure integer function find_amplitude(model, name) result(k)
     type(model_t), intent(in) :: model

@@ -411,6 +411,9 @@ contains
          [p('OP', PARAM_CHOICE, default='MOD', choices=[s('MOD'), s('NEW')], &
             description='MOD keeps earlier conditions; NEW removes all earlier ones first.'), &
           p('AMPLITUDE', PARAM_NAME, description='Scale the value by this amplitude.'), &
+          p('TIME DELAY', PARAM_REAL, unit='time', description='Shift the amplitude by this ' // &
+            'time: the value at time t is the amplitude''s at t - delay (CalculiX; needs ' // &
+            'AMPLITUDE).'), &
           p('TYPE', PARAM_CHOICE, default='DISPLACEMENT', &
             choices=[s('DISPLACEMENT'), s('VELOCITY')], &
             description='DISPLACEMENT: the value is the displacement reached at the end of ' // &
@@ -423,7 +426,10 @@ contains
          'node or node set, dof, magnitude [force].', &
          [p('OP', PARAM_CHOICE, default='MOD', choices=[s('MOD'), s('NEW')], &
             description='MOD keeps earlier loads; NEW removes all earlier ones first.'), &
-          p('AMPLITUDE', PARAM_NAME, description='Scale the value by this amplitude.')], &
+          p('AMPLITUDE', PARAM_NAME, description='Scale the value by this amplitude.'), &
+          p('TIME DELAY', PARAM_REAL, unit='time', description='Shift the amplitude by this ' // &
+            'time: the value at time t is the amplitude''s at t - delay (CalculiX; needs ' // &
+            'AMPLITUDE).')], &
          data_required=.true.), &
       kw('DSLOAD', CONTEXT_STEP, 'CalculiX', 'Pressure on an element-face surface ' // &
          '(positive pressure pushes into the surface). Under NLGEOM it follows the current ' // &
@@ -431,7 +437,10 @@ contains
          'surface name, P, magnitude [stress].', &
          [p('OP', PARAM_CHOICE, default='MOD', choices=[s('MOD'), s('NEW')], &
             description='MOD keeps earlier loads; NEW removes all earlier ones first.'), &
-          p('AMPLITUDE', PARAM_NAME, description='Scale the value by this amplitude.')], &
+          p('AMPLITUDE', PARAM_NAME, description='Scale the value by this amplitude.'), &
+          p('TIME DELAY', PARAM_REAL, unit='time', description='Shift the amplitude by this ' // &
+            'time: the value at time t is the amplitude''s at t - delay (CalculiX; needs ' // &
+            'AMPLITUDE).')], &
          data_required=.true.), &
       kw('DLOAD', CONTEXT_STEP, 'CalculiX', 'Distributed load: pressure on element faces, ' // &
          'as *DSLOAD (the same list of face pressures: OP=NEW of either removes both). The ' // &
@@ -440,7 +449,10 @@ contains
          '*SURFACE), magnitude [stress].', &
          [p('OP', PARAM_CHOICE, default='MOD', choices=[s('MOD'), s('NEW')], &
             description='MOD keeps earlier loads; NEW removes all earlier ones first.'), &
-          p('AMPLITUDE', PARAM_NAME, description='Scale the value by this amplitude.')], &
+          p('AMPLITUDE', PARAM_NAME, description='Scale the value by this amplitude.'), &
+          p('TIME DELAY', PARAM_REAL, unit='time', description='Shift the amplitude by this ' // &
+            'time: the value at time t is the amplitude''s at t - delay (CalculiX; needs ' // &
+            'AMPLITUDE).')], &
          data_required=.true.) &
       ]
   end function step_keywords
