@@ -381,8 +381,8 @@ contains
           any(slave_faces == 0) .or. any(this%pairs(k)%face_nodes == 0)) then
         call input_error(err, format_location(defs(k)%loc, '*TIE ' // defs(k)%name // ': the ' // &
           'segment-to-segment tie integrates 4-node (bilinear quadrilateral) faces only; its ' // &
-          'surfaces have triangular or quadratic faces (not supported yet: use C3D8 or C3D8R ' // &
-          'elements next to the tied surfaces)'))
+          'surfaces have triangular or quadratic faces (not supported yet: use C3D8 elements ' // &
+          'next to the tied surfaces)'))
         return
       end if
       call this%ties%add(slave_faces, this%pairs(k)%face_nodes, x, this%pairs(k)%normal_stiffness, &
