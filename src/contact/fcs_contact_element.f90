@@ -1,7 +1,8 @@
 !> The node-to-point contact element (Xing & Makinouchi 2000, 2002; Xing, Mora & Makinouchi
-!> 2003, eqs. 2-9): a slave node s against the point c at natural coordinates xi of a 4-node
-!> master segment. Degrees of freedom: u_s, u_1..u_4 (15), assembly vector
-!> R = [1, -N_1, -N_2, -N_3, -N_4] (eq. 8).
+!> 2003, eqs. 2-9): a slave node s against the point c at natural coordinates xi of a master
+!> segment of gamma = 3, 4, 6 or 8 nodes (fcs_contact_geometry). Degrees of freedom: u_s,
+!> u_1..u_gamma (3 (1 + gamma), at most MAX_ELEMENT_DOFS = 27), assembly vector
+!> R = [1, -N_1, ..., -N_gamma] (eq. 8) with the segment's own shape functions.
 !>
 !> Forces on the slave node: f = f_n n + f_t, with the penalty normal force f_n = E_n A (-g)
 !> (g = n.(x_s - x_c) < 0 in penetration, A the slave node's tributary area) and the
@@ -19,7 +20,7 @@
 !> spring eta A / dt in parallel with the rate term) and the rate term of the tangent.
 !>
 !> `contact_linearise` gives the derivatives of every contact quantity with respect to the
-!> 15 nodal displacements on the current configuration: the gap, the natural coordinates of
+!> 3 (1 + gamma) nodal displacements on the current configuration: the gap, the natural coordinates of
 !> the contact point (delta xi = A^-1 [a.du~ + g n.delta a], A = m - g h: the metric and
 !> curvature terms), the normal, the frame, the forces, and the tangent K_f = -dF/du
 !> (eqs. 6-9): the linearised friction law of eq. (6) (stick: E_t; slip: the projection
@@ -29,14 +30,16 @@
 !> check K_f against finite differences of `contact_update`.
 module fcs_contact_element
   use fcs_kinds, only: dp
-  use fcs_contact_geometry, only: segment_point_t, segment_point, cross3
+  use fcs_contact_geometry, only: segment_point_t, segment_point, cross3, MAX_SEGMENT_NODES
   use fcs_friction_law, only: friction_law_t, friction_derivatives_t
   implicit none
   private
   public :: contact_linear_t, contact_linearise, contact_update, contact_update_t
-  public :: contact_node_t, contact_params_t
+  public :: contact_node_t, contact_params_t, MAX_ELEMENT_DOFS
   public :: CONTACT_OPEN, CONTACT_STICK, CONTACT_SLIP, CONTACT_TIED, contact_status_name
 
+  !> Most degrees of freedom of a contact element: the slave and an 8-node segment.
+  integer, parameter :: MAX_ELEMENT_DOFS = 3 * (1 + MAX_SEGMENT_NODES)
   !> Contact states of a slave node.
   integer, parameter :: CONTACT_OPEN = 0, CONTACT_STICK = 1, CONTACT_SLIP = 2, CONTACT_TIED = 3
   !> Tangent of a slipping node on a frictionless interface (no tangential stiffness).
@@ -81,20 +84,22 @@ module fcs_contact_element
     logical :: bilateral = .false.
   end type contact_node_t
 
-  !> Derivatives of the contact quantities with respect to the 15 nodal displacements.
+  !> Derivatives of the contact quantities with respect to the n_dof = 3 (1 + gamma) nodal
+  !> displacements (entries past n_dof are zero).
   type :: contact_linear_t
-    real(dp) :: dgap(15) = 0.0_dp
-    real(dp) :: dxi(2, 15) = 0.0_dp
+    integer :: n_dof = 15
+    real(dp) :: dgap(MAX_ELEMENT_DOFS) = 0.0_dp
+    real(dp) :: dxi(2, MAX_ELEMENT_DOFS) = 0.0_dp
     !> Tangential relative motion (slip vector) a_alpha dxi^alpha.
-    real(dp) :: dslip(3, 15) = 0.0_dp
-    real(dp) :: dfn(15) = 0.0_dp
+    real(dp) :: dslip(3, MAX_ELEMENT_DOFS) = 0.0_dp
+    real(dp) :: dfn(MAX_ELEMENT_DOFS) = 0.0_dp
     !> Tangential force change under stick (also for slip nodes: the elastic predictor).
-    real(dp) :: dft_stick(3, 15) = 0.0_dp
+    real(dp) :: dft_stick(3, MAX_ELEMENT_DOFS) = 0.0_dp
     !> Total force change under the node's current state.
-    real(dp) :: df(3, 15) = 0.0_dp
+    real(dp) :: df(3, MAX_ELEMENT_DOFS) = 0.0_dp
     !> Nodal forces R f and tangent stiffness -dF/du.
-    real(dp) :: force(15) = 0.0_dp
-    real(dp) :: stiffness(15, 15) = 0.0_dp
+    real(dp) :: force(MAX_ELEMENT_DOFS) = 0.0_dp
+    real(dp) :: stiffness(MAX_ELEMENT_DOFS, MAX_ELEMENT_DOFS) = 0.0_dp
   end type contact_linear_t
 
   !> Result of updating one contact node over an increment.
@@ -115,7 +120,7 @@ module fcs_contact_element
 contains
 
   !> Linearisation of a closed (stick, slip or tied) contact node at the current state.
-  !> x5(3,5): slave then the 4 master nodes; p: the contact point; gap: current gap; node:
+  !> x5(3, 1 + gamma): slave then the gamma master nodes; p: the contact point; gap: current gap; node:
   !> its state (normal force, friction components, status, |f^tr|); params: area, E_n, E_t;
   !> fr: mu and its derivatives at the current state (dmu/dV = 0 for a law with an explicit
   !> rate); dt: the time increment the rate term of eq. (6) refers to (0: no rate term).
@@ -137,15 +142,16 @@ contains
   !> also changes through the master nodes' motion at the start point and through the turn of
   !> the frame e_m under the accumulated slip (both vanish at the start of an increment).
   pure subroutine contact_linearise(x5, p, gap, node, params, fr, dt, lin, slip, shape_start)
-    real(dp), intent(in) :: x5(3, 5), gap, dt
+    real(dp), intent(in) :: x5(:, :), gap, dt
     type(segment_point_t), intent(in) :: p
     type(contact_node_t), intent(in) :: node
     type(contact_params_t), intent(in) :: params
     type(friction_derivatives_t), intent(in) :: fr
     type(contact_linear_t), intent(out) :: lin
-    real(dp), intent(in), optional :: slip(3), shape_start(4)
-    real(dp) :: dn(3, 15), de(3, 15, 2), eta(2), eta_vec(3), ft_vec(3), f(3), factor
-    real(dp) :: k_t, k_v, series, mu_eff, penetration, dtrial(3, 15), strength
+    real(dp), intent(in), optional :: slip(3), shape_start(:)
+    real(dp) :: dn(3, MAX_ELEMENT_DOFS), de(3, MAX_ELEMENT_DOFS, 2), eta(2), eta_vec(3), ft_vec(3), f(3)
+    real(dp) :: k_t, k_v, series, mu_eff, penetration, dtrial(3, MAX_ELEMENT_DOFS), strength, factor
+    lin%n_dof = 3 * size(x5, 2)
     call contact_kinematics(p, gap, lin, dn, de)
     dtrial = trial_slip_derivative(p, lin%dslip, de, slip, shape_start)
     k_t = params%stick_stiffness * params%area
@@ -198,21 +204,21 @@ contains
   end subroutine contact_linearise
 
   !> Derivative of the slip term sum_m (s . e_m) e_m of the trial force with respect to the
-  !> 15 nodal displacements: P_t ds + sum_m e_m (s . de_m), with ds = a_alpha dxi^alpha
+  !> nodal displacements: P_t ds + sum_m e_m (s . de_m), with ds = a_alpha dxi^alpha
   !> (`dslip`) plus, for an accumulated slip s from a start point with shape functions
   !> `shape_start` on the same face, sum_I (N_I - N_I,start) du_I. Without s: dslip.
   pure function trial_slip_derivative(p, dslip, de, slip, shape_start) result(g)
     type(segment_point_t), intent(in) :: p
-    real(dp), intent(in) :: dslip(3, 15), de(3, 15, 2)
-    real(dp), intent(in), optional :: slip(3), shape_start(4)
-    real(dp) :: g(3, 15)
-    real(dp) :: ds(3, 15), tangent_projector(3, 3)
+    real(dp), intent(in) :: dslip(3, MAX_ELEMENT_DOFS), de(3, MAX_ELEMENT_DOFS, 2)
+    real(dp), intent(in), optional :: slip(3), shape_start(:)
+    real(dp) :: g(3, MAX_ELEMENT_DOFS)
+    real(dp) :: ds(3, MAX_ELEMENT_DOFS), tangent_projector(3, 3)
     integer :: i, m
     g = dslip
     if (.not. present(slip)) return
     ds = dslip
     if (present(shape_start)) then
-      do i = 1, 4
+      do i = 1, p%n_nodes
         do m = 1, 3
           ds(m, 3 * i + m) = ds(m, 3 * i + m) + (p%shape(i) - shape_start(i))
         end do
@@ -234,7 +240,7 @@ contains
     integer :: i
     lin%force(1:3) = f
     lin%stiffness(1:3, :) = -lin%df
-    do i = 1, 4
+    do i = 1, p%n_nodes
       lin%force(3 * i + 1:3 * i + 3) = -p%shape(i) * f
       lin%stiffness(3 * i + 1:3 * i + 3, :) = p%shape(i) * lin%df + &
         outer(f, p%dshape(1, i) * lin%dxi(1, :) + p%dshape(2, i) * lin%dxi(2, :))
@@ -267,8 +273,9 @@ contains
     type(segment_point_t), intent(in) :: p
     real(dp), intent(in) :: gap
     type(contact_linear_t), intent(inout) :: lin
-    real(dp), intent(out) :: dn(3, 15), de(3, 15, 2)
-    real(dp) :: dut(3, 15), da(3, 15, 2), dat(3, 15, 2), rhs(2, 15), amat(2, 2), det, h12, proj(3, 3)
+    real(dp), intent(out) :: dn(3, MAX_ELEMENT_DOFS), de(3, MAX_ELEMENT_DOFS, 2)
+    real(dp) :: dut(3, MAX_ELEMENT_DOFS), da(3, MAX_ELEMENT_DOFS, 2), dat(3, MAX_ELEMENT_DOFS, 2)
+    real(dp) :: rhs(2, MAX_ELEMENT_DOFS), amat(2, 2), det, h12, proj(3, 3)
     integer :: i, alpha
     dut = 0.0_dp
     da = 0.0_dp
@@ -276,17 +283,21 @@ contains
       dut(i, i) = 1.0_dp
     end do
     do alpha = 1, 2
-      do i = 1, 4
+      do i = 1, p%n_nodes
         call put_diag(da(:, :, alpha), i + 1, p%dshape(alpha, i))
       end do
     end do
-    do i = 1, 4
+    do i = 1, p%n_nodes
       call put_diag(dut, i + 1, -p%shape(i))
     end do
     h12 = dot_product(p%normal, p%twist)
     amat = p%metric
     amat(1, 2) = amat(1, 2) - gap * h12
     amat(2, 1) = amat(1, 2)
+    if (p%n_nodes /= 4) then
+      amat(1, 1) = amat(1, 1) - gap * dot_product(p%normal, p%second(:, 1))
+      amat(2, 2) = amat(2, 2) - gap * dot_product(p%normal, p%second(:, 2))
+    end if
     det = amat(1, 1) * amat(2, 2) - amat(1, 2) * amat(2, 1)
     do alpha = 1, 2
       rhs(alpha, :) = matmul(p%a(:, alpha), dut) + gap * matmul(p%normal, da(:, :, alpha))
@@ -295,6 +306,10 @@ contains
     lin%dxi(2, :) = (amat(1, 1) * rhs(2, :) - amat(2, 1) * rhs(1, :)) / det
     dat(:, :, 1) = da(:, :, 1) + outer(p%twist, lin%dxi(2, :))
     dat(:, :, 2) = da(:, :, 2) + outer(p%twist, lin%dxi(1, :))
+    if (p%n_nodes /= 4) then
+      dat(:, :, 1) = dat(:, :, 1) + outer(p%second(:, 1), lin%dxi(1, :))
+      dat(:, :, 2) = dat(:, :, 2) + outer(p%second(:, 2), lin%dxi(2, :))
+    end if
     dn = -outer(p%dual(:, 1), matmul(p%normal, dat(:, :, 1))) &
          - outer(p%dual(:, 2), matmul(p%normal, dat(:, :, 2)))
     proj = identity3() - outer3(p%e(:, 1), p%e(:, 1))
@@ -496,7 +511,7 @@ contains
   end function contact_status_name
 
   pure subroutine put_diag(m, block, value)
-    real(dp), intent(inout) :: m(3, 15)
+    real(dp), intent(inout) :: m(:, :)
     integer, intent(in) :: block
     real(dp), intent(in) :: value
     integer :: i
@@ -506,8 +521,8 @@ contains
   end subroutine put_diag
 
   pure function outer(a, b) result(m)
-    real(dp), intent(in) :: a(3), b(15)
-    real(dp) :: m(3, 15)
+    real(dp), intent(in) :: a(3), b(:)
+    real(dp) :: m(3, size(b))
     integer :: i
     do i = 1, 3
       m(i, :) = a(i) * b

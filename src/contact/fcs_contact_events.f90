@@ -11,8 +11,9 @@ contains
   module procedure system_events
     type(contact_linear_t) :: lin
     type(segment_point_t) :: p
-    real(dp) :: due_fixed(15), due_scaled(15), g_start, g_end
-    integer :: s, a, nodes(5)
+    real(dp) :: due_fixed(MAX_ELEMENT_DOFS), due_scaled(MAX_ELEMENT_DOFS), g_start, g_end
+    integer :: s, a, n_dof
+    integer, allocatable :: nodes(:)
     this%event_r = huge(1.0_dp)
     this%event_kind = EVENT_NONE
     ! The switch passes of this increment are over: the next increment's start afresh.
@@ -20,21 +21,22 @@ contains
     do s = 1, size(this%slave_node)
       if (cstate%face(s) == 0 .or. cstate%status(s) == CONTACT_TIED) cycle
       nodes = element_nodes(this, s, cstate)
-      do a = 1, 5
+      n_dof = 3 * size(nodes)
+      do a = 1, size(nodes)
         due_fixed(3 * a - 2:3 * a) = du_fixed(3 * nodes(a) - 2:3 * nodes(a))
         due_scaled(3 * a - 2:3 * a) = du_scaled(3 * nodes(a) - 2:3 * nodes(a))
       end do
       if (cstate%status(s) == CONTACT_OPEN) then
-        p = segment_point(x(:, nodes(2:5)), cstate%xi(:, s))
-        g_start = cstate%gap(s) + relative_normal(p, due_fixed)
-        g_end = g_start + relative_normal(p, due_scaled)
+        p = segment_point(x(:, nodes(2:)), cstate%xi(:, s))
+        g_start = cstate%gap(s) + relative_normal(p, due_fixed(1:n_dof))
+        g_end = g_start + relative_normal(p, due_scaled(1:n_dof))
         if (cstate%gap(s) > 0.0_dp .and. g_end < 0.0_dp) &
           call offer(this, collector, s, crossing(g_start, g_end), EVENT_CONTACT_CLOSE)
         cycle
       end if
       call linearise(this, s, x, cstate, 0.0_dp, lin)
-      p = segment_point(x(:, nodes(2:5)), cstate%xi(:, s))
-      call closed_node_events(this, s, p, cstate, lin, due_fixed, due_scaled, collector)
+      p = segment_point(x(:, nodes(2:)), cstate%xi(:, s))
+      call closed_node_events(this, s, p, cstate, lin, due_fixed(1:n_dof), due_scaled(1:n_dof), collector)
     end do
   end procedure system_events
 
@@ -53,21 +55,23 @@ contains
   module procedure system_switch_states
     type(contact_linear_t) :: lin
     type(segment_point_t) :: p
-    real(dp) :: due(15), fn, dfn, ft(3), dft(3), mu, qa, qb, qc, tolerance
-    integer :: s, a, nodes(5)
+    real(dp) :: due(MAX_ELEMENT_DOFS), fn, dfn, ft(3), dft(3), mu, qa, qb, qc, tolerance
+    integer :: s, a, n_dof
+    integer, allocatable :: nodes(:)
     logical :: on_cone
     n_switched = 0
     do s = 1, size(this%slave_node)
       if (cstate%status(s) /= CONTACT_STICK .and. cstate%status(s) /= CONTACT_SLIP) cycle
       if (this%switches(s) >= 10) cycle
       nodes = element_nodes(this, s, cstate)
-      do a = 1, 5
+      n_dof = 3 * size(nodes)
+      do a = 1, size(nodes)
         due(3 * a - 2:3 * a) = du(3 * nodes(a) - 2:3 * nodes(a))
       end do
       call linearise(this, s, x, cstate, 0.0_dp, lin)
-      p = segment_point(x(:, nodes(2:5)), cstate%xi(:, s))
+      p = segment_point(x(:, nodes(2:)), cstate%xi(:, s))
       fn = cstate%normal_force(s)
-      dfn = dot_product(lin%dfn, due)
+      dfn = dot_product(lin%dfn(1:n_dof), due(1:n_dof))
       ! A node closed at (numerically) zero normal force that the trial increment pulls into
       ! tension separates now: closed_node_events offers no opening event below the force
       ! floor, so its penalty spring would otherwise hold the bodies together in tension for
@@ -81,7 +85,7 @@ contains
       ft = cstate%friction(1, s) * p%e(:, 1) + cstate%friction(2, s) * p%e(:, 2)
       if (norm2(ft) <= 0.0_dp) cycle
       mu = cone_mu(this, s, cstate)
-      dft = matmul(lin%dft_stick, due)
+      dft = matmul(lin%dft_stick(:, 1:n_dof), due(1:n_dof))
       qa = dot_product(dft, dft) - mu**2 * dfn**2
       qb = 2.0_dp * (dot_product(ft, dft) - mu**2 * fn * dfn)
       qc = dot_product(ft, ft) - mu**2 * fn**2
@@ -121,29 +125,34 @@ contains
     type(segment_point_t), intent(in) :: p
     type(contact_state_t), intent(in) :: cstate
     type(contact_linear_t), intent(in) :: lin
-    real(dp), intent(in) :: due_fixed(15), due_scaled(15)
+    real(dp), intent(in) :: due_fixed(:), due_scaled(:)
     type(rmin_collector_t), intent(inout) :: collector
     real(dp) :: fn, dfn, ft(3), dft(3), mu, qa, qb, qc, xi_start(2), dxi(2), r, fn_floor, bound
-    integer :: alpha, edge
+    integer :: alpha, edge, n_dof
+    n_dof = size(due_fixed)
     associate (pair => this%pairs(this%slave_pair(s)))
-      fn = cstate%normal_force(s) + dot_product(lin%dfn, due_fixed)
-      dfn = dot_product(lin%dfn, due_scaled)
+      fn = cstate%normal_force(s) + dot_product(lin%dfn(1:n_dof), due_fixed)
+      dfn = dot_product(lin%dfn(1:n_dof), due_scaled)
       fn_floor = normal_force_floor(this, s)
       if (cstate%normal_force(s) > fn_floor .and. fn + dfn < 0.0_dp) &
         call offer(this, collector, s, crossing(fn, fn + dfn), EVENT_CONTACT_OPEN)
       ft = cstate%friction(1, s) * p%e(:, 1) + cstate%friction(2, s) * p%e(:, 2) + &
-           matmul(lin%dft_stick, due_fixed)
+           matmul(lin%dft_stick(:, 1:n_dof), due_fixed)
       mu = cone_mu(this, s, cstate)
       if (cstate%status(s) == CONTACT_STICK) then
-        dft = matmul(lin%dft_stick, due_scaled)
+        dft = matmul(lin%dft_stick(:, 1:n_dof), due_scaled)
         qa = dot_product(dft, dft) - mu**2 * dfn**2
         qb = 2.0_dp * (dot_product(ft, dft) - mu**2 * fn * dfn)
         qc = dot_product(ft, ft) - mu**2 * fn**2
         r = cone_crossing(qa, qb, qc, cone_tolerance(fn, ft, dfn, dft, mu))
         if (r <= 1.0_dp) call offer(this, collector, s, r, EVENT_STICK_TO_SLIP)
       end if
-      xi_start = cstate%xi(:, s) + matmul(lin%dxi, due_fixed)
-      dxi = matmul(lin%dxi, due_scaled)
+      xi_start = cstate%xi(:, s) + matmul(lin%dxi(:, 1:n_dof), due_fixed)
+      dxi = matmul(lin%dxi(:, 1:n_dof), due_scaled)
+      if (is_triangle(p%n_nodes)) then
+        call triangle_edge_events(this, s, cstate, xi_start, dxi, collector)
+        return
+      end if
       do alpha = 1, 2
         ! Reaching a shared edge (hand-over to the next segment), or the end of the extension
         ! past a free edge (the node leaves the master surface). A node already on a shared
@@ -163,6 +172,30 @@ contains
       end do
     end associate
   end subroutine closed_node_events
+
+  !> Segment events of a node on a triangular segment along xi_start + r dxi: reaching an
+  !> edge (excess 0, the hand-over to the next segment) or the end of the extension past a
+  !> free edge (excess EDGE_EXTENSION, the node leaves the master surface), from strictly
+  !> before it (fcs_contact_search's edge excess, linear in xi).
+  subroutine triangle_edge_events(this, s, cstate, xi_start, dxi, collector)
+    type(contact_system_t), intent(inout) :: this
+    integer, intent(in) :: s
+    type(contact_state_t), intent(in) :: cstate
+    real(dp), intent(in) :: xi_start(2), dxi(2)
+    type(rmin_collector_t), intent(inout) :: collector
+    real(dp) :: now(4), start(4), finish(4), bound
+    integer :: edge
+    now = edge_excess(cstate%xi(:, s), 3)
+    start = edge_excess(xi_start, 3)
+    finish = edge_excess(xi_start + dxi, 3)
+    do edge = 1, 3
+      bound = 0.0_dp
+      if (this%pairs(this%slave_pair(s))%free_edge(edge, cstate%face(s))) bound = EDGE_EXTENSION
+      if (now(edge) < bound - SEGMENT_EDGE_TOLERANCE .and. finish(edge) > bound) &
+        call offer(this, collector, s, crossing(start(edge) - bound, finish(edge) - bound), &
+                   EVENT_SEGMENT_CHANGE)
+    end do
+  end subroutine triangle_edge_events
 
   !> Round-off level [force^2] of the cone function F(r) = |f_t + r df_t|^2 -
   !> mu^2 (f_n + r df_n)^2 and of its coefficients: 1e-10 of the square of the largest force

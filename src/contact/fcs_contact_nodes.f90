@@ -45,7 +45,8 @@ contains
     params%stick_stiffness = this%pairs(this%slave_pair(s))%stick_stiffness
     params%damping = this%pairs(this%slave_pair(s))%radiation_damping
     if (present(face) .and. present(xi)) call edge_support(xi, &
-      this%pairs(this%slave_pair(s))%free_edge(:, face), params%support, params%dsupport)
+      this%pairs(this%slave_pair(s))%free_edge(:, face), params%support, params%dsupport, &
+      face_node_count(this%pairs(this%slave_pair(s))%face_nodes(:, face)))
   end procedure params_of
 
   !> Documented with its interface in fcs_contact_system.
@@ -54,12 +55,13 @@ contains
     type(friction_derivatives_t) :: fr
     type(contact_node_t) :: node
     type(contact_params_t) :: params
-    real(dp) :: x5(3, 5)
+    real(dp), allocatable :: x5(:, :)
     integer :: start_face
+    integer, allocatable :: nodes(:)
     associate (pair => this%pairs(this%slave_pair(s)))
-      x5(:, 1) = x(:, this%slave_node(s))
-      x5(:, 2:5) = x(:, pair%face_nodes(:, cstate%face(s)))
-      p = segment_point(x5(:, 2:5), cstate%xi(:, s))
+      nodes = element_nodes(this, s, cstate)
+      x5 = x(:, nodes)
+      p = segment_point(x5(:, 2:), cstate%xi(:, s))
       fr = pair%law%evaluate(cstate%normal_force(s) / this%area(s), cstate%slip_rate(s), &
                              cstate%friction_state(s))
       fr%mu = cone_mu(this, s, cstate)
@@ -75,10 +77,10 @@ contains
         call contact_linearise(x5, p, cstate%gap(s), node, params, fr, dt, lin)
       else
         ! An iterate of the equilibrium iterations: it has slipped since the start point.
-        p_start = segment_point(x(:, pair%face_nodes(:, start_face)), this%start_xi(:, s))
+        p_start = segment_point(x(:, pair_face_nodes(pair, start_face)), this%start_xi(:, s))
         if (start_face == cstate%face(s)) then
           call contact_linearise(x5, p, cstate%gap(s), node, params, fr, dt, lin, &
-                                 p%x - p_start%x, p_start%shape)
+                                 p%x - p_start%x, p_start%shape(1:p_start%n_nodes))
         else
           call contact_linearise(x5, p, cstate%gap(s), node, params, fr, dt, lin, &
                                  p%x - p_start%x)
@@ -89,13 +91,13 @@ contains
 
   !> Documented with its interface in fcs_contact_system.
   module procedure element_nodes
-    nodes(1) = this%slave_node(s)
-    nodes(2:5) = this%pairs(this%slave_pair(s))%face_nodes(:, cstate%face(s))
+    nodes = [this%slave_node(s), pair_face_nodes(this%pairs(this%slave_pair(s)), cstate%face(s))]
   end procedure element_nodes
 
   !> Documented with its interface in fcs_contact_system.
   module procedure relative_normal
-    change = dot_product(p%normal, due(1:3) - matmul(reshape(due(4:15), [3, 4]), p%shape))
+    change = dot_product(p%normal, due(1:3) - matmul(reshape(due(4:3 + 3 * p%n_nodes), [3, p%n_nodes]), &
+                                                     p%shape(1:p%n_nodes)))
   end procedure relative_normal
 
   !> Documented with its interface in fcs_contact_system.

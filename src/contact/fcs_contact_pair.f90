@@ -1,6 +1,7 @@
 !> A contact pair as the contact system holds it: its definition from the deck (slave and
 !> master surfaces, resolved penalties: `contact_pair_def_t`, part of the model), and what is
-!> built from it on the mesh - the master faces (4 node indices each, outward), the faces
+!> built from it on the mesh - the master faces (3, 4, 6 or 8 node indices each, outward:
+!> element faces of any kind, corners first), the faces
 !> sharing a node with each face, the free edges of the master surface, the search grid and
 !> the friction law - with the pair-level geometry: global search of a point and following a
 !> closed node's contact point from face to face (fcs_contact_search).
@@ -10,14 +11,15 @@ module fcs_contact_pair
   use fcs_strings, only: str
   use fcs_diagnostics, only: source_loc_t
   use fcs_mesh, only: mesh_t
-  use fcs_contact_geometry, only: segment_point_t, project_to_segment
-  use fcs_contact_search, only: face_grid_t, closest_face, edge_excess, XI_TOLERANCE
+  use fcs_contact_geometry, only: segment_point_t, project_to_segment, is_triangle, cross3
+  use fcs_contact_search, only: face_grid_t, closest_face, edge_excess, XI_TOLERANCE, face_node_count
   use fcs_friction_law, only: friction_law_t
   use fcs_friction_factory, only: create_friction_law, friction_def_t
   use fcs_sort, only: unique_sorted
   implicit none
   private
   public :: contact_pair_def_t, contact_pair_t, pair_setup, face_coordinates, search, follow
+  public :: pair_face_nodes
 
   !> A node-to-point contact pair (*CONTACT PAIR) or a tied pair (*TIE).
   type :: contact_pair_def_t
@@ -55,13 +57,16 @@ module fcs_contact_pair
     real(dp) :: reach = 0.0_dp
     real(dp) :: position_tolerance = 0.0_dp
     class(friction_law_t), allocatable :: law
-    !> Master faces (4 global node indices each, outward) and the faces sharing a node with
-    !> each face (itself included): neighbors(neighbor_ptr(f):neighbor_ptr(f+1)-1).
+    !> Master faces (global node indices, outward, corners first; a column holds the largest
+    !> face of the pair and a smaller face is padded with 0: pair_face_nodes) and the faces
+    !> sharing a node with each face (itself included):
+    !> neighbors(neighbor_ptr(f):neighbor_ptr(f+1)-1).
     integer, allocatable :: face_nodes(:, :)
     integer, allocatable :: neighbor_ptr(:), neighbors(:)
-    !> free_edge(k, f): edge k of face f (k = 1..4: nodes 1-2, 2-3, 3-4, 4-1, i.e. the edges
-    !> xi_2 = -1, xi_1 = 1, xi_2 = 1, xi_1 = -1) bounds the master surface (no other face
-    !> of the pair shares it).
+    !> free_edge(k, f): edge k of face f (k = 1..4: corners 1-2, 2-3, 3-4, 4-1, i.e. the edges
+    !> xi_2 = -1, xi_1 = 1, xi_2 = 1, xi_1 = -1; a triangle's edges 1-2, 2-3, 3-1 are
+    !> t = 0, s + t = 1, s = 0 and its k = 4 is never free) bounds the master surface (no
+    !> other face of the pair shares it).
     logical, allocatable :: free_edge(:, :)
     type(face_grid_t) :: grid
     !> Slave entries of this pair in the contact state: first..last.
@@ -83,7 +88,7 @@ contains
     real(dp), intent(in) :: x(:, :)
     type(error_t), allocatable, intent(out) :: err
     integer, allocatable :: nodes(:)
-    integer :: f, nf
+    integer :: f, nf, width
     pair%name = def%name
     pair%tied = def%tied
     pair%normal_stiffness = def%normal_stiffness
@@ -92,24 +97,28 @@ contains
     pair%radiation_damping = def%radiation_damping
     associate (surface => mesh%surfaces(def%master_surface))
       nf = size(surface%element)
-      allocate (pair%face_nodes(4, nf))
+      width = 0
+      do f = 1, nf
+        width = max(width, size(mesh%face_nodes(surface%element(f), surface%face(f))))
+      end do
+      allocate (pair%face_nodes(width, nf))
+      pair%face_nodes = 0
       do f = 1, nf
         nodes = mesh%face_nodes(surface%element(f), surface%face(f))
-        if (size(nodes) /= 4) then
+        if (all(size(nodes) /= [3, 4, 6, 8])) then
           call input_error(err, 'contact pair ' // def%name // ': face S' // str(surface%face(f)) // &
             ' of element ' // str(mesh%element_id(surface%element(f))) // ' has ' // &
-            str(size(nodes)) // ' nodes; master surfaces need 4-node (quadrilateral) faces')
+            str(size(nodes)) // ' nodes; master segments have 3, 4, 6 or 8 nodes')
           return
         end if
-        pair%face_nodes(:, f) = nodes
+        pair%face_nodes(1:size(nodes), f) = nodes
       end do
     end associate
     pair%face_size = 0.0_dp
     do f = 1, nf
-      pair%face_size = pair%face_size + 0.5_dp * (norm2(x(:, pair%face_nodes(3, f)) - &
-        x(:, pair%face_nodes(1, f))) + norm2(x(:, pair%face_nodes(4, f)) - x(:, pair%face_nodes(2, f))))
+      pair%face_size = pair%face_size + face_length(x(:, pair_face_nodes(pair, f)))
     end do
-    pair%face_size = pair%face_size / (sqrt(2.0_dp) * nf)
+    pair%face_size = pair%face_size / nf
     pair%reach = pair%face_size
     call face_neighbours(pair, mesh%n_nodes)
     call free_edges(pair)
@@ -117,14 +126,41 @@ contains
     call create_friction_law(friction, pair%law, err)
   end subroutine pair_setup
 
-  !> Node coordinates of every master face of a pair, (3, 4, n_faces).
+  !> The length of a face for the pair's mean face size: the mean diagonal over sqrt(2) of a
+  !> quadrilateral (its side when square), sqrt(2 A) of a triangle of area A (its legs when
+  !> right isosceles), from the corner nodes.
+  pure real(dp) function face_length(xf) result(length)
+    real(dp), intent(in) :: xf(:, :)
+    if (is_triangle(size(xf, 2))) then
+      length = sqrt(norm2(cross3(xf(:, 2) - xf(:, 1), xf(:, 3) - xf(:, 1))))
+    else
+      length = 0.5_dp * (norm2(xf(:, 3) - xf(:, 1)) + norm2(xf(:, 4) - xf(:, 2))) / sqrt(2.0_dp)
+    end if
+  end function face_length
+
+  !> The node indices of master face f of a pair (3, 4, 6 or 8).
+  pure function pair_face_nodes(pair, f) result(nodes)
+    type(contact_pair_t), intent(in) :: pair
+    integer, intent(in) :: f
+    integer, allocatable :: nodes(:)
+    nodes = pair%face_nodes(1:face_node_count(pair%face_nodes(:, f)), f)
+  end function pair_face_nodes
+
+  !> Node coordinates of every master face of a pair, (3, nodes per face, n_faces); a face with
+  !> fewer nodes repeats its first node in the unused columns.
   pure function face_coordinates(pair, x) result(face_x)
     type(contact_pair_t), intent(in) :: pair
     real(dp), intent(in) :: x(:, :)
-    real(dp) :: face_x(3, 4, size(pair%face_nodes, 2))
-    integer :: f
+    real(dp) :: face_x(3, size(pair%face_nodes, 1), size(pair%face_nodes, 2))
+    integer :: f, a
     do f = 1, size(pair%face_nodes, 2)
-      face_x(:, :, f) = x(:, pair%face_nodes(:, f))
+      do a = 1, size(pair%face_nodes, 1)
+        if (pair%face_nodes(a, f) /= 0) then
+          face_x(:, a, f) = x(:, pair%face_nodes(a, f))
+        else
+          face_x(:, a, f) = x(:, pair%face_nodes(1, f))
+        end if
+      end do
     end do
   end function face_coordinates
 
@@ -138,7 +174,10 @@ contains
     allocate (node_ptr(n_nodes + 1))
     node_ptr = 0
     do f = 1, nf
-      node_ptr(pair%face_nodes(:, f) + 1) = node_ptr(pair%face_nodes(:, f) + 1) + 1
+      do i = 1, face_node_count(pair%face_nodes(:, f))
+        node = pair%face_nodes(i, f)
+        node_ptr(node + 1) = node_ptr(node + 1) + 1
+      end do
     end do
     node_ptr(1) = 1
     do i = 1, n_nodes
@@ -147,7 +186,7 @@ contains
     allocate (node_faces(node_ptr(n_nodes + 1) - 1))
     fill = node_ptr(1:n_nodes)
     do f = 1, nf
-      do i = 1, 4
+      do i = 1, face_node_count(pair%face_nodes(:, f))
         node = pair%face_nodes(i, f)
         node_faces(fill(node)) = f
         fill(node) = fill(node) + 1
@@ -157,7 +196,7 @@ contains
     pair%neighbor_ptr(1) = 1
     do f = 1, nf
       allocate (found(0))
-      do i = 1, 4
+      do i = 1, face_node_count(pair%face_nodes(:, f))
         node = pair%face_nodes(i, f)
         found = [found, (node_faces(j), j = node_ptr(node), node_ptr(node + 1) - 1)]
       end do
@@ -169,16 +208,22 @@ contains
   end subroutine face_neighbours
 
   !> Which face edges bound the master surface: an edge is free when no other face of the
-  !> pair has both its nodes (faces sharing a node are the only candidates).
+  !> pair has both its corner nodes (faces sharing a node are the only candidates). The
+  !> fourth edge of a triangle does not exist and is never free.
   pure subroutine free_edges(pair)
     type(contact_pair_t), intent(inout) :: pair
-    integer :: f, k, j, other, a, b
+    integer :: f, k, j, other, a, b, corners
     allocate (pair%free_edge(4, size(pair%face_nodes, 2)))
     pair%free_edge = .true.
     do f = 1, size(pair%face_nodes, 2)
-      do k = 1, 4
+      corners = 4
+      if (is_triangle(face_node_count(pair%face_nodes(:, f)))) then
+        corners = 3
+        pair%free_edge(4, f) = .false.
+      end if
+      do k = 1, corners
         a = pair%face_nodes(k, f)
-        b = pair%face_nodes(mod(k, 4) + 1, f)
+        b = pair%face_nodes(mod(k, corners) + 1, f)
         do j = pair%neighbor_ptr(f), pair%neighbor_ptr(f + 1) - 1
           other = pair%neighbors(j)
           if (other == f) cycle
@@ -217,10 +262,12 @@ contains
     integer, allocatable :: candidates(:)
     real(dp) :: excess(4)
     logical :: converged
-    call project_to_segment(x(:, pair%face_nodes(:, face_old)), xs, xi_old, p, gap, converged)
+    integer, allocatable :: nodes(:)
+    nodes = pair_face_nodes(pair, face_old)
+    call project_to_segment(x(:, nodes), xs, xi_old, p, gap, converged)
     face = face_old
     if (converged) then
-      excess = edge_excess(p%xi)
+      excess = edge_excess(p%xi, size(nodes))
       if (all(excess <= XI_TOLERANCE)) return
     end if
     call pair%grid%candidates(xs, candidates)

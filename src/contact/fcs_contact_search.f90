@@ -1,19 +1,25 @@
 !> Contact search: a bucket grid over the master faces of a pair (global search: no all-pairs
 !> loops) and the local search that projects a slave node onto candidate faces (Newton in
 !> natural coordinates, fcs_contact_geometry) with a rule at edges and kinks:
-!>   - if the projection falls inside one or more candidate faces (|xi| <= 1 + XI_TOLERANCE),
-!>     the face with the smallest |gap| wins (at a concave kink, the closer surface);
+!>   - if the projection falls inside one or more candidate faces (every edge excess <=
+!>     XI_TOLERANCE), the face with the smallest |gap| wins (at a concave kink, the closer
+!>     surface);
 !>   - otherwise (a convex kink, or beyond the surface edge) the contact point is the nearest
-!>     point of the nearest face's boundary (xi clamped to [-1, 1]), with that face's normal
-!>     at the clamped point; the gap is measured along it.
+!>     point of the nearest face's boundary (xi clamped to the natural domain), with that
+!>     face's normal at the clamped point; the gap is measured along it.
+!> Faces may have 3, 4, 6 or 8 nodes (face_nodes(:, f) padded with 0 past its n_nodes). The
+!> edge excess of a point is measured in units of half the natural span of the face, so that
+!> the tolerances mean the same on triangles (span 1) as on quadrilaterals (span 2).
 !> The same rule decides the hand-over from one segment to the next as a contact point
 !> slides (fcs_contact_system).
 module fcs_contact_search
   use fcs_kinds, only: dp
-  use fcs_contact_geometry, only: segment_point_t, segment_point, project_to_segment
+  use fcs_contact_geometry, only: segment_point_t, segment_point, project_to_segment, &
+                                  segment_centre, segment_clamp, is_triangle
   implicit none
   private
   public :: face_grid_t, closest_face, edge_excess, edge_support, XI_TOLERANCE, EDGE_EXTENSION
+  public :: face_node_count
 
   !> A projection this far outside [-1, 1] in natural coordinates still counts as inside.
   real(dp), parameter :: XI_TOLERANCE = 1.0e-6_dp
@@ -37,7 +43,7 @@ module fcs_contact_search
     real(dp) :: margin = 0.0_dp
     integer :: dims(3) = 1
     integer, allocatable :: cell_ptr(:), faces(:)
-    !> Coordinates of the face nodes (3, 4, n_faces) when the grid was built: to know when to
+    !> Coordinates of the face nodes (3, nodes per face, n_faces) when the grid was built: to know when to
     !> rebuild, and to rebuild the same grid after a restart.
     real(dp), allocatable :: built_x(:, :, :)
   contains
@@ -48,7 +54,8 @@ module fcs_contact_search
 
 contains
 
-  !> Build the grid for faces with node coordinates face_x(3, 4, nf); faces are found for
+  !> Build the grid for faces with node coordinates face_x(3, nodes, nf) (a face with fewer
+  !> nodes repeats its first node in the unused columns); faces are found for
   !> points within `margin` of their bounding box.
   subroutine grid_build(this, face_x, margin)
     class(face_grid_t), intent(inout) :: this
@@ -118,7 +125,7 @@ contains
     grid_needs_rebuild = .true.
     if (.not. allocated(this%built_x)) return
     do f = 1, size(face_nodes, 2)
-      do a = 1, 4
+      do a = 1, face_node_count(face_nodes(:, f))
         if (norm2(x(:, face_nodes(a, f)) - this%built_x(:, a, f)) > 0.5_dp * this%margin) return
       end do
     end do
@@ -156,7 +163,8 @@ contains
 
   !> The contact point of slave position xs among candidate faces (rule in the module
   !> header). face = 0 when no candidate face projects within `max_distance`.
-  !> `free_edge(k, f)` (k = 1..4: the edges xi_2 = -1, xi_1 = 1, xi_2 = 1, xi_1 = -1) says
+  !> `free_edge(k, f)` (k = 1..4: the edges xi_2 = -1, xi_1 = 1, xi_2 = 1, xi_1 = -1 of a
+  !> quadrilateral; k = 1..3: the edges t = 0, s + t = 1, s = 0 of a triangle) says
   !> which edges of a face bound the master surface (no other face of the surface shares
   !> them). Beyond such an edge the surface ends: a projection up to EDGE_EXTENSION past it
   !> still counts (on the face's continuation, as if inside), one farther past it gives no
@@ -178,8 +186,9 @@ contains
     logical, intent(in), optional :: free_edge(:, :)
     logical, intent(in), optional :: extend
     type(segment_point_t) :: p, clamped, extended_point, edge_point
-    real(dp) :: g, xm(3, 4), best_inside, best_extended, best_edge, distance, excess(4)
-    integer :: i, f, edge_face, extended_face
+    real(dp) :: g, best_inside, best_extended, best_edge, distance, excess(4)
+    real(dp), allocatable :: xm(:, :)
+    integer :: i, f, edge_face, extended_face, n
     logical :: converged, free(4), extended
     extended = .false.
     if (present(extend)) extended = extend
@@ -192,12 +201,13 @@ contains
     extended_face = 0
     do i = 1, size(candidates)
       f = candidates(i)
-      xm = x(:, face_nodes(:, f))
+      n = face_node_count(face_nodes(:, f))
+      xm = x(:, face_nodes(1:n, f))
       free = .false.
       if (present(free_edge)) free = free_edge(:, f)
-      call project_to_segment(xm, xs, [0.0_dp, 0.0_dp], p, g, converged)
+      call project_to_segment(xm, xs, segment_centre(n), p, g, converged)
       excess = huge(1.0_dp)
-      if (converged) excess = edge_excess(p%xi)
+      if (converged) excess = edge_excess(p%xi, n)
       if (all(excess <= XI_TOLERANCE)) then
         if (abs(g) < best_inside .and. abs(g) <= max_distance) then
           best_inside = abs(g)
@@ -213,7 +223,7 @@ contains
           extended_point = p
         end if
       else if (converged .and. all(excess <= merge(EDGE_EXTENSION, CLAMP_LIMIT, free))) then
-        clamped = segment_point(xm, max(-1.0_dp, min(1.0_dp, p%xi)))
+        clamped = segment_point(xm, segment_clamp(p%xi, n))
         distance = norm2(xs - clamped%x)
         if (distance < best_edge .and. distance <= max_distance) then
           best_edge = distance
@@ -239,16 +249,22 @@ contains
   !> extended past the free edges of the master surface): 1 on the segment and past its
   !> shared edges, falling linearly to 0 across the extension EDGE_EXTENSION past a free
   !> edge, 0 beyond; the product of the two directions at a corner. `dw` is its derivative
-  !> with respect to xi. The normal penalty force is scaled by it, so that a node sliding off
+  !> with respect to xi (n_nodes: of the face; on a triangle the product over its free edges
+  !> of 1 - excess/EDGE_EXTENSION). The normal penalty force is scaled by it, so that a node sliding off
   !> the master surface loses its contact force continuously. (Linear, not a smooth step: a
   !> slope that vanished at the end of the ramp would let the linear prediction of the
   !> opening event halve the remaining distance at every increment.)
-  pure subroutine edge_support(xi, free, w, dw)
+  pure subroutine edge_support(xi, free, w, dw, n_nodes)
     real(dp), intent(in) :: xi(2)
     logical, intent(in) :: free(4)
     real(dp), intent(out) :: w, dw(2)
+    integer, intent(in) :: n_nodes
     real(dp) :: wa(2), dwa(2), t, side
     integer :: alpha, edge
+    if (is_triangle(n_nodes)) then
+      call triangle_support(xi, free, w, dw)
+      return
+    end if
     wa = 1.0_dp
     dwa = 0.0_dp
     do alpha = 1, 2
@@ -271,12 +287,56 @@ contains
     dw = [dwa(1) * wa(2), wa(1) * dwa(2)]
   end subroutine edge_support
 
-  !> How far natural point xi lies past each edge of the segment (k = 1..4: xi_2 = -1,
-  !> xi_1 = 1, xi_2 = 1, xi_1 = -1); negative inside.
-  pure function edge_excess(xi) result(excess)
+  !> The support of a triangular segment: the product over its free edges k of
+  !> 1 - e_k/EDGE_EXTENSION (e_k the edge excess, clipped to [0, 1] of the ramp).
+  pure subroutine triangle_support(xi, free, w, dw)
     real(dp), intent(in) :: xi(2)
+    logical, intent(in) :: free(4)
+    real(dp), intent(out) :: w, dw(2)
+    real(dp), parameter :: GRADIENT(2, 3) = reshape([0.0_dp, -2.0_dp, 2.0_dp, 2.0_dp, -2.0_dp, 0.0_dp], [2, 3])
+    real(dp) :: excess(4), factor(3), dfactor(2, 3)
+    integer :: k
+    excess = edge_excess(xi, 3)
+    factor = 1.0_dp
+    dfactor = 0.0_dp
+    do k = 1, 3
+      if (.not. free(k) .or. excess(k) <= 0.0_dp) cycle
+      if (excess(k) >= EDGE_EXTENSION) then
+        factor(k) = 0.0_dp
+      else
+        factor(k) = 1.0_dp - excess(k) / EDGE_EXTENSION
+        dfactor(:, k) = -GRADIENT(:, k) / EDGE_EXTENSION
+      end if
+    end do
+    w = product(factor)
+    dw = dfactor(:, 1) * factor(2) * factor(3) + factor(1) * dfactor(:, 2) * factor(3) + &
+         factor(1) * factor(2) * dfactor(:, 3)
+  end subroutine triangle_support
+
+  !> How far natural point xi lies past each edge of a segment of n_nodes nodes; negative
+  !> inside. Quadrilaterals (k = 1..4: xi_2 = -1, xi_1 = 1, xi_2 = 1, xi_1 = -1): the distance
+  !> in natural coordinates. Triangles (k = 1..3: t = 0, s + t = 1, s = 0; k = 4 is no edge,
+  !> -huge): twice the distance as a fraction of the height over the edge, so that an excess
+  !> means the same fraction of the face's span as on a quadrilateral (span 2).
+  pure function edge_excess(xi, n_nodes) result(excess)
+    real(dp), intent(in) :: xi(2)
+    integer, intent(in) :: n_nodes
     real(dp) :: excess(4)
-    excess = [-1.0_dp - xi(2), xi(1) - 1.0_dp, xi(2) - 1.0_dp, -1.0_dp - xi(1)]
+    if (is_triangle(n_nodes)) then
+      excess = [-2.0_dp * xi(2), 2.0_dp * (xi(1) + xi(2) - 1.0_dp), -2.0_dp * xi(1), -huge(1.0_dp)]
+    else
+      excess = [-1.0_dp - xi(2), xi(1) - 1.0_dp, xi(2) - 1.0_dp, -1.0_dp - xi(1)]
+    end if
   end function edge_excess
+
+  !> Number of nodes of a face in a padded face-node column (the entries before the first 0).
+  pure integer function face_node_count(column) result(n)
+    integer, intent(in) :: column(:)
+    n = size(column)
+    do while (n > 0)
+      if (column(n) /= 0) exit
+      n = n - 1
+    end do
+  end function face_node_count
 
 end module fcs_contact_search

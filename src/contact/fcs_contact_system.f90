@@ -15,12 +15,13 @@ module fcs_contact_system
   use fcs_error, only: error_t, fatal_error, input_error
   use fcs_mesh, only: mesh_t
   use fcs_contact_geometry, only: segment_point_t, segment_point, project_to_segment, &
-                                  calculix_tangents
-  use fcs_contact_search, only: edge_excess, edge_support, XI_TOLERANCE, EDGE_EXTENSION
+                                  calculix_tangents, is_triangle, segment_centre
+  use fcs_contact_search, only: edge_excess, edge_support, XI_TOLERANCE, EDGE_EXTENSION, face_node_count
   use fcs_contact_pair, only: contact_pair_def_t, contact_pair_t, pair_setup, face_coordinates, &
-                              search, follow
+                              search, follow, pair_face_nodes
   use fcs_contact_element, only: contact_linear_t, contact_linearise, contact_update, &
                                  contact_update_t, contact_node_t, contact_params_t, CONTACT_OPEN, &
+                                 MAX_ELEMENT_DOFS, &
                                  CONTACT_STICK, CONTACT_SLIP, CONTACT_TIED
   use fcs_contact_state, only: contact_state_t
   use fcs_contact_areas, only: slave_node_areas, surface_face_nodes
@@ -33,6 +34,7 @@ module fcs_contact_system
                              EVENT_NONE
   use fcs_sort, only: unique_sorted, argsort_integers
   use fcs_strings, only: str
+  use fcs_diagnostics, only: format_location
   use fcs_archive, only: archive_t
   use fcs_field, only: field_t, field, FIELD_SURFACE
   implicit none
@@ -263,18 +265,18 @@ module fcs_contact_system
       type(contact_linear_t), intent(out) :: lin
     end subroutine linearise
 
-    !> The 5 nodes of slave s's contact element.
+    !> The 1 + gamma nodes of slave s's contact element: the slave, then its segment's.
     pure module function element_nodes(this, s, cstate) result(nodes)
       class(contact_system_t), intent(in) :: this
       integer, intent(in) :: s
       type(contact_state_t), intent(in) :: cstate
-      integer :: nodes(5)
+      integer, allocatable :: nodes(:)
     end function element_nodes
 
-    !> n.(du_s - sum N_I du_I): the gap change for nodal increments due(15).
+    !> n.(du_s - sum N_I du_I): the gap change for nodal increments due(3 (1 + gamma)).
     pure module function relative_normal(p, due) result(change)
       type(segment_point_t), intent(in) :: p
-      real(dp), intent(in) :: due(15)
+      real(dp), intent(in) :: due(:)
       real(dp) :: change
     end function relative_normal
 
@@ -363,7 +365,7 @@ contains
     integer :: k, n_total
     integer, allocatable :: slaves(:), slave_faces(:, :)
     real(dp), allocatable :: areas(:)
-    logical, allocatable :: tied(:)
+    logical, allocatable :: tied(:), carries(:)
     allocate (this%pairs(size(defs)), this%slave_node(0), this%slave_pair(0), this%area(0))
     do k = 1, size(defs)
       call pair_setup(this%pairs(k), defs(k), frictions(k), mesh, x, err)
@@ -375,6 +377,14 @@ contains
       if (.not. this%pairs(k)%tied) cycle
       call surface_face_nodes(mesh, defs(k)%slave_surface, slave_faces, err)
       if (allocated(err)) return
+      if (size(slave_faces, 1) /= 4 .or. size(this%pairs(k)%face_nodes, 1) /= 4 .or. &
+          any(slave_faces == 0) .or. any(this%pairs(k)%face_nodes == 0)) then
+        call input_error(err, format_location(defs(k)%loc, '*TIE ' // defs(k)%name // ': the ' // &
+          'segment-to-segment tie integrates 4-node (bilinear quadrilateral) faces only; its ' // &
+          'surfaces have triangular or quadratic faces (not supported yet: use C3D8 elements ' // &
+          'next to the tied surfaces)'))
+        return
+      end if
       call this%ties%add(slave_faces, this%pairs(k)%face_nodes, x, this%pairs(k)%normal_stiffness, &
                          this%pairs(k)%position_tolerance)
     end do
@@ -385,10 +395,16 @@ contains
         this%pairs(k)%n_held_by_tie = count(tied(slaves))
         slaves = pack(slaves, .not. tied(slaves))
       end if
-      call slave_node_areas(mesh, defs(k)%slave_surface, slaves, areas, err)
+      call slave_node_areas(mesh, defs(k)%slave_surface, slaves, areas, err, carries)
       if (allocated(err)) then
         err%message = 'contact pair ' // defs(k)%name // ': ' // err%message
         return
+      end if
+      ! Nodes whose consistent share of the slave surface is zero (corners of 6-node
+      ! triangles) carry no contact force: no contact element (fcs_contact_areas).
+      if (.not. all(carries)) then
+        slaves = pack(slaves, carries)
+        areas = pack(areas, carries)
       end if
       this%pairs(k)%first = n_total + 1
       this%pairs(k)%last = n_total + size(slaves)
@@ -448,7 +464,7 @@ contains
     logical, allocatable :: on_master(:)
     integer :: i
     all = mesh%surface_node_list(def%slave_surface)
-    master = unique_sorted(reshape(pair%face_nodes, [size(pair%face_nodes)]))
+    master = unique_sorted(pack(pair%face_nodes, pair%face_nodes /= 0))
     allocate (on_master(mesh%n_nodes))
     on_master = .false.
     on_master(master) = .true.
@@ -524,7 +540,7 @@ contains
       associate (pair => this%pairs(this%slave_pair(s)))
         nodes = [this%slave_node(s)]
         do j = pair%neighbor_ptr(f), pair%neighbor_ptr(f + 1) - 1
-          nodes = [nodes, pair%face_nodes(:, pair%neighbors(j))]
+          nodes = [nodes, pair_face_nodes(pair, pair%neighbors(j))]
         end do
       end associate
       nodes = unique_sorted(nodes)
@@ -556,7 +572,8 @@ contains
     type(error_t), allocatable, intent(out) :: err
     logical, intent(in), optional :: owned(:)
     type(contact_linear_t) :: lin
-    integer :: s, a, nodes(5)
+    integer :: s, a, n_dof
+    integer, allocatable :: nodes(:)
     logical :: missing
     if (owns_ties(owned)) then
       call this%ties%assemble(x - this%reference, matrix, f_contact, missing)
@@ -572,13 +589,14 @@ contains
       end if
       call linearise(this, s, x, cstate, dt, lin)
       nodes = element_nodes(this, s, cstate)
-      call matrix%add_matrix(nodes, lin%stiffness, missing)
+      n_dof = 3 * size(nodes)
+      call matrix%add_matrix(nodes, lin%stiffness(1:n_dof, 1:n_dof), missing)
       if (missing) then
         call fatal_error(err, 'internal error: contact element of node ' // str(nodes(1)) // &
                          ' is not in the sparse pattern')
         return
       end if
-      do a = 1, 5
+      do a = 1, size(nodes)
         f_contact(3 * nodes(a) - 2:3 * nodes(a)) = f_contact(3 * nodes(a) - 2:3 * nodes(a)) + &
           lin%force(3 * a - 2:3 * a)
       end do
@@ -627,16 +645,17 @@ contains
     type(contact_state_t), intent(in) :: cstate
     type(error_t), allocatable, intent(out) :: err
     type(segment_point_t) :: p
-    real(dp) :: due(15), gap
-    integer :: s, a, nodes(5)
+    real(dp) :: due(MAX_ELEMENT_DOFS), gap
+    integer :: s, a
+    integer, allocatable :: nodes(:)
     do s = 1, size(this%slave_node)
       if (cstate%status(s) /= CONTACT_STICK .and. cstate%status(s) /= CONTACT_SLIP) cycle
       nodes = element_nodes(this, s, cstate)
-      do a = 1, 5
+      do a = 1, size(nodes)
         due(3 * a - 2:3 * a) = du(3 * nodes(a) - 2:3 * nodes(a))
       end do
-      p = segment_point(x(:, nodes(2:5)), cstate%xi(:, s))
-      gap = cstate%gap(s) + relative_normal(p, due)
+      p = segment_point(x(:, nodes(2:)), cstate%xi(:, s))
+      gap = cstate%gap(s) + relative_normal(p, due(1:3 * size(nodes)))
       associate (pair => this%pairs(this%slave_pair(s)))
         if (-gap <= PENETRATION_LIMIT * pair%face_size) cycle
         call penetration_error(pair, model_node_id(nodes(1)), -gap, err)
@@ -705,7 +724,8 @@ contains
     real(dp), intent(inout) :: f_contact(:)
     real(dp) :: normal(3), pressure, shear(3), f(3)
     type(segment_point_t) :: p
-    integer :: s, a, nodes(5)
+    integer :: s, a
+    integer, allocatable :: nodes(:)
     call this%ties%forces(x - this%reference, f_contact)
     do s = 1, size(this%slave_node)
       if (cstate%status(s) == CONTACT_OPEN .or. cstate%status(s) == CONTACT_TIED .or. &
@@ -713,9 +733,9 @@ contains
       call this%traction(s, x, cstate, normal, pressure, shear)
       f = (pressure * normal + shear) * this%area(s)
       nodes = element_nodes(this, s, cstate)
-      p = segment_point(x(:, nodes(2:5)), cstate%xi(:, s))
+      p = segment_point(x(:, nodes(2:)), cstate%xi(:, s))
       f_contact(3 * nodes(1) - 2:3 * nodes(1)) = f_contact(3 * nodes(1) - 2:3 * nodes(1)) + f
-      do a = 2, 5
+      do a = 2, size(nodes)
         f_contact(3 * nodes(a) - 2:3 * nodes(a)) = f_contact(3 * nodes(a) - 2:3 * nodes(a)) - &
           p%shape(a - 1) * f
       end do
@@ -956,7 +976,7 @@ contains
     pressure = 0.0_dp
     shear = 0.0_dp
     if (cstate%face(s) == 0) return
-    p = segment_point(x(:, this%pairs(this%slave_pair(s))%face_nodes(:, cstate%face(s))), cstate%xi(:, s))
+    p = segment_point(x(:, pair_face_nodes(this%pairs(this%slave_pair(s)), cstate%face(s))), cstate%xi(:, s))
     normal = p%normal
     if (cstate%status(s) == CONTACT_OPEN) return
     pressure = cstate%normal_force(s) / this%area(s)

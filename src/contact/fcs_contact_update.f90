@@ -79,8 +79,10 @@ contains
     in_extension = .false.
     if (cstate%status(s) /= CONTACT_STICK .and. cstate%status(s) /= CONTACT_SLIP) return
     if (cstate%face(s) == 0) return
-    in_extension = any(this%pairs(this%slave_pair(s))%free_edge(:, cstate%face(s)) .and. &
-                       edge_excess(cstate%xi(:, s)) > XI_TOLERANCE)
+    associate (pair => this%pairs(this%slave_pair(s)))
+      in_extension = any(pair%free_edge(:, cstate%face(s)) .and. &
+                         edge_excess(cstate%xi(:, s), face_node_count(pair%face_nodes(:, cstate%face(s)))) > XI_TOLERANCE)
+    end associate
   end function in_extension
 
   !> Another entry of slave s's node is closed strictly on its master face.
@@ -94,7 +96,8 @@ contains
     do while (t /= s .and. t /= 0)
       if ((cstate%status(t) == CONTACT_STICK .or. cstate%status(t) == CONTACT_SLIP) .and. &
           cstate%face(t) /= 0) then
-        if (all(edge_excess(cstate%xi(:, t)) <= XI_TOLERANCE)) then
+        if (all(edge_excess(cstate%xi(:, t), face_node_count(this%pairs(this%slave_pair(t))% &
+                                                             face_nodes(:, cstate%face(t)))) <= XI_TOLERANCE)) then
           twin_inside = .true.
           return
         end if
@@ -171,10 +174,11 @@ contains
     real(dp), intent(in) :: x(:, :), tie_force(:)
     type(contact_state_t), intent(inout) :: cstate
     type(segment_point_t) :: p, p_old
-    real(dp) :: xm(3, 4), gap, f(3)
+    real(dp) :: gap, f(3)
+    real(dp), allocatable :: xm(:, :)
     logical :: converged
     associate (pair => this%pairs(this%slave_pair(s)), node => this%slave_node(s))
-      xm = x(:, pair%face_nodes(:, cstate%face(s)))
+      xm = x(:, pair_face_nodes(pair, cstate%face(s)))
       call project_to_segment(xm, x(:, node), cstate%xi(:, s), p, gap, converged)
       if (.not. converged) p = segment_point(xm, cstate%xi(:, s))
       p_old = segment_point(xm, cstate%xi(:, s))
@@ -203,7 +207,7 @@ contains
     associate (pair => this%pairs(this%slave_pair(s)))
       xs = x(:, this%slave_node(s))
       old_face = cstate%face(s)
-      p_old = segment_point(x(:, pair%face_nodes(:, old_face)), cstate%xi(:, s))
+      p_old = segment_point(x(:, pair_face_nodes(pair, old_face)), cstate%xi(:, s))
       mode = hold_mode(this, s)
       face = 0
       if (mode == HOLD_CLOSED) call held_point(this, s, pair, x, xs, old_face, cstate%xi(:, s), face, p, gap)
@@ -279,14 +283,16 @@ contains
     real(dp) :: start(2), excess(4)
     logical :: converged
     integer :: held
+    integer, allocatable :: nodes(:)
     face = 0
     held = this%held_face(s)
     if (held == 0) return
-    start = 0.0_dp
+    nodes = pair_face_nodes(pair, held)
+    start = segment_centre(size(nodes))
     if (held == face_old) start = xi_old
-    call project_to_segment(x(:, pair%face_nodes(:, held)), xs, start, p, gap, converged)
+    call project_to_segment(x(:, nodes), xs, start, p, gap, converged)
     if (.not. converged) return
-    excess = edge_excess(p%xi)
+    excess = edge_excess(p%xi, size(nodes))
     if (any(excess > merge(EDGE_EXTENSION, HOLD_LIMIT, pair%free_edge(:, held)))) return
     if (abs(gap) > pair%reach) return
     face = held
@@ -380,7 +386,7 @@ contains
       if (mode == HOLD_CLOSED .or. gap < -GAP_TOLERANCE * pair%face_size .or. &
           (kind == EVENT_CONTACT_CLOSE .and. gap <= EVENT_BAND * start_gap)) then
         p_start = p
-        if (start_face == face) p_start = segment_point(x(:, pair%face_nodes(:, face)), start_xi)
+        if (start_face == face) p_start = segment_point(x(:, pair_face_nodes(pair, face)), start_xi)
         node = node_of(cstate, s, CONTACT_STICK)
         node%bilateral = mode == HOLD_CLOSED
         u = contact_update(p, gap, p_start, node, params_of(this, s, face, p%xi), pair%law, 0.0_dp)

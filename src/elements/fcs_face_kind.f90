@@ -17,7 +17,7 @@ module fcs_face_kind
   use fcs_element_basis, only: polynomial_basis_t
   implicit none
   private
-  public :: face_kind_t, face_shape_nodes, MAX_FACE_NODES
+  public :: face_kind_t, face_shape_nodes, MAX_FACE_NODES, face_shape_functions
   public :: FACE_TRI3, FACE_TRI6, FACE_QUAD4, FACE_QUAD8, FACE_KIND_NAMES
 
   !> Face kinds (named, never by number).
@@ -161,5 +161,82 @@ contains
     end do
     a = [t1(2) * t2(3) - t1(3) * t2(2), t1(3) * t2(1) - t1(1) * t2(3), t1(1) * t2(2) - t1(2) * t2(1)]
   end function face_kind_area_vector
+
+  !> Closed-form shape functions of the face kind with `n_nodes` nodes (3, 4, 6 or 8: TRI3,
+  !> QUAD4, TRI6, QUAD8, nodes and natural coordinates as in the module header) at st, with
+  !> their first derivatives dm(alpha, k) = dM_k/ds_alpha and second derivatives
+  !> ddm(:, k) = [d2M_k/ds2, d2M_k/dt2, d2M_k/dsdt] (the curvature terms x_,ab of a contact
+  !> segment). The same functions as `polynomial_basis_t` builds for the kind (the unit test
+  !> compares them), written out so that pure contact kernels evaluate them without a basis
+  !> object: TRI6 M_1 = r(2r - 1), M_4 = 4 s r, ... with r = 1 - s - t (CalculiX shape6tri.f);
+  !> QUAD8 corners 1/4 (1 + s s_k)(1 + t t_k)(s s_k + t t_k - 1), mid-sides 1/2 (1 - s^2)
+  !> (1 + t t_k) and 1/2 (1 + s s_k)(1 - t^2) (shape8q.f; Zienkiewicz & Taylor, ch. 8).
+  !> Unknown n_nodes: all zero.
+  pure subroutine face_shape_functions(n_nodes, st, m, dm, ddm)
+    integer, intent(in) :: n_nodes
+    real(dp), intent(in) :: st(2)
+    real(dp), intent(out) :: m(:), dm(:, :), ddm(:, :)
+    real(dp) :: s, t, r, a, b, sk, tk
+    integer :: k
+    m = 0.0_dp
+    dm = 0.0_dp
+    ddm = 0.0_dp
+    s = st(1)
+    t = st(2)
+    select case (n_nodes)
+    case (3)
+      m(1:3) = [1.0_dp - s - t, s, t]
+      dm(:, 1) = [-1.0_dp, -1.0_dp]
+      dm(:, 2) = [1.0_dp, 0.0_dp]
+      dm(:, 3) = [0.0_dp, 1.0_dp]
+    case (6)
+      r = 1.0_dp - s - t
+      m(1:6) = [r * (2.0_dp * r - 1.0_dp), s * (2.0_dp * s - 1.0_dp), t * (2.0_dp * t - 1.0_dp), &
+                4.0_dp * s * r, 4.0_dp * s * t, 4.0_dp * t * r]
+      dm(:, 1) = [1.0_dp - 4.0_dp * r, 1.0_dp - 4.0_dp * r]
+      dm(:, 2) = [4.0_dp * s - 1.0_dp, 0.0_dp]
+      dm(:, 3) = [0.0_dp, 4.0_dp * t - 1.0_dp]
+      dm(:, 4) = [4.0_dp * (r - s), -4.0_dp * s]
+      dm(:, 5) = [4.0_dp * t, 4.0_dp * s]
+      dm(:, 6) = [-4.0_dp * t, 4.0_dp * (r - t)]
+      ddm(:, 1) = [4.0_dp, 4.0_dp, 4.0_dp]
+      ddm(:, 2) = [4.0_dp, 0.0_dp, 0.0_dp]
+      ddm(:, 3) = [0.0_dp, 4.0_dp, 0.0_dp]
+      ddm(:, 4) = [-8.0_dp, 0.0_dp, -4.0_dp]
+      ddm(:, 5) = [0.0_dp, 0.0_dp, 4.0_dp]
+      ddm(:, 6) = [0.0_dp, -8.0_dp, -4.0_dp]
+    case (4)
+      do k = 1, 4
+        sk = QUAD8_ST(1, k)
+        tk = QUAD8_ST(2, k)
+        m(k) = 0.25_dp * (1.0_dp + sk * s) * (1.0_dp + tk * t)
+        dm(:, k) = 0.25_dp * [sk * (1.0_dp + tk * t), tk * (1.0_dp + sk * s)]
+        ddm(:, k) = [0.0_dp, 0.0_dp, 0.25_dp * sk * tk]
+      end do
+    case (8)
+      do k = 1, 4
+        sk = QUAD8_ST(1, k)
+        tk = QUAD8_ST(2, k)
+        a = 1.0_dp + sk * s
+        b = 1.0_dp + tk * t
+        m(k) = 0.25_dp * a * b * (sk * s + tk * t - 1.0_dp)
+        dm(:, k) = 0.25_dp * [sk * b * (2.0_dp * sk * s + tk * t), tk * a * (sk * s + 2.0_dp * tk * t)]
+        ddm(:, k) = [0.5_dp * b, 0.5_dp * a, 0.25_dp * sk * tk * (2.0_dp * sk * s + 2.0_dp * tk * t + 1.0_dp)]
+      end do
+      do k = 5, 8
+        sk = QUAD8_ST(1, k)
+        tk = QUAD8_ST(2, k)
+        if (sk == 0.0_dp) then
+          m(k) = 0.5_dp * (1.0_dp - s * s) * (1.0_dp + tk * t)
+          dm(:, k) = [-s * (1.0_dp + tk * t), 0.5_dp * tk * (1.0_dp - s * s)]
+          ddm(:, k) = [-(1.0_dp + tk * t), 0.0_dp, -s * tk]
+        else
+          m(k) = 0.5_dp * (1.0_dp + sk * s) * (1.0_dp - t * t)
+          dm(:, k) = [0.5_dp * sk * (1.0_dp - t * t), -t * (1.0_dp + sk * s)]
+          ddm(:, k) = [0.0_dp, -(1.0_dp + sk * s), -t * sk]
+        end if
+      end do
+    end select
+  end subroutine face_shape_functions
 
 end module fcs_face_kind

@@ -59,9 +59,9 @@ contains
       do i = 1, 3
         p = segment_point(x, [GAUSS3(i), GAUSS3(j)])
         do a = 1, 4
-          mass(:, a) = mass(:, a) + GAUSS3_W(i) * GAUSS3_W(j) * p%area_factor * p%shape * p%shape(a)
+          mass(:, a) = mass(:, a) + GAUSS3_W(i) * GAUSS3_W(j) * p%area_factor * p%shape(1:4) * p%shape(a)
         end do
-        integral = integral + GAUSS3_W(i) * GAUSS3_W(j) * p%area_factor * p%shape
+        integral = integral + GAUSS3_W(i) * GAUSS3_W(j) * p%area_factor * p%shape(1:4)
       end do
     end do
   end subroutine face_mass
@@ -424,7 +424,7 @@ contains
                               * 2.0_dp / CELLS)
             wq = GAUSS3_W(i) * GAUSS3_W(j) * p%area_factor / CELLS**2
             do a = 1, 4
-              mass(:, a) = mass(:, a) + wq * p%shape * p%shape(a)
+              mass(:, a) = mass(:, a) + wq * p%shape(1:4) * p%shape(a)
             end do
             area = area + wq
           end do
