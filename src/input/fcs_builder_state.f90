@@ -2,6 +2,7 @@
 !> the step being built, and the running lists of boundary conditions and loads that carry
 !> over from step to step (Abaqus/CalculiX OP=MOD / OP=NEW semantics).
 module fcs_builder_state
+  use fcs_kinds, only: dp
   use fcs_diagnostics, only: source_loc_t
   use fcs_int_map, only: int_map_t
   use fcs_model, only: step_t, dof_condition_t, face_load_t
@@ -58,6 +59,10 @@ module fcs_builder_state
     type(condition_list_t) :: loads
     type(pressure_list_t) :: pressures
     type(step_t), allocatable :: steps(:)
+    !> *INITIAL CONDITIONS, TYPE=TEMPERATURE as read: node indices and values (later lines
+    !> win), resolved into model%initial_temperature after the last card.
+    integer, allocatable :: initial_temperature_node(:)
+    real(dp), allocatable :: initial_temperature_value(:)
   end type builder_t
 
 contains

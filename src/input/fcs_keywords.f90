@@ -153,9 +153,24 @@ contains
          '*DRUCKER PRAGER HARDENING lines belong to it.', '', &
          [p('NAME', PARAM_NAME, required=.true., description='Name of the material.')]), &
       kw('ELASTIC', CONTEXT_MODEL, 'CalculiX', 'Isotropic (hypo)elastic constants of the ' // &
-         'current material.', 'Young''s modulus [stress], Poisson''s ratio [-].', &
+         'current material, constant or as a table over temperature (linear between the ' // &
+         'lines, constant beyond the first and last, as CalculiX; elastic materials only, not ' // &
+         'with plasticity). With a table the stress follows sigma = C(T) eps_el as in ' // &
+         'CalculiX (doc/theory.md section 2.5).', 'Young''s modulus [stress], Poisson''s ' // &
+         'ratio [-][, temperature]: one line, or one line per temperature, temperatures ' // &
+         'strictly increasing.', &
          [p('TYPE', PARAM_CHOICE, default='ISO', choices=[s('ISO'), s('ISOTROPIC')], &
             description='Only isotropic elasticity is available.')], data_required=.true.), &
+      kw('EXPANSION', CONTEXT_MODEL, 'CalculiX', 'Isotropic thermal expansion of the ' // &
+         'current material: the secant coefficient alpha from the reference temperature ZERO, ' // &
+         'thermal strain alpha(T) (T - ZERO) - alpha(T0) (T0 - ZERO) from the initial ' // &
+         'temperature T0, as CalculiX (doc/theory.md section 2.5).', 'alpha [1/temperature]' // &
+         '[, temperature]: one line, or one line per temperature, temperatures strictly ' // &
+         'increasing (linear between them, constant beyond the first and last).', &
+         [p('ZERO', PARAM_REAL, default='0', unit='temperature', description='Reference ' // &
+            'temperature of the secant coefficients.'), &
+          p('TYPE', PARAM_CHOICE, default='ISO', choices=[s('ISO')], description='Only ' // &
+            'isotropic expansion is available.')], data_required=.true.), &
       kw('DENSITY', CONTEXT_MODEL, 'CalculiX', 'Mass density of the current material ' // &
          '(recorded in the results; the static analysis does not use it).', &
          'density [mass/length^3].', [p_none()], data_required=.true.), &
@@ -199,6 +214,11 @@ contains
             'tan(beta)/3) sigma_c), uniaxial tension (d = (1 + tan(beta)/3) sigma_t) or pure ' // &
             'shear (d = sqrt(3) tau), as Abaqus defines them for K = 1.')], &
          data_required=.true.), &
+      kw('INITIAL CONDITIONS', CONTEXT_MODEL, 'CalculiX', 'Initial values: nodal ' // &
+         'temperatures (TYPE=TEMPERATURE). A node not named starts at temperature 0, as in ' // &
+         'CalculiX.', 'TEMPERATURE: node or node set, temperature.', &
+         [p('TYPE', PARAM_CHOICE, required=.true., choices=[s('TEMPERATURE')], &
+            description='What is given.')], data_required=.true.), &
       kw('SOLID SECTION', CONTEXT_MODEL, 'CalculiX', 'Assign a material to an element set ' // &
          '(the material may be defined after the section, as in CalculiX).', &
          'optional: the thickness of plane elements; for solid elements it is ignored, with a ' // &
@@ -410,6 +430,17 @@ contains
             'the step (ramped over the step, or value x amplitude). VELOCITY: the value is a ' // &
             'velocity [length/time] held through the step (x amplitude) (fcs3d extension).')], &
          data_required=.true.), &
+      kw('TEMPERATURE', CONTEXT_STEP, 'CalculiX', 'Nodal temperatures at the end of the ' // &
+         'step: ramped linearly over the step from the temperature at its start, or value x ' // &
+         'amplitude with AMPLITUDE= (as CalculiX for *STATIC). Nodes not named keep their ' // &
+         'value of the previous step. The thermal strain enters the stress update at the ' // &
+         'integration points (temperature interpolated from the nodes) and its load the ' // &
+         'R-minimum increment like any other load.', 'node or node set, temperature.', &
+         [p('OP', PARAM_CHOICE, default='MOD', choices=[s('MOD'), s('NEW')], &
+            description='MOD changes the named nodes; NEW first returns every node to its ' // &
+            'initial temperature.'), &
+          p('AMPLITUDE', PARAM_NAME, description='The temperature is value x this amplitude.')], &
+         data_required=.true.), &
       kw('CLOAD', CONTEXT_STEP, 'CalculiX', 'Concentrated nodal forces.', &
          'node or node set, dof, magnitude [force].', &
          [p('OP', PARAM_CHOICE, default='MOD', choices=[s('MOD'), s('NEW')], &
@@ -447,7 +478,7 @@ contains
           p('GENERATE', PARAM_FLAG, description='Data lines are start, end, increment.')], &
          data_required=.true.), &
       kw('NODE PRINT', CONTEXT_STEP, 'CalculiX', 'Print nodal results to <job>.dat in ' // &
-         'CalculiX''s layout.', 'U (displacements), RF (reaction forces).', &
+         'CalculiX''s layout.', 'U (displacements), RF (reaction forces), NT (nodal temperatures).', &
          [p('NSET', PARAM_NAME, required=.true., description='Node set to print.'), &
           p('GLOBAL', PARAM_CHOICE, default='YES', choices=[s('YES'), s('NO')], &
             description=GLOBAL_ONLY), &
@@ -515,7 +546,7 @@ contains
             'largest slip stays below this are not catalogued.')]), &
       kw('NODE FILE', CONTEXT_STEP, 'CalculiX', 'Request result frames in <job>.h5/.xdmf. ' // &
          'Every frame holds all fields (displacement, reactions, stresses, Mises stress); ' // &
-         'the variables listed are checked, not used to select.', 'U, RF, ...', &
+         'the variables listed are checked, not used to select.', 'U, RF, NT (frames of a model with temperatures hold NT), ...', &
          [p('FREQUENCY', PARAM_INTEGER, default='0', description='Also write every N increments.'), &
           p('TIME POINTS', PARAM_NAME, description='Write at these times.'), &
           p('NSET', PARAM_NAME, description=WHOLE_FRAMES), &

@@ -8,6 +8,7 @@ module fcs_model
   use fcs_strings, only: string_t
   use fcs_friction_factory, only: friction_def_t
   use fcs_material_factory, only: plastic_def_t
+  use fcs_thermal_properties, only: thermal_properties_t
   use fcs_contact_pair, only: contact_pair_def_t
   use fcs_element_catalogue, only: element_catalogue_t
   implicit none
@@ -50,6 +51,10 @@ module fcs_model
     !> with the cards that gave it (line 0: not given), for the checks of the whole material.
     type(plastic_def_t) :: plastic
     type(source_loc_t) :: plastic_loc, cyclic_loc, drucker_prager_loc, dp_hardening_loc
+    !> *EXPANSION and a temperature-dependent *ELASTIC table (youngs_modulus and poisson_ratio
+    !> above hold its first row), with the cards that gave them.
+    type(thermal_properties_t) :: thermal
+    type(source_loc_t) :: expansion_loc, elastic_loc
   end type material_def_t
 
   !> *SOLID SECTION: a material and a formulation for an element set. The material may be
@@ -172,6 +177,16 @@ module fcs_model
     type(output_request_t), allocatable :: outputs(:)
     !> *CHANGE FRICTION of this step (the changes of earlier steps still hold).
     type(friction_change_t), allocatable :: friction_changes(:)
+    !> *TEMPERATURE of this step as read (node index, value, amplitude; `temperature_new`: an
+    !> OP=NEW card cleared the earlier ones first), and, once the deck is read, the complete
+    !> lists (every node, when the model has temperatures): the value each node reaches at
+    !> the end of the step (ramped from its value at the step's start) or, with an amplitude
+    !> (index; 0: none), the value times the amplitude.
+    integer, allocatable :: temperature_node(:), temperature_card_amplitude(:)
+    real(dp), allocatable :: temperature_value(:)
+    logical :: temperature_new = .false.
+    real(dp), allocatable :: temperature(:)
+    integer, allocatable :: temperature_amplitude(:)
     type(source_loc_t) :: loc
   end type step_t
 
@@ -259,6 +274,11 @@ module fcs_model
     !> The reader's warnings ("file:line: text"): input read, but not quite as written (a
     !> parameter CalculiX ignores, an undefined id skipped in a set); the driver logs them.
     type(string_t), allocatable :: warnings(:)
+    !> Whether the model has nodal temperatures (*INITIAL CONDITIONS, TYPE=TEMPERATURE,
+    !> *TEMPERATURE or a material that depends on temperature), and the temperature of every
+    !> node at the start of the analysis (0 where none is given, as in CalculiX).
+    logical :: has_temperature = .false.
+    real(dp), allocatable :: initial_temperature(:)
   end type model_t
 
 end module fcs_model

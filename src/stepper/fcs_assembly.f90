@@ -27,6 +27,7 @@ contains
       call create_material(model%materials(k)%youngs_modulus, model%materials(k)%poisson_ratio, &
                            model%materials(k)%plastic, slots(k)%m, err)
       if (allocated(err)) return
+      slots(k)%m%thermal = model%materials(k)%thermal
     end do
   end subroutine make_materials
 

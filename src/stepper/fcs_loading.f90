@@ -27,11 +27,17 @@ module fcs_loading
     !> Face pressures, same rule.
     integer, allocatable :: face_element(:), face_number(:), face_amplitude(:)
     real(dp), allocatable :: pressure_start(:), pressure_end(:)
+    !> Nodal temperatures (models with temperatures only): each node's value at the start of
+    !> the step, its target and amplitude (0: none), the same rule as the forces.
+    real(dp), allocatable :: temperature_start(:), temperature_end(:)
+    integer, allocatable :: temperature_amplitude(:)
     !> Step times inside (0, period) where an amplitude has a point.
     real(dp), allocatable :: breakpoints(:)
   contains
     procedure :: force_at => loading_force_at
     procedure :: pressure_at => loading_pressure_at
+    procedure :: temperature_at => loading_temperature_at
+    procedure :: has_temperature => loading_has_temperature
     procedure :: prescribed_target => loading_prescribed_target
     procedure :: next_breakpoint => loading_next_breakpoint
   end type step_loading_t
@@ -39,14 +45,22 @@ module fcs_loading
 contains
 
   !> Build the loading of step `k` starting at total time `start_time`. Forces and pressures
-  !> start from the values they had at the end of step k-1.
-  subroutine build_step_loading(model, k, start_time, loading)
+  !> start from the values they had at the end of step k-1, temperatures from
+  !> `start_temperature` (the nodal temperatures at the start of the step; models with
+  !> temperatures).
+  subroutine build_step_loading(model, k, start_time, loading, start_temperature)
     type(model_t), intent(in) :: model
     integer, intent(in) :: k
     real(dp), intent(in) :: start_time
     type(step_loading_t), intent(out) :: loading
+    real(dp), intent(in), optional :: start_temperature(:)
     integer :: i
     associate (step => model%steps(k))
+      if (model%has_temperature .and. present(start_temperature)) then
+        loading%temperature_start = start_temperature
+        loading%temperature_end = step%temperature
+        loading%temperature_amplitude = step%temperature_amplitude
+      end if
       loading%period = step%period
       loading%start_time = start_time
       allocate (loading%bc_dof(size(step%boundary)), loading%bc_kind(size(step%boundary)), &
@@ -142,6 +156,11 @@ contains
     do i = 1, size(step%pressures)
       if (step%pressures(i)%amplitude > 0) used(step%pressures(i)%amplitude) = .true.
     end do
+    if (allocated(step%temperature_amplitude)) then
+      do i = 1, size(step%temperature_amplitude)
+        if (step%temperature_amplitude(i) > 0) used(step%temperature_amplitude(i)) = .true.
+      end do
+    end if
     do a = 1, size(model%amplitudes)
       if (.not. used(a)) cycle
       if (model%amplitudes(a)%total_time) then
@@ -246,6 +265,26 @@ contains
     p = ramped(this%pressure_start(i), this%pressure_end(i), this%face_amplitude(i), amplitudes, &
                t, this%period, this%start_time)
   end function loading_pressure_at
+
+  !> Whether the step has nodal temperatures.
+  pure logical function loading_has_temperature(this) result(has)
+    class(step_loading_t), intent(in) :: this
+    has = allocated(this%temperature_end)
+  end function loading_has_temperature
+
+  !> Nodal temperatures at step time t (ramp from the step's start, or value x amplitude: the
+  !> rule of the forces, CalculiX's tempload.f).
+  subroutine loading_temperature_at(this, amplitudes, t, temperature)
+    class(step_loading_t), intent(in) :: this
+    type(amplitude_t), intent(in) :: amplitudes(:)
+    real(dp), intent(in) :: t
+    real(dp), intent(out) :: temperature(:)
+    integer :: i
+    do i = 1, size(this%temperature_end)
+      temperature(i) = ramped(this%temperature_start(i), this%temperature_end(i), &
+        this%temperature_amplitude(i), amplitudes, t, this%period, this%start_time)
+    end do
+  end subroutine loading_temperature_at
 
   !> Target increment of prescribed dof i from step time t0 to t1, given the current
   !> displacement `current` of that dof and its value `step_start` at the start of the step.
