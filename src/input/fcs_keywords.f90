@@ -182,8 +182,7 @@ contains
          'HARDENING.', 'von Mises stress [stress], equivalent plastic strain [-]: one point ' // &
          'per line, the first at plastic strain 0, plastic strains strictly increasing, ' // &
          'stresses positive; linear between the points, constant beyond the last. A third ' // &
-         'field (temperature) is refused: temperature-dependent curves come with the thermal ' // &
-         'issue.', &
+         'field (temperature) is refused: temperature-dependent curves are not available.', &
          [p('HARDENING', PARAM_CHOICE, default='ISOTROPIC', &
             choices=[s('ISOTROPIC'), s('KINEMATIC'), s('COMBINED')], &
             description='Isotropic, kinematic (linear in the curve''s slope, Prager-Ziegler ' // &
