@@ -41,6 +41,10 @@ module fcs_element_loops
   private
   public :: element_loops_t, event_limits_t, update_point, mesh_kinds, mises_stress
   public :: element_jacobian_ratio, element_volume_of, element_face_area_of
+  public :: BODY_FORCE_GRAVITY, BODY_FORCE_CENTRIFUGAL
+
+  !> Body forces of `body_force`: uniform acceleration, centrifugal acceleration about an axis.
+  integer, parameter :: BODY_FORCE_GRAVITY = 1, BODY_FORCE_CENTRIFUGAL = 2
 
   !> The R-minimum limits of an increment at the integration points (doc/theory.md 6.4):
   !> largest equivalent strain increment [-], rotation increment [rad] and growth of the
@@ -76,6 +80,8 @@ module fcs_element_loops
     procedure :: n_material_state => loops_n_material_state
     procedure :: has_states => loops_has_states
     procedure :: has_thermal => loops_has_thermal
+    procedure :: point_positions => loops_point_positions
+    procedure :: body_force => loops_body_force
     procedure :: thermal_forces => loops_thermal_forces
     procedure :: assemble => loops_assemble
     procedure :: update => loops_update
@@ -232,6 +238,62 @@ contains
       if (this%materials(k)%m%thermal%is_active()) has = .true.
     end do
   end function loops_has_thermal
+
+  !> Reference positions x(3, q) of the integration points of element e (q = 1..n_points):
+  !> x_q = sum_a N_a(xi_q) X_a.
+  pure function loops_point_positions(this, e) result(x)
+    class(element_loops_t), intent(in) :: this
+    integer, intent(in) :: e
+    real(dp), allocatable :: x(:, :)
+    integer :: n
+    associate (kind => this%catalogue%kinds(this%kind(e)))
+      n = kind%n_nodes
+      x = matmul(this%x_reference(:, this%nodes(1:n, e)), kind%point_values(1:n, 1:kind%n_points))
+    end associate
+  end function loops_point_positions
+
+  !> Consistent nodal forces f(3 n_nodes of the element) of a body force on element e:
+  !> f_a = int N_a rho b dV_0 over the reference volume (the mass of the element is kept),
+  !> rho b = `scale` times
+  !>   - BODY_FORCE_GRAVITY: the unit vector vector(1:3) (scale = rho g);
+  !>   - BODY_FORCE_CENTRIFUGAL: the distance vector r from the axis through vector(1:3)
+  !>     along the unit vector vector(4:6) to the point (scale = rho omega^2), at the
+  !>     point's position on the current configuration x with NLGEOM, else the reference
+  !>     one (CalculiX's CENTRIF; no load stiffness is added).
+  !> The integration rule is the element's own (exact for the constant part of b).
+  subroutine loops_body_force(this, e, x, nlgeom, kind_of_force, vector, scale, f)
+    class(element_loops_t), intent(in) :: this
+    integer, intent(in) :: e, kind_of_force
+    real(dp), intent(in) :: x(:, :), vector(6), scale
+    logical, intent(in) :: nlgeom
+    real(dp), intent(out) :: f(:)
+    type(element_geometry_t) :: geo
+    real(dp) :: xe(3, MAX_NODES), x0(3, MAX_NODES), dv(MAX_POINTS), b(3), position(3), r(3)
+    integer :: q, a, n, np
+    logical :: ok
+    associate (kind => this%catalogue%kinds(this%kind(e)))
+      n = kind%n_nodes
+      np = kind%n_points
+      call element_x(this, e, this%x_reference, .false., x0)
+      call element_geometry(kind, x0(:, 1:n), geo, ok)
+      dv(1:np) = element_point_volumes(kind, geo)
+      call element_x(this, e, x, nlgeom, xe)
+      f(1:3 * n) = 0.0_dp
+      do q = 1, np
+        if (kind_of_force == BODY_FORCE_GRAVITY) then
+          b = scale * vector(1:3)
+        else
+          position = matmul(xe(:, 1:n), kind%point_values(1:n, q))
+          r = position - vector(1:3)
+          r = r - dot_product(r, vector(4:6)) * vector(4:6)
+          b = scale * r
+        end if
+        do a = 1, n
+          f(3 * a - 2:3 * a) = f(3 * a - 2:3 * a) + kind%point_values(a, q) * dv(q) * b
+        end do
+      end do
+    end associate
+  end subroutine loops_body_force
 
   !> Temperatures at the integration points of element e from the nodal temperatures
   !> `nodal` (n_nodes of the model): T_q = sum_a N_a(xi_q) T_a.

@@ -17,13 +17,14 @@ module fcs_build_thermal
   use fcs_diagnostics, only: diagnostics_t
   use fcs_builder_state, only: builder_t
   use fcs_build_step, only: find_amplitude
-  use fcs_model, only: model_t
+  use fcs_model, only: model_t, initial_stress_t
+  use fcs_deck_fields, only: resolve_elements, has_flag, line_int
   use fcs_material_factory, only: PLASTICITY_NONE
-  use fcs_strings, only: parse_real
+  use fcs_strings, only: parse_real, str
   implicit none
   private
   public :: handle_expansion, handle_elastic_table, handle_initial_conditions, handle_temperature
-  public :: resolve_temperatures, given_fields
+  public :: resolve_temperatures, given_fields, check_body_loads
 
 contains
 
@@ -151,8 +152,92 @@ contains
     end associate
   end subroutine handle_elastic_table
 
-  !> *INITIAL CONDITIONS, TYPE=TEMPERATURE: node or node set, temperature.
+  !> *INITIAL CONDITIONS: TYPE=TEMPERATURE (initial_temperatures) or TYPE=STRESS
+  !> (initial_stresses).
   subroutine handle_initial_conditions(card, model, state, diag)
+    type(card_t), intent(in) :: card
+    type(model_t), intent(inout) :: model
+    type(builder_t), intent(inout) :: state
+    type(diagnostics_t), intent(inout) :: diag
+    if (param_upper(card, 'TYPE') == 'STRESS') then
+      call initial_stresses(card, model, diag)
+    else
+      if (has_flag(card, 'GEOSTATIC')) then
+        call diag%report(card%loc, '*INITIAL CONDITIONS: GEOSTATIC goes with TYPE=STRESS')
+        return
+      end if
+      call initial_temperatures(card, model, state, diag)
+    end if
+  end subroutine handle_initial_conditions
+
+  !> *INITIAL CONDITIONS, TYPE=STRESS: element (or element set), integration point, the six
+  !> stress components (as CalculiX); with GEOSTATIC (Abaqus): element or element set, s1, z1,
+  !> s2, z2, k_x[, k_y] (k_y = k_x when empty) - the vertical stress linear in z through
+  !> (z1, s1) and (z2, s2), the horizontal ones k times it (fcs_model, initial_stress_t).
+  subroutine initial_stresses(card, model, diag)
+    type(card_t), intent(in) :: card
+    type(model_t), intent(inout) :: model
+    type(diagnostics_t), intent(inout) :: diag
+    type(initial_stress_t) :: item
+    integer, allocatable :: elements(:)
+    real(dp) :: values(6)
+    integer :: i, j, n, n_points
+    logical :: geostatic, ok
+    geostatic = has_flag(card, 'GEOSTATIC')
+    if (.not. allocated(model%initial_stresses)) allocate (model%initial_stresses(0))
+    do i = 1, card%n_lines
+      associate (line => card%lines(i))
+        n = given_fields(line)
+        if (geostatic .and. (n < 6 .or. n > 7)) then
+          call diag%report(line%loc, '*INITIAL CONDITIONS: expected element or element set, ' // &
+                           's1, z1, s2, z2, k_x[, k_y] (GEOSTATIC)')
+          cycle
+        else if (.not. geostatic .and. n /= 8) then
+          call diag%report(line%loc, '*INITIAL CONDITIONS: expected element, integration point, ' // &
+                           'sxx, syy, szz, sxy, sxz, syz (TYPE=STRESS)')
+          cycle
+        end if
+        item = initial_stress_t()
+        item%is_geostatic = geostatic
+        ok = .true.
+        if (geostatic) then
+          do j = 1, n - 1
+            if (ok) ok = line_real(line, j + 1, values(j), 'value', card%keyword, diag)
+          end do
+          if (.not. ok) cycle
+          if (n == 6) values(6) = values(5)
+          if (values(2) == values(4)) then
+            call diag%report(line%loc, '*INITIAL CONDITIONS: GEOSTATIC needs two different ' // &
+                             'heights z1 and z2')
+            cycle
+          end if
+          item%geostatic = values
+        else
+          if (.not. line_int(line, 2, item%point, 'integration point', card%keyword, diag)) cycle
+          do j = 1, 6
+            if (ok) ok = line_real(line, j + 2, item%stress(j), 'stress component', card%keyword, diag)
+          end do
+          if (.not. ok) cycle
+        end if
+        call resolve_elements(model%mesh, line%fields(1)%s, line, card%keyword, diag, elements)
+        do j = 1, size(elements)
+          item%element = elements(j)
+          if (.not. geostatic) then
+            n_points = model%element_kinds%kinds(model%mesh%element_kind(elements(j)))%n_points
+            if (item%point < 1 .or. item%point > n_points) then
+              call diag%report(line%loc, '*INITIAL CONDITIONS: element ' // line%fields(1)%s // &
+                ' has integration points 1 to ' // str(n_points) // ', not ' // str(item%point))
+              exit
+            end if
+          end if
+          model%initial_stresses = [model%initial_stresses, item]
+        end do
+      end associate
+    end do
+  end subroutine initial_stresses
+
+  !> *INITIAL CONDITIONS, TYPE=TEMPERATURE: node or node set, temperature.
+  subroutine initial_temperatures(card, model, state, diag)
     type(card_t), intent(in) :: card
     type(model_t), intent(inout) :: model
     type(builder_t), intent(inout) :: state
@@ -175,7 +260,7 @@ contains
         state%initial_temperature_value = [state%initial_temperature_value, spread(value, 1, size(nodes))]
       end associate
     end do
-  end subroutine handle_initial_conditions
+  end subroutine initial_temperatures
 
   !> *TEMPERATURE, OP=, AMPLITUDE=: node or node set, temperature at the end of the step.
   subroutine handle_temperature(card, model, state, diag)
@@ -275,5 +360,33 @@ contains
       end associate
     end do
   end subroutine resolve_temperatures
+
+  !> After the sections are resolved: every element with a body load (*DLOAD GRAV, CENTRIF)
+  !> has a material with *DENSITY (reported once per *DLOAD line).
+  subroutine check_body_loads(model, diag)
+    type(model_t), intent(in) :: model
+    type(diagnostics_t), intent(inout) :: diag
+    integer :: k, i, section, material, last_line
+    character(len=:), allocatable :: last_file
+    do k = 1, size(model%steps)
+      if (.not. allocated(model%steps(k)%body_loads)) cycle
+      last_line = 0
+      last_file = ''
+      do i = 1, size(model%steps(k)%body_loads)
+        associate (b => model%steps(k)%body_loads(i))
+          section = model%element_section(b%element)
+          if (section == 0) cycle
+          material = model%sections(section)%material
+          if (material == 0) cycle
+          if (model%materials(material)%has_density) cycle
+          if (b%loc%line == last_line .and. b%loc%file == last_file) cycle
+          last_line = b%loc%line
+          last_file = b%loc%file
+          call diag%report(b%loc, '*DLOAD: a body load needs the density of the material (' // &
+            'material ' // model%materials(material)%name // ' has no *DENSITY)')
+        end associate
+      end do
+    end do
+  end subroutine check_body_loads
 
 end module fcs_build_thermal

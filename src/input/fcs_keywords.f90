@@ -172,7 +172,7 @@ contains
           p('TYPE', PARAM_CHOICE, default='ISO', choices=[s('ISO')], description='Only ' // &
             'isotropic expansion is available.')], data_required=.true.), &
       kw('DENSITY', CONTEXT_MODEL, 'CalculiX', 'Mass density of the current material ' // &
-         '(recorded in the results; the static analysis does not use it).', &
+         '(used by the body loads GRAV and CENTRIF of *DLOAD and by radiation damping).', &
          'density [mass/length^3].', [p_none()], data_required=.true.), &
       kw('PLASTIC', CONTEXT_MODEL, 'CalculiX', 'von Mises plasticity of the current material ' // &
          '(radial return in the rotated frame; doc/theory.md section 2.2). The curve is read as ' // &
@@ -214,10 +214,20 @@ contains
             'shear (d = sqrt(3) tau), as Abaqus defines them for K = 1.')], &
          data_required=.true.), &
       kw('INITIAL CONDITIONS', CONTEXT_MODEL, 'CalculiX', 'Initial values: nodal ' // &
-         'temperatures (TYPE=TEMPERATURE). A node not named starts at temperature 0, as in ' // &
-         'CalculiX.', 'TEMPERATURE: node or node set, temperature.', &
-         [p('TYPE', PARAM_CHOICE, required=.true., choices=[s('TEMPERATURE')], &
-            description='What is given.')], data_required=.true.), &
+         'temperatures (TYPE=TEMPERATURE; a node not named starts at temperature 0, as in ' // &
+         'CalculiX) or stresses at the integration points (TYPE=STRESS: the stress the ' // &
+         'analysis starts from; what it does not balance is the out-of-balance force of the ' // &
+         'first increment).', 'TEMPERATURE: node or node set, temperature. STRESS: element ' // &
+         '(or element set), integration point, sxx, syy, szz, sxy, sxz, syz [stress], as ' // &
+         'CalculiX. STRESS with GEOSTATIC: element or element set, s1, z1, s2, z2, k_x[, k_y]: ' // &
+         'szz linear in the height z (third coordinate) through (z1, s1) and (z2, s2), ' // &
+         'sxx = k_x szz, syy = k_y szz (k_y = k_x when empty), no shear: a lithostatic ' // &
+         'pre-stress (Abaqus syntax).', &
+         [p('TYPE', PARAM_CHOICE, required=.true., choices=[s('TEMPERATURE'), s('STRESS')], &
+            description='What is given.'), &
+          p('GEOSTATIC', PARAM_FLAG, description='TYPE=STRESS: the stress varies linearly ' // &
+            'with height, given by two points and the lateral coefficients (Abaqus).')], &
+         data_required=.true.), &
       kw('SOLID SECTION', CONTEXT_MODEL, 'CalculiX', 'Assign a material to an element set ' // &
          '(the material may be defined after the section, as in CalculiX).', &
          'optional: the thickness of plane elements; for solid elements it is ignored, with a ' // &
@@ -455,12 +465,19 @@ contains
           p('AMPLITUDE', PARAM_NAME, description='Scale the value by this amplitude.')], &
          data_required=.true.), &
       kw('DLOAD', CONTEXT_STEP, 'CalculiX', 'Distributed load: pressure on element faces, ' // &
-         'as *DSLOAD (the same list of face pressures: OP=NEW of either removes both). The ' // &
-         'body loads GRAV, CENTRIF, BX, BY, BZ and user loads PnNU are refused (not ' // &
-         'available yet).', 'element or element set, Pn (face n, numbered as S1..S6 of ' // &
-         '*SURFACE), magnitude [stress].', &
+         'as *DSLOAD (the same list of face pressures: OP=NEW of either removes both), and ' // &
+         'the body loads GRAV (gravity) and CENTRIF (centrifugal) as CalculiX: rho times the ' // &
+         'acceleration per unit volume (the material needs *DENSITY), as consistent nodal ' // &
+         'forces over the element (any kind), ramped over the step or x amplitude. CENTRIF ' // &
+         'acts at the current positions under NLGEOM, the reference ones without, without ' // &
+         'load stiffness (doc/theory.md section 3.1). BX, BY, BZ and user loads are refused.', &
+         'element or element set, Pn (face n, numbered as S1..S6 of *SURFACE), magnitude ' // &
+         '[stress]; element or set, GRAV, g [length/time^2], direction x, y, z (normalised); ' // &
+         'element or set, CENTRIF, omega^2 [1/time^2], a point of the axis x, y, z, the axis ' // &
+         'direction x, y, z.', &
          [p('OP', PARAM_CHOICE, default='MOD', choices=[s('MOD'), s('NEW')], &
-            description='MOD keeps earlier loads; NEW removes all earlier ones first.'), &
+            description='MOD keeps earlier loads; NEW removes all earlier pressures and body ' // &
+            'loads first.'), &
           p('AMPLITUDE', PARAM_NAME, description='Scale the value by this amplitude.')], &
          data_required=.true.) &
       ]

@@ -14,7 +14,8 @@ module fcs_model
   implicit none
   private
   public :: model_t, material_def_t, section_t, amplitude_t, time_points_t, dof_condition_t
-  public :: face_load_t, output_request_t, step_t, rmin_settings_t
+  public :: face_load_t, output_request_t, step_t, rmin_settings_t, initial_stress_t
+  public :: body_load_t, BODY_GRAV, BODY_CENTRIF
   public :: friction_def_t, friction_change_t, interaction_def_t, contact_pair_def_t, checkpoint_settings_t
   public :: history_item_t, history_request_t, HISTORY_NSET_U, HISTORY_NSET_RF
   public :: HISTORY_CONTACT, HISTORY_ENERGY, HISTORY_RESIDUAL
@@ -22,6 +23,9 @@ module fcs_model
   public :: OUTPUT_NODE_PRINT, OUTPUT_EL_PRINT, OUTPUT_NODE_FILE, OUTPUT_EL_FILE
   public :: OUTPUT_CONTACT_PRINT, OUTPUT_CONTACT_FILE
   public :: TOTALS_NO, TOTALS_YES, TOTALS_ONLY
+
+  !> Body loads of *DLOAD: gravity and centrifugal (CalculiX's GRAV and CENTRIF).
+  integer, parameter :: BODY_GRAV = 1, BODY_CENTRIF = 2
 
   !> Kinds of prescribed degree-of-freedom conditions.
   integer, parameter :: BC_DISPLACEMENT = 1, BC_VELOCITY = 2
@@ -100,6 +104,33 @@ module fcs_model
     integer :: amplitude = 0
   end type face_load_t
 
+  !> A body load on one element (*DLOAD, GRAV or CENTRIF, as CalculiX): GRAV, the
+  !> acceleration `magnitude` [length/time^2] along the unit vector vector(1:3); CENTRIF,
+  !> omega^2 = `magnitude` [1/time^2] about the axis through vector(1:3) along the unit
+  !> vector vector(4:6). The force per unit volume is rho times the acceleration (the element's
+  !> material needs *DENSITY). `amplitude` = 0: ramped over the step as the other loads.
+  type :: body_load_t
+    integer :: element = 0
+    integer :: kind = BODY_GRAV
+    real(dp) :: magnitude = 0.0_dp
+    real(dp) :: vector(6) = 0.0_dp
+    integer :: amplitude = 0
+    type(source_loc_t) :: loc
+  end type body_load_t
+
+  !> *INITIAL CONDITIONS, TYPE=STRESS: the stress (Voigt: 11, 22, 33, 12, 13, 23) at
+  !> integration point `point` of element `element`, as CalculiX; or, with GEOSTATIC (Abaqus),
+  !> at every point of the element from its height z (the third coordinate, reference
+  !> configuration): sigma_33 linear through (z1, s1) and (z2, s2), sigma_11 = k_x sigma_33,
+  !> sigma_22 = k_y sigma_33, no shear (`geostatic` = [s1, z1, s2, z2, k_x, k_y]).
+  type :: initial_stress_t
+    integer :: element = 0
+    integer :: point = 0
+    real(dp) :: stress(6) = 0.0_dp
+    logical :: is_geostatic = .false.
+    real(dp) :: geostatic(6) = 0.0_dp
+  end type initial_stress_t
+
   !> An output request (*NODE PRINT, *EL PRINT, *NODE FILE, *EL FILE).
   type :: output_request_t
     integer :: kind = OUTPUT_NODE_PRINT
@@ -174,6 +205,8 @@ module fcs_model
     type(dof_condition_t), allocatable :: boundary(:)
     type(dof_condition_t), allocatable :: loads(:)
     type(face_load_t), allocatable :: pressures(:)
+    !> Body loads (*DLOAD GRAV, CENTRIF), complete as the other lists.
+    type(body_load_t), allocatable :: body_loads(:)
     type(output_request_t), allocatable :: outputs(:)
     !> *CHANGE FRICTION of this step (the changes of earlier steps still hold).
     type(friction_change_t), allocatable :: friction_changes(:)
@@ -279,6 +312,8 @@ module fcs_model
     !> node at the start of the analysis (0 where none is given, as in CalculiX).
     logical :: has_temperature = .false.
     real(dp), allocatable :: initial_temperature(:)
+    !> *INITIAL CONDITIONS, TYPE=STRESS, in deck order (a later line wins).
+    type(initial_stress_t), allocatable :: initial_stresses(:)
   end type model_t
 
 end module fcs_model

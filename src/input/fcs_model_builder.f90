@@ -28,7 +28,8 @@ module fcs_model_builder
                             handle_cload, handle_dsload, handle_amplitude, handle_time_points, &
                             handle_rmin
   use fcs_build_thermal, only: handle_expansion, handle_elastic_table, handle_initial_conditions, &
-                               handle_temperature, resolve_temperatures, given_fields
+                               handle_temperature, resolve_temperatures, given_fields, &
+                               check_body_loads
   use fcs_build_output, only: handle_output_request, handle_history, handle_event_catalog
   use fcs_build_contact, only: handle_surface_interaction, handle_surface_behavior, &
                                handle_friction, handle_contact_pair, handle_tie, &
@@ -65,6 +66,7 @@ contains
     call state%boundary%clear()
     call state%loads%clear()
     call state%pressures%clear()
+    call state%body_loads%clear()
     table = keyword_table()
     call canonical_spellings(deck, table)
     last_step_end = end_of_last_step(deck)
@@ -90,6 +92,7 @@ contains
     if (.not. diag%is_full()) call resolve_section_materials(model, diag)
     if (.not. diag%is_full()) call resolve_pair_interactions(model, diag)
     if (.not. diag%has_errors()) call check_model(model, diag, deck)
+    if (.not. diag%has_errors()) call check_body_loads(model, diag)
     model%warnings = diag%warning_list()
     if (diag%has_errors()) then
       call diag%to_error(err)

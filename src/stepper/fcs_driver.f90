@@ -10,7 +10,7 @@ module fcs_driver
   use fcs_run_options, only: run_options_t
   use fcs_state, only: state_t
   use fcs_loading, only: build_step_loading
-  use fcs_assembly, only: make_materials
+  use fcs_assembly, only: make_materials, apply_initial_stresses
   use fcs_static_explicit, only: analysis_t, take_increment, increment_record_t, build_pattern, &
                                  contact_positions, current_reactions, gather_element_fields
   use fcs_comm, only: comm_t
@@ -223,6 +223,7 @@ contains
       if (allocated(err)) return
       call a%state%init(model%mesh%x, model%mesh%n_elements, a%elements%max_points, n_state)
       if (model%has_temperature) call a%state%init_temperature(model%initial_temperature)
+      call apply_initial_stresses(a%elements, model, a%state%elements)
       call contact_positions(a, model)
       if (size(model%contact_pairs) > 0) then
         call a%contact%init(model%contact_pairs, pair_frictions(model), model%mesh, a%x_contact, &

@@ -20,7 +20,7 @@ module fcs_static_explicit
   use fcs_mumps, only: mumps_solver_t
   use fcs_metis_order, only: metis_equation_order
   use fcs_loading, only: step_loading_t
-  use fcs_assembly, only: assemble_pressures
+  use fcs_assembly, only: assemble_pressures, assemble_body_loads
   use fcs_element_loops, only: element_loops_t, event_limits_t
   use fcs_rmin_events, only: rmin_collector_t, rmin_event_t, EVENT_STRAIN_LIMIT, &
                              EVENT_ROTATION_LIMIT, event_kind_name, &
@@ -825,6 +825,10 @@ contains
     call a%loading%force_at(model%amplitudes, t1, a%f_ext1)
     call assemble_pressures(a%elements, a%loading, model, t0, a%state%x, nlgeom, a%f_ext0)
     call assemble_pressures(a%elements, a%loading, model, t1, a%state%x, nlgeom, a%f_ext1)
+    if (size(a%loading%body_element) > 0) then
+      call assemble_body_loads(a%elements, a%loading, model, t0, a%state%x, nlgeom, a%f_ext0)
+      call assemble_body_loads(a%elements, a%loading, model, t1, a%state%x, nlgeom, a%f_ext1)
+    end if
     if (allocated(a%state%temperature)) call thermal_load(a, model, nlgeom, t1)
   end subroutine external_forces
 
@@ -882,6 +886,8 @@ contains
     f_ext = 0.0_dp
     call a%loading%force_at(model%amplitudes, t, f_ext)
     call assemble_pressures(a%elements, a%loading, model, t, a%state%x, nlgeom, f_ext)
+    if (size(a%loading%body_element) > 0) &
+      call assemble_body_loads(a%elements, a%loading, model, t, a%state%x, nlgeom, f_ext)
   end subroutine external_force_at
 
   !> Constrained degrees of freedom and their prescribed increments over [t0, t1]. Nodes in
