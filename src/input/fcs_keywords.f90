@@ -180,7 +180,9 @@ contains
             'isotropic expansion is available.')], data_required=.true.), &
       kw('DENSITY', CONTEXT_MODEL, 'CalculiX', 'Mass density of the current material ' // &
          '(used by the body loads GRAV and CENTRIF of *DLOAD and by radiation damping).', &
-         'density [mass/length^3].', [p_none()], data_required=.true.), &
+         'density [mass/length^3][, temperature]: one line, or a table over temperature whose ' // &
+         'lines all give the same density (a density that varies with temperature is refused).', &
+         [p_none()], data_required=.true.), &
       kw('PLASTIC', CONTEXT_MODEL, 'CalculiX', 'von Mises plasticity of the current material ' // &
          '(radial return in the rotated frame; doc/theory.md section 2.2). The curve is read as ' // &
          'CalculiX reads it: ISOTROPIC, the yield stress; KINEMATIC, the yield surface keeps ' // &
