@@ -12,7 +12,8 @@ them, secant alpha from ZERO as CalculiX), the clamped stress at temperature T i
   sigma_xx = -E(T) (alpha(T) (T - Z) - alpha(T0) (T0 - Z)),
 whatever path the temperature took (CalculiX's total form sigma = C(T) eps_el, which the
 rate form reproduces exactly: doc/theory.md 2.5); step 2 reaches its end temperature through
-an amplitude that starts below the end of step 1.
+an amplitude that starts below the end of step 1; step 3 (*TEMPERATURE, OP=NEW) returns every
+node to its initial temperature and the stress to 0.
 
 Every field is homogeneous, which trilinear elements represent exactly: the tolerance is
 round-off, 1e-9 relative to E alpha dT (the equilibrium iterations stop at 1e-3 of the force
@@ -85,11 +86,12 @@ def deck(clamped, tables=False, restart=False, yield_stress=None):
     if clamped:
         lines += ['XL, 1, 1']
     if restart:
-        lines += ['*RESTART, WRITE, FREQUENCY=1, GENERATIONS=3']
+        lines += ['*RESTART, WRITE, FREQUENCY=1, GENERATIONS=8']
     lines += ['*AMPLITUDE, NAME=HALF', '0., 0.5, 1., 1.']
     steps = [('*TEMPERATURE', 'NALL, %g' % T1)]
     if tables:
         steps.append(('*TEMPERATURE, AMPLITUDE=HALF', 'NALL, 200.'))
+        steps.append(('*TEMPERATURE, OP=NEW', 'X0, %g' % T0))
     for keyword, data in steps:
         lines += ['*STEP', '*STATIC', '0.25, 1., 1.e-5, 0.25', keyword, data,
                   '*NODE PRINT, NSET=NALL', 'U, NT', '*NODE PRINT, NSET=XL, TOTALS=ONLY', 'RF',
@@ -180,11 +182,17 @@ def check_tables(c, blocks):
         nt = last(blocks, 'temperatures', time)
         c.close('tables: NT at time %g' % time, max(v[0] for v in nt.rows.values()),
                 temperature, temperature)
+    # Step 3, OP=NEW: every node back to its initial temperature, the stress back to 0.
+    s = last(blocks, 'stresses', 3.0).values()
+    c.close('tables: OP=NEW, |sxx| back at T0 (= 0)', abs(s[:, 0]).max(), 0.0, 360.0)
+    nt = last(blocks, 'temperatures', 3.0)
+    c.close('tables: OP=NEW, largest NT (= T0)', max(v[0] for v in nt.rows.values()), T0, T0)
 
 
 def check_restart(c, work):
     """The tables deck with a checkpoint after every increment, restarted from the one in the
-    middle of step 2 (job.rst.2.h5: after increment 2 of 4 of step 2), gives the one-go
+    middle of step 2 (bar.rst.7.h5: after increment 3 of 4 of step 2, the one with the
+    amplitude; newer are 7 checkpoints of step 3 and of the ends of steps 2, 3), gives the one-go
     outputs bit for bit (restart_common.compare_runs: job.h5, job.dat, XDMF frames)."""
     import shutil
     sys.path.insert(0, os.path.join(HERE, '..', 'integration', 'restart'))
@@ -197,9 +205,9 @@ def check_restart(c, work):
     os.makedirs(restarted, exist_ok=True)
     for name in os.listdir(reference):
         shutil.copy(os.path.join(reference, name), restarted)
-    print('restart from bar.rst.2.h5: step %d, increment %d, time %g, step time %g' %
-          rc.checkpoint_info(os.path.join(restarted, 'bar.rst.2.h5')))
-    p = subprocess.run([FCS3D, '-q', 'bar.inp', '--restart', 'bar.rst.2.h5'], cwd=restarted,
+    print('restart from bar.rst.7.h5: step %d, increment %d, time %g, step time %g' %
+          rc.checkpoint_info(os.path.join(restarted, 'bar.rst.7.h5')))
+    p = subprocess.run([FCS3D, '-q', 'bar.inp', '--restart', 'bar.rst.7.h5'], cwd=restarted,
                        capture_output=True, text=True, timeout=600)
     if p.returncode != 0:
         print('restart: fcs3d exit %d: %s' % (p.returncode, p.stderr))
