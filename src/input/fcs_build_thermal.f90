@@ -1,6 +1,7 @@
-!> Model builder, thermal keywords: *EXPANSION, temperature-dependent *ELASTIC tables,
-!> *INITIAL CONDITIONS (TYPE=TEMPERATURE), *TEMPERATURE; and, after the last card, the nodal
-!> temperatures of every step (`resolve_temperatures`).
+!> Model builder, thermal keywords and initial states: *EXPANSION, temperature-dependent
+!> *ELASTIC tables, *INITIAL CONDITIONS (TYPE=TEMPERATURE, TYPE=STRESS with its GEOSTATIC
+!> form), *TEMPERATURE; after the last card, the nodal temperatures of every step
+!> (`resolve_temperatures`) and the density check of the body loads (`check_body_loads`).
 !>
 !> Conventions of CalculiX 2.20 (ccx manual, sections 6.2.8 *ELASTIC, 6.2.9 *EXPANSION,
 !> 6.2.17 *INITIAL CONDITIONS, 6.2.56 *TEMPERATURE; its tempload.f for the ramp):
