@@ -15,7 +15,6 @@ module fcs_driver
                                  contact_positions, current_reactions, gather_element_fields
   use fcs_comm, only: comm_t
   use fcs_partition, only: partition_elements
-  use fcs_mumps, only: mumps_solver_t
   use fcs_solver_factory, only: create_linear_solver
   use fcs_linear_solver, only: solver_stats_t
   use fcs_factor_reuse, only: reuse_settings_t
@@ -195,13 +194,28 @@ contains
       call log%info('fcs3d: ' // options%deck_path)
     end if
     call log%info('model: ' // str(model%mesh%n_nodes) // ' nodes, ' // &
-                  str(model%mesh%n_elements) // ' hexahedra, ' // str(3 * model%mesh%n_nodes) // &
+                  str(model%mesh%n_elements) // ' elements (' // kind_counts(model) // '), ' // &
+                  str(3 * model%mesh%n_nodes) // &
                   ' degrees of freedom, ' // str(size(model%steps)) // ' step(s); solver ' // &
                   model%solver_name)
     if (count(model%free_node) > 0) call log%info('note: ' // str(count(model%free_node)) // &
       ' node(s) belong to no element (node ' // str(model%mesh%node_id(findloc(model%free_node, &
       .true., 1))) // ' first); they are held fixed')
   end subroutine describe_model
+
+  !> "C3D20R 32" or "C3D8 12, C3D6 8": the element count of each kind the mesh has.
+  function kind_counts(model) result(text)
+    type(model_t), intent(in) :: model
+    character(len=:), allocatable :: text
+    integer :: k, n
+    text = ''
+    do k = 1, size(model%mesh%kinds)
+      n = count(model%mesh%element_kind(1:model%mesh%n_elements) == k)
+      if (n == 0) cycle
+      if (len(text) > 0) text = text // ', '
+      text = text // model%mesh%kinds(k)%name // ' ' // str(n)
+    end do
+  end function kind_counts
 
   !> State, materials, contact, sparse pattern, solver.
   subroutine setup(run, model, err)
@@ -238,16 +252,12 @@ contains
       if (allocated(err)) return
       a%solver%node_id = model%mesh%node_id(1:model%mesh%n_nodes)
       call a%reuse%init(reuse_settings_t(tolerance=model%reuse_tolerance), a%comm)
-      select type (solver => a%solver)
-      type is (mumps_solver_t)
-        call solver%set_comm(a%comm)
-      class default
-        if (a%comm%size > 1) then
-          call input_error(err, 'a parallel run needs the MUMPS solver (*SOLVER, TYPE=MUMPS or ' // &
-                           '--solver MUMPS); ' // model%solver_name // ' runs on one process only')
-          return
-        end if
-      end select
+      if (a%comm%size > 1 .and. .not. a%solver%runs_in_parallel()) then
+        call input_error(err, 'a parallel run needs the MUMPS solver (*SOLVER, TYPE=MUMPS or ' // &
+                         '--solver MUMPS); ' // model%solver_name // ' runs on one process only')
+        return
+      end if
+      call a%solver%set_comm(a%comm)
       n = 3 * model%mesh%n_nodes
       allocate (a%f_int(n), a%f_ext0(n), a%f_ext1(n), a%rhs(n), a%du(n), a%prescribed(n), &
                 a%constrained(n), a%f_contact(n), a%du_load(n), a%du_residual(n), a%rhs_residual(n), &
