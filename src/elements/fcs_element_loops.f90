@@ -9,8 +9,11 @@
 !>     increments, yield and plastic-strain events (doc/theory.md 6.4);
 !>   - `count_unloading`: points on their yield surface that a trial increment unloads;
 !>   - `check_geometry`, `most_distorted`: Jacobian checks of a configuration;
+!>   - `thermal_forces`: the load of a change of the nodal temperatures (doc/theory.md 2.5);
 !>   - `nodal_average`, `point_volumes`, `plastic_fields`, `cliques`, `face_nodes`,
 !>     `face_pressure`: what outputs, monitors, the sparse pattern and the loads need.
+!> Nodal temperatures, where the model has them, are passed in (start and end of the
+!> increment) and interpolated to the integration points with the element's shape functions.
 !> The loops own the material objects (one per material of the model) and know, for every
 !> element, its kind, nodes, material and formulation, and which elements this process works
 !> on (`mine`). Kinds come from the model's element catalogue (fcs_element_catalogue), with
@@ -49,6 +52,10 @@ module fcs_element_loops
   private
   public :: element_loops_t, event_limits_t, update_point, mesh_kinds, mises_stress
   public :: element_jacobian_ratio, element_volume_of, element_face_area_of
+  public :: BODY_FORCE_GRAVITY, BODY_FORCE_CENTRIFUGAL
+
+  !> Body forces of `body_force`: uniform acceleration, centrifugal acceleration about an axis.
+  integer, parameter :: BODY_FORCE_GRAVITY = 1, BODY_FORCE_CENTRIFUGAL = 2
 
   !> C3D8I: the modes of an increment are iterated until their generalised forces are below
   !> MODE_TOLERANCE times the sum of the magnitudes of their terms (round-off of an elastic
@@ -94,6 +101,10 @@ module fcs_element_loops
     procedure :: point_counts => loops_point_counts
     procedure :: n_material_state => loops_n_material_state
     procedure :: has_states => loops_has_states
+    procedure :: has_thermal => loops_has_thermal
+    procedure :: point_positions => loops_point_positions
+    procedure :: body_force => loops_body_force
+    procedure :: thermal_forces => loops_thermal_forces
     procedure :: assemble => loops_assemble
     procedure :: update => loops_update
     procedure :: check_geometry => loops_check_geometry
@@ -249,6 +260,89 @@ contains
     first = this%materials(this%material(e))%m%n_state() + 1
   end function hourglass_first
 
+  !> Whether some material depends on temperature (expansion or temperature-dependent
+  !> elastic constants).
+  pure logical function loops_has_thermal(this) result(has)
+    class(element_loops_t), intent(in) :: this
+    integer :: k
+    has = .false.
+    do k = 1, size(this%materials)
+      if (this%materials(k)%m%thermal%is_active()) has = .true.
+    end do
+  end function loops_has_thermal
+
+  !> Reference positions x(3, q) of the integration points of element e (q = 1..n_points):
+  !> x_q = sum_a N_a(xi_q) X_a.
+  pure function loops_point_positions(this, e) result(x)
+    class(element_loops_t), intent(in) :: this
+    integer, intent(in) :: e
+    real(dp), allocatable :: x(:, :)
+    integer :: n
+    associate (kind => this%catalogue%kinds(this%kind(e)))
+      n = kind%n_nodes
+      x = matmul(this%x_reference(:, this%nodes(1:n, e)), kind%point_values(1:n, 1:kind%n_points))
+    end associate
+  end function loops_point_positions
+
+  !> Consistent nodal forces f(3 n_nodes of the element) of a body force on element e:
+  !> f_a = int N_a rho b dV_0 over the reference volume (the mass of the element is kept),
+  !> rho b = `scale` times
+  !>   - BODY_FORCE_GRAVITY: the unit vector vector(1:3) (scale = rho g);
+  !>   - BODY_FORCE_CENTRIFUGAL: the distance vector r from the axis through vector(1:3)
+  !>     along the unit vector vector(4:6) to the point (scale = rho omega^2), at the
+  !>     point's position on the current configuration x with NLGEOM, else the reference
+  !>     one (CalculiX's CENTRIF; no load stiffness is added).
+  !> The integration rule is the element's own (exact for the constant part of b).
+  subroutine loops_body_force(this, e, x, nlgeom, kind_of_force, vector, scale, f)
+    class(element_loops_t), intent(in) :: this
+    integer, intent(in) :: e, kind_of_force
+    real(dp), intent(in) :: x(:, :), vector(6), scale
+    logical, intent(in) :: nlgeom
+    real(dp), intent(out) :: f(:)
+    type(element_geometry_t) :: geo
+    real(dp) :: xe(3, MAX_NODES), x0(3, MAX_NODES), dv(MAX_POINTS), b(3), position(3), r(3)
+    integer :: q, a, n, np
+    logical :: ok
+    associate (kind => this%catalogue%kinds(this%kind(e)))
+      n = kind%n_nodes
+      np = kind%n_points
+      call element_x(this, e, this%x_reference, .false., x0)
+      call element_geometry(kind, x0(:, 1:n), geo, ok)
+      dv(1:np) = element_point_volumes(kind, geo)
+      call element_x(this, e, x, nlgeom, xe)
+      f(1:3 * n) = 0.0_dp
+      do q = 1, np
+        if (kind_of_force == BODY_FORCE_GRAVITY) then
+          b = scale * vector(1:3)
+        else
+          position = matmul(xe(:, 1:n), kind%point_values(1:n, q))
+          r = position - vector(1:3)
+          r = r - dot_product(r, vector(4:6)) * vector(4:6)
+          b = scale * r
+        end if
+        do a = 1, n
+          f(3 * a - 2:3 * a) = f(3 * a - 2:3 * a) + kind%point_values(a, q) * dv(q) * b
+        end do
+      end do
+    end associate
+  end subroutine loops_body_force
+
+  !> Temperatures at the integration points of element e from the nodal temperatures
+  !> `nodal` (n_nodes of the model): T_q = sum_a N_a(xi_q) T_a.
+  pure subroutine point_temperatures(this, e, nodal, t)
+    type(element_loops_t), intent(in) :: this
+    integer, intent(in) :: e
+    real(dp), intent(in) :: nodal(:)
+    real(dp), intent(out) :: t(:)
+    integer :: q, n
+    associate (kind => this%catalogue%kinds(this%kind(e)))
+      n = kind%n_nodes
+      do q = 1, kind%n_points
+        t(q) = dot_product(kind%point_values(1:n, q), nodal(this%nodes(1:n, e)))
+      end do
+    end associate
+  end subroutine point_temperatures
+
   !> Nodal coordinates of element e: current ones x(3, n_nodes) with NLGEOM, else the
   !> reference ones.
   pure subroutine element_x(this, e, x, nlgeom, xe)
@@ -296,7 +390,7 @@ contains
   !> sum over the elements of a node of the magnitudes of their nodal forces: the force the
   !> node passes on, the scale its out-of-balance force is measured against (f_int itself
   !> vanishes at a free node in equilibrium).
-  subroutine loops_assemble(this, x, fields, nlgeom, f_int, err, matrix, elastic, flux)
+  subroutine loops_assemble(this, x, fields, nlgeom, f_int, err, matrix, elastic, flux, temperature)
     class(element_loops_t), intent(in) :: this
     real(dp), intent(in) :: x(:, :)
     type(element_state_t), intent(in) :: fields
@@ -306,9 +400,11 @@ contains
     type(sparse_matrix_t), intent(inout), optional :: matrix
     logical, intent(in), optional :: elastic(:, :)
     real(dp), intent(out), optional :: flux(:)
+    !> Nodal temperatures: the elastic tangent of temperature-dependent constants at them.
+    real(dp), intent(in), optional :: temperature(:)
     type(element_geometry_t) :: geo
     real(dp) :: xe(3, MAX_NODES), f(3 * MAX_NODES), k(3 * MAX_NODES, 3 * MAX_NODES)
-    real(dp) :: c(6, 6, MAX_POINTS)
+    real(dp) :: c(6, 6, MAX_POINTS), tq(MAX_POINTS)
     integer :: e, q, a, node, i, n, first
     logical :: ok, missing
     f_int = 0.0_dp
@@ -349,6 +445,14 @@ contains
               if (elastic(q, e)) c(:, :, q) = material%elastic_matrix()
             end do
           end if
+          if (present(temperature)) then
+            if (material%thermal%elastic_varies()) then
+              call point_temperatures(this, e, temperature, tq)
+              do q = 1, kind%n_points
+                c(:, :, q) = material%elastic_matrix_at(tq(q))
+              end do
+            end if
+          end if
         end associate
         call element_tangent(kind, geo, fields%stress(:, :, e), c(:, :, 1:kind%n_points), &
                              this%bbar(e), nlgeom, k(1:3 * n, 1:3 * n))
@@ -362,17 +466,21 @@ contains
   !> Stress and strain update of this process's elements for the (scaled) increment du:
   !> gradients on the mid-increment configuration (with NLGEOM; the reference one without),
   !> objective rotation (Hughes & Winget 1980), then the material law (`update_point`).
-  subroutine loops_update(this, x, du, fields, nlgeom, err)
+  subroutine loops_update(this, x, du, fields, nlgeom, err, temperature_start, temperature_end)
     class(element_loops_t), intent(in) :: this
     real(dp), intent(in) :: x(:, :), du(:)
     type(element_state_t), intent(inout) :: fields
     logical, intent(in) :: nlgeom
     type(error_t), allocatable, intent(out) :: err
+    !> Nodal temperatures at the start and the end of the increment (models with
+    !> temperatures): the thermal strain increment of each point (update_point_thermal).
+    real(dp), intent(in), optional :: temperature_start(:), temperature_end(:)
     type(element_geometry_t) :: geo
     real(dp) :: strain(6, MAX_POINTS), spin(3, 3, MAX_POINTS), equivalent(MAX_POINTS)
     real(dp) :: angle(MAX_POINTS), du_e(3, MAX_NODES), xe(3, MAX_NODES)
+    real(dp) :: t_start(MAX_POINTS), t_end(MAX_POINTS)
     integer :: e, q, i, n
-    logical :: ok
+    logical :: ok, thermal
     do i = 1, size(this%mine)
       e = this%mine(i)
       associate (kind => this%catalogue%kinds(this%kind(e)))
@@ -393,10 +501,22 @@ contains
         call element_strain_increments(kind, geo, du_e(:, 1:n), this%bbar(e), strain, spin, &
                                        equivalent, angle)
         associate (material => this%materials(this%material(e))%m)
-          do q = 1, kind%n_points
-            call update_point(material, nlgeom, strain(:, q), spin(:, :, q), fields%stress(:, q, e), &
-                              fields%strain(:, q, e), fields%material_state(:, q, e))
-          end do
+          thermal = present(temperature_start) .and. present(temperature_end)
+          if (thermal) thermal = material%thermal%is_active()
+          if (thermal) then
+            call point_temperatures(this, e, temperature_start, t_start)
+            call point_temperatures(this, e, temperature_end, t_end)
+            do q = 1, kind%n_points
+              call update_point_thermal(material, nlgeom, strain(:, q), spin(:, :, q), &
+                fields%stress(:, q, e), fields%strain(:, q, e), fields%material_state(:, q, e), &
+                t_start(q), t_end(q))
+            end do
+          else
+            do q = 1, kind%n_points
+              call update_point(material, nlgeom, strain(:, q), spin(:, :, q), fields%stress(:, q, e), &
+                                fields%strain(:, q, e), fields%material_state(:, q, e))
+            end do
+          end if
         end associate
         if (kind%formulation == FORMULATION_HOURGLASS) &
           call update_hourglass(this, e, geo, du_e(:, 1:n), spin(:, :, 1), nlgeom, fields)
@@ -580,6 +700,88 @@ contains
     end if
   end subroutine update_point
 
+  !> The update of one integration point whose temperature goes from t_start to t_end over
+  !> the increment (doc/theory.md 2.5): the rate form sigma^J = C(T) : (D - D_th) +
+  !> dC/dT T' : C^-1 : sigma, D_th = d(alpha(T) (T - T_Z))/dt I. The thermal strain increment
+  !> (material%thermal_strain_increment, CalculiX's secant form) is taken off the strain
+  !> increment before the material's update (`update_point`, which rotates as without
+  !> temperature); temperature-dependent elastic constants first rescale the stress to the
+  !> end temperature with the elastic strain held (material%rescale_stress: isotropic, so it
+  !> commutes with the rotation) and update with the constants at t_end. The accumulated
+  !> strain is the total one (mechanical + thermal), CalculiX's E.
+  subroutine update_point_thermal(material, nlgeom, strain_increment, spin, stress, strain, &
+                                  state, t_start, t_end)
+    class(material_t), intent(in) :: material
+    logical, intent(in) :: nlgeom
+    real(dp), intent(in) :: strain_increment(6), spin(3, 3), t_start, t_end
+    real(dp), intent(inout) :: stress(6), strain(6), state(:)
+    real(dp) :: thermal(6)
+    class(material_t), allocatable :: at_end
+    thermal = material%thermal_strain_increment(t_start, t_end)
+    if (material%thermal%elastic_varies()) then
+      stress = material%rescale_stress(stress, t_start, t_end)
+      call material%at_temperature(t_end, at_end)
+      call update_point(at_end, nlgeom, strain_increment - thermal, spin, stress, strain, state)
+    else
+      call update_point(material, nlgeom, strain_increment - thermal, spin, stress, strain, state)
+    end if
+    strain = strain + thermal
+  end subroutine update_point_thermal
+
+  !> The load of the temperature change from `temperature_start` to `temperature_end` (nodal)
+  !> at fixed displacements, f_th = - sum_e int B^T dsigma_th dv (3 n_nodes, this process's
+  !> elements), dsigma_th the stress change of every point under the thermal strain alone
+  !> (update_point_thermal with a zero strain increment: - C dalpha_th for an elastic
+  !> point), on the configuration of `nlgeom`. Added to the load increment of a trial
+  !> solution, it makes the R-minimum increment scale the thermal load with the others.
+  subroutine loops_thermal_forces(this, x, fields, nlgeom, temperature_start, temperature_end, &
+                                  f_th, err)
+    class(element_loops_t), intent(in) :: this
+    real(dp), intent(in) :: x(:, :), temperature_start(:), temperature_end(:)
+    type(element_state_t), intent(in) :: fields
+    logical, intent(in) :: nlgeom
+    real(dp), intent(out) :: f_th(:)
+    type(error_t), allocatable, intent(out) :: err
+    type(element_geometry_t) :: geo
+    real(dp) :: xe(3, MAX_NODES), f(3 * MAX_NODES), dsigma(6, MAX_POINTS), stress(6), strain(6)
+    real(dp) :: t_start(MAX_POINTS), t_end(MAX_POINTS)
+    real(dp), allocatable :: state(:)
+    real(dp), parameter :: NO_SPIN(3, 3) = 0.0_dp, NO_STRAIN(6) = 0.0_dp
+    integer :: e, q, a, node, i, n
+    logical :: ok
+    f_th = 0.0_dp
+    do i = 1, size(this%mine)
+      e = this%mine(i)
+      associate (kind => this%catalogue%kinds(this%kind(e)), &
+                 material => this%materials(this%material(e))%m)
+        if (.not. material%thermal%is_active()) cycle
+        n = kind%n_nodes
+        call point_temperatures(this, e, temperature_start, t_start)
+        call point_temperatures(this, e, temperature_end, t_end)
+        do q = 1, kind%n_points
+          stress = fields%stress(:, q, e)
+          strain = 0.0_dp
+          state = fields%material_state(:, q, e)
+          call update_point_thermal(material, .false., NO_STRAIN, NO_SPIN, stress, strain, state, &
+                                    t_start(q), t_end(q))
+          dsigma(:, q) = stress - fields%stress(:, q, e)
+        end do
+        if (all(dsigma(:, 1:kind%n_points) == 0.0_dp)) cycle
+        call element_x(this, e, x, nlgeom, xe)
+        call element_geometry(kind, xe(:, 1:n), geo, ok)
+        if (.not. ok) then
+          call inverted_element_error(this, e, err)
+          return
+        end if
+        call element_internal_force(kind, geo, dsigma(:, 1:kind%n_points), this%bbar(e), f(1:3 * n))
+        do a = 1, n
+          node = this%nodes(a, e)
+          f_th(3 * node - 2:3 * node) = f_th(3 * node - 2:3 * node) - f(3 * a - 2:3 * a)
+        end do
+      end associate
+    end do
+  end subroutine loops_thermal_forces
+
   !> Rotate an engineering-shear strain like a stress (tensor shear in between).
   pure function rotate_strain(strain, spin) result(rotated)
     real(dp), intent(in) :: strain(6), spin(3, 3)
@@ -622,7 +824,7 @@ contains
   !> have internal variables the yield and plastic-strain-limit fractions of every point
   !> (material%point_events). Gradients on the configuration of `nlgeom`.
   subroutine loops_collect_events(this, x, du_load, du_residual, fields, nlgeom, limits, &
-                                  collector, err)
+                                  collector, err, temperature_start, temperature_end)
     class(element_loops_t), intent(in) :: this
     real(dp), intent(in) :: x(:, :), du_load(:), du_residual(:)
     type(element_state_t), intent(in) :: fields
@@ -630,10 +832,14 @@ contains
     type(event_limits_t), intent(in) :: limits
     type(rmin_collector_t), intent(inout) :: collector
     type(error_t), allocatable, intent(out) :: err
+    !> Nodal temperatures at the start and the end of the trial increment: the thermal
+    !> strain of the trial is part of its load (scaled by r), taken off the strain of du_load.
+    real(dp), intent(in), optional :: temperature_start(:), temperature_end(:)
     type(element_geometry_t) :: geo
     real(dp) :: strain(6, MAX_POINTS), spin(3, 3, MAX_POINTS), equivalent(MAX_POINTS)
     real(dp) :: angle(MAX_POINTS), du_e(3, MAX_NODES), strain_fixed(6, MAX_POINTS)
     real(dp) :: xe(3, MAX_NODES), r_yield, r_plastic, modes(3, MAX_MODES)
+    real(dp) :: t_start(MAX_POINTS), t_end(MAX_POINTS)
     integer :: e, q, i, n, np
     logical :: ok, states
     states = this%has_states()
@@ -665,6 +871,15 @@ contains
         call element_strain_increments(kind, geo, du_e(:, 1:n), this%bbar(e), strain_fixed, &
                                        spin, equivalent, angle, modes)
         associate (material => this%materials(this%material(e))%m)
+          if (present(temperature_start) .and. present(temperature_end)) then
+            if (material%thermal%has_expansion()) then
+              call point_temperatures(this, e, temperature_start, t_start)
+              call point_temperatures(this, e, temperature_end, t_end)
+              do q = 1, np
+                strain(:, q) = strain(:, q) - material%thermal_strain_increment(t_start(q), t_end(q))
+              end do
+            end if
+          end if
           do q = 1, np
             call material%point_events(fields%stress(:, q, e), fields%material_state(:, q, e), &
                                        strain_fixed(:, q), strain(:, q), limits%plastic_strain, &

@@ -75,13 +75,31 @@ contains
     type(model_t), intent(inout) :: model
     type(builder_t), intent(in) :: state
     type(diagnostics_t), intent(inout) :: diag
-    real(dp) :: rho
+    real(dp) :: rho, rho_line
+    integer :: i, n
     if (.not. has_current_material(card, state, diag)) return
-    if (card%n_lines /= 1 .or. size(card%lines(1)%fields) /= 1) then
-      call diag%report(card%lines(1)%loc, '*DENSITY: expected one line with the density')
-      return
-    end if
-    if (.not. line_real(card%lines(1), 1, rho, 'density', 'DENSITY', diag)) return
+    ! One line, or a table over temperature (density, temperature) as CalculiX writes it:
+    ! accepted when every line gives the same density (temperature-dependent densities are
+    ! not available).
+    rho = 0.0_dp
+    do i = 1, card%n_lines
+      n = size(card%lines(i)%fields)
+      if (n > 0) then
+        if (len(card%lines(i)%fields(n)%s) == 0) n = n - 1
+      end if
+      if (n < 1 .or. n > 2 .or. (card%n_lines > 1 .and. n /= 2)) then
+        call diag%report(card%lines(i)%loc, '*DENSITY: expected the density[, temperature] ' // &
+                         '(one line, or one line per temperature)')
+        return
+      end if
+      if (.not. line_real(card%lines(i), 1, rho_line, 'density', 'DENSITY', diag)) return
+      if (i > 1 .and. rho_line /= rho) then
+        call diag%report(card%lines(i)%loc, '*DENSITY: a density that depends on temperature ' // &
+                         'is not available (the lines give different densities)')
+        return
+      end if
+      rho = rho_line
+    end do
     if (rho <= 0.0_dp) then
       call diag%report(card%lines(1)%loc, '*DENSITY: the density must be positive')
       return

@@ -31,7 +31,7 @@ contains
     select case (card%keyword)
     case ('NODE PRINT')
       request%kind = OUTPUT_NODE_PRINT
-      allowed = [string_t('U'), string_t('RF')]
+      allowed = [string_t('U'), string_t('RF'), string_t('NT')]
       request%set = model%mesh%find_node_set(param_upper(card, 'NSET'))
       if (request%set == 0) call diag%report(card%loc, '*NODE PRINT: node set "' // &
                                              param_value(card, 'NSET') // '" is not defined')
@@ -44,7 +44,7 @@ contains
                                              param_value(card, 'ELSET') // '" is not defined')
     case ('NODE FILE')
       request%kind = OUTPUT_NODE_FILE
-      allowed = [string_t('U'), string_t('RF')]
+      allowed = [string_t('U'), string_t('RF'), string_t('NT')]
     case ('CONTACT PRINT', 'CONTACT FILE')
       request%kind = merge(OUTPUT_CONTACT_PRINT, OUTPUT_CONTACT_FILE, card%keyword == 'CONTACT PRINT')
       allowed = [string_t('CDIS'), string_t('CSTR'), string_t('CDISP'), string_t('CSTRESS')]

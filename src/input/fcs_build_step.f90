@@ -16,7 +16,8 @@ module fcs_build_step
   use fcs_builder_state, only: builder_t
   use fcs_mesh, only: SURFACE_FACES
   use fcs_model, only: model_t, step_t, dof_condition_t, face_load_t, amplitude_t, &
-                       time_points_t, BC_DISPLACEMENT, BC_VELOCITY, BC_FIXED
+                       time_points_t, BC_DISPLACEMENT, BC_VELOCITY, BC_FIXED, body_load_t, &
+                       BODY_GRAV, BODY_CENTRIF
   use fcs_strings, only: to_upper, str, parse_int, parse_real
   implicit none
   private
@@ -213,6 +214,8 @@ contains
     state%step%boundary = state%boundary%to_array()
     state%step%loads = state%loads%to_array()
     state%step%pressures = state%pressures%to_array()
+    if (.not. allocated(state%body_loads%items)) call state%body_loads%clear()
+    state%step%body_loads = state%body_loads%items(1:state%body_loads%n)
     if (.not. allocated(state%step%outputs)) allocate (state%step%outputs(0))
     if (.not. allocated(state%step%friction_changes)) allocate (state%step%friction_changes(0))
     if (state%changed_interaction > 0) then
@@ -409,10 +412,17 @@ contains
     if (.not. amplitude_param(card, model, diag, amplitude)) return
     if (param_upper(card, 'OP') == 'NEW' .and. .not. state%pressures_renewed) then
       call state%pressures%clear()
+      call state%body_loads%clear()
       state%pressures_renewed = .true.
     end if
     do i = 1, card%n_lines
       associate (line => card%lines(i))
+        if (card%keyword == 'DLOAD' .and. size(line%fields) >= 2) then
+          if (is_body_label(line%fields(2)%s)) then
+            call put_body_load(card, line, model, state, amplitude, diag)
+            cycle
+          end if
+        end if
         if (size(line%fields) >= 2) then
           if (pressure_face(card, line%fields(2)%s) < 0) then
             call diag%report(line%loc, '*' // card%keyword // ': ' // &
@@ -437,6 +447,71 @@ contains
       end associate
     end do
   end subroutine handle_dsload
+
+  !> Whether a *DLOAD label is a body load fcs3d applies (GRAV, CENTRIF).
+  pure logical function is_body_label(text)
+    character(len=*), intent(in) :: text
+    is_body_label = to_upper(text) == 'GRAV' .or. to_upper(text) == 'CENTRIF'
+  end function is_body_label
+
+  !> *DLOAD body loads, as CalculiX: element or set, GRAV, g, nx, ny, nz (the acceleration
+  !> and its direction, normalised here), or element or set, CENTRIF, omega^2, x0, y0, z0,
+  !> ax, ay, az (a point of the axis and its direction).
+  subroutine put_body_load(card, line, model, state, amplitude, diag)
+    type(card_t), intent(in) :: card
+    type(data_line_t), intent(in) :: line
+    type(model_t), intent(in) :: model
+    type(builder_t), intent(inout) :: state
+    integer, intent(in) :: amplitude
+    type(diagnostics_t), intent(inout) :: diag
+    type(body_load_t) :: b
+    integer, allocatable :: elements(:)
+    real(dp) :: values(7), length
+    integer :: j, n_values, n
+    n = size(line%fields)
+    do while (n > 0)
+      if (len(line%fields(n)%s) > 0) exit
+      n = n - 1
+    end do
+    if (to_upper(line%fields(2)%s) == 'GRAV') then
+      b%kind = BODY_GRAV
+      n_values = 4
+    else
+      b%kind = BODY_CENTRIF
+      n_values = 7
+    end if
+    if (n /= 2 + n_values) then
+      if (b%kind == BODY_GRAV) then
+        call diag%report(line%loc, '*DLOAD: expected element or set, GRAV, magnitude, ' // &
+                         'direction x, y, z')
+      else
+        call diag%report(line%loc, '*DLOAD: expected element or set, CENTRIF, omega^2, a ' // &
+                         'point of the axis x, y, z, the axis direction x, y, z')
+      end if
+      return
+    end if
+    do j = 1, n_values
+      if (.not. line_real(line, 2 + j, values(j), 'value', card%keyword, diag)) return
+    end do
+    b%magnitude = values(1)
+    b%vector(1:n_values - 1) = values(2:n_values)
+    associate (direction => b%vector(merge(1, 4, b%kind == BODY_GRAV):merge(3, 6, b%kind == BODY_GRAV)))
+      length = norm2(direction)
+      if (.not. (length > 0.0_dp)) then
+        call diag%report(line%loc, '*DLOAD: the ' // trim(merge('direction', 'axis     ', &
+                         b%kind == BODY_GRAV)) // ' must not be zero')
+        return
+      end if
+      direction = direction / length
+    end associate
+    b%amplitude = amplitude
+    b%loc = line%loc
+    call resolve_elements(model%mesh, line%fields(1)%s, line, card%keyword, diag, elements)
+    do j = 1, size(elements)
+      b%element = elements(j)
+      call state%body_loads%put(b)
+    end do
+  end subroutine put_body_load
 
   !> A pressure on every face of an element-face surface (*DSLOAD, label P).
   subroutine put_surface_pressure(card, line, model, state, f, diag)
@@ -506,9 +581,12 @@ contains
     character(len=*), parameter :: expected = 'P1..P6 (pressure on face n of an element or ' // &
                                               'element set)'
     select case (label)
-    case ('GRAV', 'CENTRIF', 'NEWTONGRAVITY', 'BX', 'BY', 'BZ', 'BXNU', 'BYNU', 'BZNU', 'EDNOR')
-      text = 'load label "' // label // '" (a body load) is not available yet in fcs3d; ' // &
-             'available: ' // expected
+    case ('GRAV', 'CENTRIF')
+      text = 'load label "' // label // '" (a body load) goes with *DLOAD and an element or ' // &
+             'element set'
+    case ('NEWTONGRAVITY', 'BX', 'BY', 'BZ', 'BXNU', 'BYNU', 'BZNU', 'EDNOR')
+      text = 'load label "' // label // '" (a body load) is not available in fcs3d; ' // &
+             'available: ' // expected // ', GRAV, CENTRIF'
     case default
       if (len(label) > 2) then
         if (label(1:1) == 'P' .and. index('123456', label(2:2)) > 0) then

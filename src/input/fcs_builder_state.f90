@@ -2,12 +2,13 @@
 !> the step being built, and the running lists of boundary conditions and loads that carry
 !> over from step to step (Abaqus/CalculiX OP=MOD / OP=NEW semantics).
 module fcs_builder_state
+  use fcs_kinds, only: dp
   use fcs_diagnostics, only: source_loc_t
   use fcs_int_map, only: int_map_t
-  use fcs_model, only: step_t, dof_condition_t, face_load_t
+  use fcs_model, only: step_t, dof_condition_t, face_load_t, body_load_t
   implicit none
   private
-  public :: builder_t, condition_list_t, pressure_list_t
+  public :: builder_t, condition_list_t, pressure_list_t, body_load_list_t
 
   !> Conditions on degrees of freedom, at most one per (node, dof): a new one replaces the old.
   !> Each remembers the scope (model data or a step) and the data line that set it, so that
@@ -35,6 +36,16 @@ module fcs_builder_state
     procedure :: to_array => pressure_list_to_array
   end type pressure_list_t
 
+  !> Body loads, at most one per (element, kind): a new one replaces the old.
+  type :: body_load_list_t
+    type(body_load_t), allocatable :: items(:)
+    integer :: n = 0
+    type(int_map_t) :: slot
+  contains
+    procedure :: clear => body_load_list_clear
+    procedure :: put => body_load_list_put
+  end type body_load_list_t
+
   type :: builder_t
     !> Material that *ELASTIC and *DENSITY apply to (0: none yet).
     integer :: material = 0
@@ -57,10 +68,44 @@ module fcs_builder_state
     type(condition_list_t) :: boundary
     type(condition_list_t) :: loads
     type(pressure_list_t) :: pressures
+    type(body_load_list_t) :: body_loads
     type(step_t), allocatable :: steps(:)
+    !> *INITIAL CONDITIONS, TYPE=TEMPERATURE as read: node indices and values (later lines
+    !> win), resolved into model%initial_temperature after the last card.
+    integer, allocatable :: initial_temperature_node(:)
+    real(dp), allocatable :: initial_temperature_value(:)
   end type builder_t
 
 contains
+
+  subroutine body_load_list_clear(this)
+    class(body_load_list_t), intent(inout) :: this
+    this%n = 0
+    if (.not. allocated(this%items)) allocate (this%items(16))
+    call this%slot%init(16)
+  end subroutine body_load_list_clear
+
+  !> Add `b`, replacing the body load of the same kind on the same element.
+  subroutine body_load_list_put(this, b)
+    class(body_load_list_t), intent(inout) :: this
+    type(body_load_t), intent(in) :: b
+    type(body_load_t), allocatable :: grown(:)
+    integer :: key, k
+    if (.not. allocated(this%items)) call this%clear()
+    key = 2 * (b%element - 1) + b%kind
+    k = this%slot%get(key)
+    if (k == 0) then
+      if (this%n == size(this%items)) then
+        allocate (grown(2 * size(this%items)))
+        grown(1:this%n) = this%items(1:this%n)
+        call move_alloc(grown, this%items)
+      end if
+      this%n = this%n + 1
+      k = this%n
+      call this%slot%set(key, k)
+    end if
+    this%items(k) = b
+  end subroutine body_load_list_put
 
   subroutine condition_list_clear(this)
     class(condition_list_t), intent(inout) :: this

@@ -161,12 +161,29 @@ contains
          '*DRUCKER PRAGER HARDENING lines belong to it.', '', &
          [p('NAME', PARAM_NAME, required=.true., description='Name of the material.')]), &
       kw('ELASTIC', CONTEXT_MODEL, 'CalculiX', 'Isotropic (hypo)elastic constants of the ' // &
-         'current material.', 'Young''s modulus [stress], Poisson''s ratio [-].', &
+         'current material, constant or as a table over temperature (linear between the ' // &
+         'lines, constant beyond the first and last, as CalculiX; elastic materials only, not ' // &
+         'with plasticity). With a table the stress follows sigma = C(T) eps_el as in ' // &
+         'CalculiX (doc/theory.md section 2.5).', 'Young''s modulus [stress], Poisson''s ' // &
+         'ratio [-][, temperature]: one line, or one line per temperature, temperatures ' // &
+         'strictly increasing.', &
          [p('TYPE', PARAM_CHOICE, default='ISO', choices=[s('ISO'), s('ISOTROPIC')], &
             description='Only isotropic elasticity is available.')], data_required=.true.), &
+      kw('EXPANSION', CONTEXT_MODEL, 'CalculiX', 'Isotropic thermal expansion of the ' // &
+         'current material: the secant coefficient alpha from the reference temperature ZERO, ' // &
+         'thermal strain alpha(T) (T - ZERO) - alpha(T0) (T0 - ZERO) from the initial ' // &
+         'temperature T0, as CalculiX (doc/theory.md section 2.5).', 'alpha [1/temperature]' // &
+         '[, temperature]: one line, or one line per temperature, temperatures strictly ' // &
+         'increasing (linear between them, constant beyond the first and last).', &
+         [p('ZERO', PARAM_REAL, default='0', unit='temperature', description='Reference ' // &
+            'temperature of the secant coefficients.'), &
+          p('TYPE', PARAM_CHOICE, default='ISO', choices=[s('ISO')], description='Only ' // &
+            'isotropic expansion is available.')], data_required=.true.), &
       kw('DENSITY', CONTEXT_MODEL, 'CalculiX', 'Mass density of the current material ' // &
-         '(recorded in the results; the static analysis does not use it).', &
-         'density [mass/length^3].', [p_none()], data_required=.true.), &
+         '(used by the body loads GRAV and CENTRIF of *DLOAD and by radiation damping).', &
+         'density [mass/length^3][, temperature]: one line, or a table over temperature whose ' // &
+         'lines all give the same density (a density that varies with temperature is refused).', &
+         [p_none()], data_required=.true.), &
       kw('PLASTIC', CONTEXT_MODEL, 'CalculiX', 'von Mises plasticity of the current material ' // &
          '(radial return in the rotated frame; doc/theory.md section 2.2). The curve is read as ' // &
          'CalculiX reads it: ISOTROPIC, the yield stress; KINEMATIC, the yield surface keeps ' // &
@@ -175,8 +192,7 @@ contains
          'HARDENING.', 'von Mises stress [stress], equivalent plastic strain [-]: one point ' // &
          'per line, the first at plastic strain 0, plastic strains strictly increasing, ' // &
          'stresses positive; linear between the points, constant beyond the last. A third ' // &
-         'field (temperature) is refused: temperature-dependent curves come with the thermal ' // &
-         'issue.', &
+         'field (temperature) is refused: temperature-dependent curves are not available.', &
          [p('HARDENING', PARAM_CHOICE, default='ISOTROPIC', &
             choices=[s('ISOTROPIC'), s('KINEMATIC'), s('COMBINED')], &
             description='Isotropic, kinematic (linear in the curve''s slope, Prager-Ziegler ' // &
@@ -206,6 +222,21 @@ contains
             description='The test the curve comes from: uniaxial compression (d = (1 - ' // &
             'tan(beta)/3) sigma_c), uniaxial tension (d = (1 + tan(beta)/3) sigma_t) or pure ' // &
             'shear (d = sqrt(3) tau), as Abaqus defines them for K = 1.')], &
+         data_required=.true.), &
+      kw('INITIAL CONDITIONS', CONTEXT_MODEL, 'CalculiX', 'Initial values: nodal ' // &
+         'temperatures (TYPE=TEMPERATURE; a node not named starts at temperature 0, as in ' // &
+         'CalculiX) or stresses at the integration points (TYPE=STRESS: the stress the ' // &
+         'analysis starts from; what it does not balance is the out-of-balance force of the ' // &
+         'first increment).', 'TEMPERATURE: node or node set, temperature. STRESS: element ' // &
+         '(or element set), integration point, sxx, syy, szz, sxy, sxz, syz [stress], as ' // &
+         'CalculiX. STRESS with GEOSTATIC: element or element set, s1, z1, s2, z2, k_x[, k_y]: ' // &
+         'szz linear in the height z (third coordinate) through (z1, s1) and (z2, s2), ' // &
+         'sxx = k_x szz, syy = k_y szz (k_y = k_x when empty), no shear: a lithostatic ' // &
+         'pre-stress (Abaqus syntax).', &
+         [p('TYPE', PARAM_CHOICE, required=.true., choices=[s('TEMPERATURE'), s('STRESS')], &
+            description='What is given.'), &
+          p('GEOSTATIC', PARAM_FLAG, description='TYPE=STRESS: the stress varies linearly ' // &
+            'with height, given by two points and the lateral coefficients (Abaqus).')], &
          data_required=.true.), &
       kw('SOLID SECTION', CONTEXT_MODEL, 'CalculiX', 'Assign a material to an element set ' // &
          '(the material may be defined after the section, as in CalculiX).', &
@@ -423,6 +454,17 @@ contains
           p('FIXED', PARAM_FLAG, description='Keep the displacement the nodes have at the ' // &
             'start of the step (CalculiX; in a step only; a value on the data line is ignored).')], &
          data_required=.true.), &
+      kw('TEMPERATURE', CONTEXT_STEP, 'CalculiX', 'Nodal temperatures at the end of the ' // &
+         'step: ramped linearly over the step from the temperature at its start, or value x ' // &
+         'amplitude with AMPLITUDE= (as CalculiX for *STATIC). Nodes not named keep their ' // &
+         'value of the previous step. The thermal strain enters the stress update at the ' // &
+         'integration points (temperature interpolated from the nodes) and its load the ' // &
+         'R-minimum increment like any other load.', 'node or node set, temperature.', &
+         [p('OP', PARAM_CHOICE, default='MOD', choices=[s('MOD'), s('NEW')], &
+            description='MOD changes the named nodes; NEW first returns every node to its ' // &
+            'initial temperature.'), &
+          p('AMPLITUDE', PARAM_NAME, description='The temperature is value x this amplitude.')], &
+         data_required=.true.), &
       kw('CLOAD', CONTEXT_STEP, 'CalculiX', 'Concentrated nodal forces.', &
          'node or node set, dof, magnitude [force].', &
          [p('OP', PARAM_CHOICE, default='MOD', choices=[s('MOD'), s('NEW')], &
@@ -444,12 +486,19 @@ contains
             'AMPLITUDE).')], &
          data_required=.true.), &
       kw('DLOAD', CONTEXT_STEP, 'CalculiX', 'Distributed load: pressure on element faces, ' // &
-         'as *DSLOAD (the same list of face pressures: OP=NEW of either removes both). The ' // &
-         'body loads GRAV, CENTRIF, BX, BY, BZ and user loads PnNU are refused (not ' // &
-         'available yet).', 'element or element set, Pn (face n, numbered as S1..S6 of ' // &
-         '*SURFACE), magnitude [stress].', &
+         'as *DSLOAD (the same list of face pressures: OP=NEW of either removes both), and ' // &
+         'the body loads GRAV (gravity) and CENTRIF (centrifugal) as CalculiX: rho times the ' // &
+         'acceleration per unit volume (the material needs *DENSITY), as consistent nodal ' // &
+         'forces over the element (any kind), ramped over the step or x amplitude. CENTRIF ' // &
+         'acts at the current positions under NLGEOM, the reference ones without, without ' // &
+         'load stiffness (doc/theory.md section 3.1). BX, BY, BZ and user loads are refused.', &
+         'element or element set, Pn (face n, numbered as S1..S6 of *SURFACE), magnitude ' // &
+         '[stress]; element or set, GRAV, g [length/time^2], direction x, y, z (normalised); ' // &
+         'element or set, CENTRIF, omega^2 [1/time^2], a point of the axis x, y, z, the axis ' // &
+         'direction x, y, z.', &
          [p('OP', PARAM_CHOICE, default='MOD', choices=[s('MOD'), s('NEW')], &
-            description='MOD keeps earlier loads; NEW removes all earlier ones first.'), &
+            description='MOD keeps earlier loads; NEW removes all earlier pressures and body ' // &
+            'loads first.'), &
           p('AMPLITUDE', PARAM_NAME, description='Scale the value by this amplitude.'), &
           p('TIME DELAY', PARAM_REAL, unit='time', description='Shift the amplitude by this ' // &
             'time: the value at time t is the amplitude''s at t - delay (CalculiX; needs ' // &
@@ -469,7 +518,7 @@ contains
           p('GENERATE', PARAM_FLAG, description='Data lines are start, end, increment.')], &
          data_required=.true.), &
       kw('NODE PRINT', CONTEXT_STEP, 'CalculiX', 'Print nodal results to <job>.dat in ' // &
-         'CalculiX''s layout.', 'U (displacements), RF (reaction forces).', &
+         'CalculiX''s layout.', 'U (displacements), RF (reaction forces), NT (nodal temperatures).', &
          [p('NSET', PARAM_NAME, required=.true., description='Node set to print.'), &
           p('GLOBAL', PARAM_CHOICE, default='YES', choices=[s('YES'), s('NO')], &
             description=GLOBAL_ONLY), &
@@ -537,7 +586,7 @@ contains
             'largest slip stays below this are not catalogued.')]), &
       kw('NODE FILE', CONTEXT_STEP, 'CalculiX', 'Request result frames in <job>.h5/.xdmf. ' // &
          'Every frame holds all fields (displacement, reactions, stresses, Mises stress); ' // &
-         'the variables listed are checked, not used to select.', 'U, RF, ...', &
+         'the variables listed are checked, not used to select.', 'U, RF, NT (frames of a model with temperatures hold NT), ...', &
          [p('FREQUENCY', PARAM_INTEGER, default='0', description='Also write every N increments.'), &
           p('TIME POINTS', PARAM_NAME, description='Write at these times.'), &
           p('NSET', PARAM_NAME, description=WHOLE_FRAMES), &

@@ -8,12 +8,14 @@ module fcs_model
   use fcs_strings, only: string_t
   use fcs_friction_factory, only: friction_def_t
   use fcs_material_factory, only: plastic_def_t
+  use fcs_thermal_properties, only: thermal_properties_t
   use fcs_contact_pair, only: contact_pair_def_t
   use fcs_element_catalogue, only: element_catalogue_t
   implicit none
   private
   public :: model_t, material_def_t, section_t, amplitude_t, time_points_t, dof_condition_t
-  public :: face_load_t, output_request_t, step_t, rmin_settings_t
+  public :: face_load_t, output_request_t, step_t, rmin_settings_t, initial_stress_t
+  public :: body_load_t, BODY_GRAV, BODY_CENTRIF
   public :: friction_def_t, friction_change_t, interaction_def_t, contact_pair_def_t, checkpoint_settings_t
   public :: history_item_t, history_request_t, HISTORY_NSET_U, HISTORY_NSET_RF
   public :: HISTORY_CONTACT, HISTORY_ENERGY, HISTORY_RESIDUAL
@@ -21,6 +23,9 @@ module fcs_model
   public :: OUTPUT_NODE_PRINT, OUTPUT_EL_PRINT, OUTPUT_NODE_FILE, OUTPUT_EL_FILE
   public :: OUTPUT_CONTACT_PRINT, OUTPUT_CONTACT_FILE
   public :: TOTALS_NO, TOTALS_YES, TOTALS_ONLY
+
+  !> Body loads of *DLOAD: gravity and centrifugal (CalculiX's GRAV and CENTRIF).
+  integer, parameter :: BODY_GRAV = 1, BODY_CENTRIF = 2
 
   !> Kinds of prescribed degree-of-freedom conditions.
   !> BC_FIXED: the displacement the node has at the start of the step is kept (CalculiX's
@@ -52,6 +57,10 @@ module fcs_model
     !> with the cards that gave it (line 0: not given), for the checks of the whole material.
     type(plastic_def_t) :: plastic
     type(source_loc_t) :: plastic_loc, cyclic_loc, drucker_prager_loc, dp_hardening_loc
+    !> *EXPANSION and a temperature-dependent *ELASTIC table (youngs_modulus and poisson_ratio
+    !> above hold its first row), with the cards that gave them.
+    type(thermal_properties_t) :: thermal
+    type(source_loc_t) :: expansion_loc, elastic_loc
   end type material_def_t
 
   !> *SOLID SECTION: a material and a formulation for an element set. The material may be
@@ -96,6 +105,33 @@ module fcs_model
     real(dp) :: pressure = 0.0_dp
     integer :: amplitude = 0
   end type face_load_t
+
+  !> A body load on one element (*DLOAD, GRAV or CENTRIF, as CalculiX): GRAV, the
+  !> acceleration `magnitude` [length/time^2] along the unit vector vector(1:3); CENTRIF,
+  !> omega^2 = `magnitude` [1/time^2] about the axis through vector(1:3) along the unit
+  !> vector vector(4:6). The force per unit volume is rho times the acceleration (the element's
+  !> material needs *DENSITY). `amplitude` = 0: ramped over the step as the other loads.
+  type :: body_load_t
+    integer :: element = 0
+    integer :: kind = BODY_GRAV
+    real(dp) :: magnitude = 0.0_dp
+    real(dp) :: vector(6) = 0.0_dp
+    integer :: amplitude = 0
+    type(source_loc_t) :: loc
+  end type body_load_t
+
+  !> *INITIAL CONDITIONS, TYPE=STRESS: the stress (Voigt: 11, 22, 33, 12, 13, 23) at
+  !> integration point `point` of element `element`, as CalculiX; or, with GEOSTATIC (Abaqus),
+  !> at every point of the element from its height z (the third coordinate, reference
+  !> configuration): sigma_33 linear through (z1, s1) and (z2, s2), sigma_11 = k_x sigma_33,
+  !> sigma_22 = k_y sigma_33, no shear (`geostatic` = [s1, z1, s2, z2, k_x, k_y]).
+  type :: initial_stress_t
+    integer :: element = 0
+    integer :: point = 0
+    real(dp) :: stress(6) = 0.0_dp
+    logical :: is_geostatic = .false.
+    real(dp) :: geostatic(6) = 0.0_dp
+  end type initial_stress_t
 
   !> An output request (*NODE PRINT, *EL PRINT, *NODE FILE, *EL FILE).
   type :: output_request_t
@@ -171,9 +207,21 @@ module fcs_model
     type(dof_condition_t), allocatable :: boundary(:)
     type(dof_condition_t), allocatable :: loads(:)
     type(face_load_t), allocatable :: pressures(:)
+    !> Body loads (*DLOAD GRAV, CENTRIF), complete as the other lists.
+    type(body_load_t), allocatable :: body_loads(:)
     type(output_request_t), allocatable :: outputs(:)
     !> *CHANGE FRICTION of this step (the changes of earlier steps still hold).
     type(friction_change_t), allocatable :: friction_changes(:)
+    !> *TEMPERATURE of this step as read (node index, value, amplitude; `temperature_new`: an
+    !> OP=NEW card cleared the earlier ones first), and, once the deck is read, the complete
+    !> lists (every node, when the model has temperatures): the value each node reaches at
+    !> the end of the step (ramped from its value at the step's start) or, with an amplitude
+    !> (index; 0: none), the value times the amplitude.
+    integer, allocatable :: temperature_node(:), temperature_card_amplitude(:)
+    real(dp), allocatable :: temperature_value(:)
+    logical :: temperature_new = .false.
+    real(dp), allocatable :: temperature(:)
+    integer, allocatable :: temperature_amplitude(:)
     type(source_loc_t) :: loc
   end type step_t
 
@@ -261,6 +309,13 @@ module fcs_model
     !> The reader's warnings ("file:line: text"): input read, but not quite as written (a
     !> parameter CalculiX ignores, an undefined id skipped in a set); the driver logs them.
     type(string_t), allocatable :: warnings(:)
+    !> Whether the model has nodal temperatures (*INITIAL CONDITIONS, TYPE=TEMPERATURE,
+    !> *TEMPERATURE or a material that depends on temperature), and the temperature of every
+    !> node at the start of the analysis (0 where none is given, as in CalculiX).
+    logical :: has_temperature = .false.
+    real(dp), allocatable :: initial_temperature(:)
+    !> *INITIAL CONDITIONS, TYPE=STRESS, in deck order (a later line wins).
+    type(initial_stress_t), allocatable :: initial_stresses(:)
   end type model_t
 
 end module fcs_model

@@ -28,6 +28,9 @@ module fcs_model_builder
   use fcs_build_step, only: handle_step, handle_static, handle_end_step, handle_boundary, &
                             handle_cload, handle_dsload, handle_amplitude, handle_time_points, &
                             handle_rmin
+  use fcs_build_thermal, only: handle_expansion, handle_elastic_table, handle_initial_conditions, &
+                               handle_temperature, resolve_temperatures, given_fields, &
+                               check_body_loads
   use fcs_build_output, only: handle_output_request, handle_history, handle_event_catalog
   use fcs_build_contact, only: handle_surface_interaction, handle_surface_behavior, &
                                handle_friction, handle_contact_pair, handle_tie, &
@@ -64,6 +67,7 @@ contains
     call state%boundary%clear()
     call state%loads%clear()
     call state%pressures%clear()
+    call state%body_loads%clear()
     table = keyword_table()
     call canonical_spellings(deck, table)
     last_step_end = end_of_last_step(deck)
@@ -85,9 +89,11 @@ contains
       call diag%report(state%step%loc, '*STEP: the step is not closed (add *END STEP at the end)')
     end if
     model%steps = state%steps
+    if (.not. diag%is_full()) call resolve_temperatures(model, state, diag)
     if (.not. diag%is_full()) call resolve_section_materials(model, diag)
     if (.not. diag%is_full()) call resolve_pair_interactions(model, diag)
     if (.not. diag%has_errors()) call check_model(model, diag, deck)
+    if (.not. diag%has_errors()) call check_body_loads(model, diag)
     model%warnings = diag%warning_list()
     if (diag%has_errors()) then
       call diag%to_error(err)
@@ -226,7 +232,17 @@ contains
     case ('MATERIAL')
       call handle_material(card, model, state, diag)
     case ('ELASTIC')
-      call handle_elastic(card, model, state, diag)
+      if (is_elastic_table(card)) then
+        call handle_elastic_table(card, model, state, diag)
+      else
+        call handle_elastic(card, model, state, diag)
+      end if
+    case ('EXPANSION')
+      call handle_expansion(card, model, state, diag)
+    case ('INITIAL CONDITIONS')
+      call handle_initial_conditions(card, model, state, diag)
+    case ('TEMPERATURE')
+      call handle_temperature(card, model, state, diag)
     case ('DENSITY')
       call handle_density(card, model, state, diag)
     case ('PLASTIC')
@@ -284,7 +300,7 @@ contains
     end select
     select case (card%keyword)
     case ('MATERIAL', 'ELASTIC', 'DENSITY', 'PLASTIC', 'CYCLIC HARDENING', 'DRUCKER PRAGER', &
-          'DRUCKER PRAGER HARDENING')
+          'DRUCKER PRAGER HARDENING', 'EXPANSION')
     case default
       state%material = 0
     end select
@@ -489,14 +505,13 @@ contains
     else if (is_one_of(keyword, [character(len=34) :: 'EQUATION', 'MPC', 'RIGID BODY', &
              'COUPLING', 'DISTRIBUTING', 'KINEMATIC', 'TRANSFORM', 'CYCLIC SYMMETRY MODEL'])) then
       reason = 'constraints other than *BOUNDARY are not available yet'
-    else if (is_one_of(keyword, [character(len=34) :: 'ORIENTATION', 'EXPANSION', &
+    else if (is_one_of(keyword, [character(len=34) :: 'ORIENTATION', &
              'CONDUCTIVITY', 'SPECIFIC HEAT', 'HYPERELASTIC', 'HYPERFOAM', 'CREEP', &
              'USER MATERIAL', 'DEFORMATION PLASTICITY', 'RATE DEPENDENT', 'CAP PLASTICITY', &
              'MOHR COULOMB', 'DRUCKER PRAGER CREEP'])) then
       reason = 'materials are isotropic hypoelastic (*ELASTIC), with von Mises (*PLASTIC) or ' // &
                'linear Drucker-Prager (*DRUCKER PRAGER) plasticity'
-    else if (is_one_of(keyword, [character(len=34) :: 'INITIAL CONDITIONS', 'TEMPERATURE', &
-             'CFLUX', 'DFLUX', 'FILM', 'RADIATE'])) then
+    else if (is_one_of(keyword, [character(len=34) :: 'CFLUX', 'DFLUX', 'FILM', 'RADIATE'])) then
       reason = 'this load or initial condition is not available yet'
     else if (is_one_of(keyword, [character(len=34) :: 'CHANGE SURFACE BEHAVIOR', &
              'CHANGE CONTACT TYPE'])) then
@@ -509,6 +524,13 @@ contains
       reason = ''
     end if
   end function unsupported_keyword_reason
+
+  !> Whether an *ELASTIC card is a temperature table (several lines, or a temperature field).
+  logical function is_elastic_table(card) result(table)
+    type(card_t), intent(in) :: card
+    table = card%n_lines > 1
+    if (card%n_lines == 1) table = given_fields(card%lines(1)) > 2
+  end function is_elastic_table
 
   !> True when `keyword` is one of `names` (compared as `same_name`).
   pure logical function is_one_of(keyword, names)

@@ -47,13 +47,16 @@ contains
     call this%file%close(err)
   end subroutine dat_close
 
-  !> *NODE PRINT: U and/or RF (and totals) of the request's node set.
-  subroutine dat_node_print(this, model, request, time, u, rf, err)
+  !> *NODE PRINT: U, RF (and totals) and/or NT of the request's node set; NT prints the nodal
+  !> `temperature` (0 for a model without temperatures, as CalculiX prints it).
+  subroutine dat_node_print(this, model, request, time, u, rf, err, temperature)
     class(dat_file_t), intent(inout) :: this
     type(model_t), intent(in) :: model
     type(output_request_t), intent(in) :: request
     real(dp), intent(in) :: time, u(:, :), rf(:, :)
     type(error_t), allocatable, intent(out) :: err
+    real(dp), intent(in), optional :: temperature(:)
+    real(dp), allocatable :: nt(:, :)
     integer :: v
     integer, allocatable :: nodes(:)
     associate (set => model%mesh%node_sets(request%set))
@@ -66,6 +69,13 @@ contains
         case ('RF')
           call node_block(this%file, 'forces (fx,fy,fz)', set%name, time, model, nodes, rf, &
                           request%totals, err)
+        case ('NT')
+          allocate (nt(1, size(u, 2)))
+          nt = 0.0_dp
+          if (present(temperature)) nt(1, :) = temperature
+          call node_block(this%file, 'temperatures', set%name, time, model, nodes, nt, &
+                          TOTALS_NO, err)
+          deallocate (nt)
         end select
         if (allocated(err)) return
       end do

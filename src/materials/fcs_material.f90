@@ -16,9 +16,11 @@
 !> yield, `event_fraction`).
 module fcs_material
   use fcs_kinds, only: dp
+  use fcs_thermal_properties, only: thermal_properties_t
   implicit none
   private
-  public :: material_t, material_slot_t, isotropic_elastic_matrix, YIELD_TOLERANCE, UNLOADING_COSINE
+  public :: material_t, material_slot_t, isotropic_elastic_matrix, isotropic_compliance_matrix
+  public :: YIELD_TOLERANCE, UNLOADING_COSINE
 
   !> A point whose yield function f lies within YIELD_TOLERANCE times the current yield
   !> stress of the surface counts as on it: its tangent is elastoplastic (unless the increment
@@ -46,6 +48,9 @@ module fcs_material
   type, abstract :: material_t
     real(dp) :: youngs_modulus = 0.0_dp
     real(dp) :: poisson_ratio = 0.0_dp
+    !> Thermal expansion and temperature-dependent elastic constants (fcs_thermal_properties);
+    !> empty for a material that temperature does not affect.
+    type(thermal_properties_t) :: thermal
   contains
     procedure(tangent_interface), deferred :: tangent
     procedure(update_interface), deferred :: update
@@ -64,6 +69,10 @@ module fcs_material
     procedure :: point_events => material_point_events
     procedure :: unloads => material_unloads
     procedure :: on_surface => material_on_surface
+    procedure :: thermal_strain_increment => material_thermal_strain_increment
+    procedure :: elastic_matrix_at => material_elastic_matrix_at
+    procedure :: rescale_stress => material_rescale_stress
+    procedure :: at_temperature => material_at_temperature
   end type material_t
 
   !> One material object (of any law), e.g. one per *MATERIAL of a model.
@@ -257,6 +266,78 @@ contains
     end if
     r_plastic = this%plastic_strain_fraction(stress, state, strain_fixed, strain_load, r_yield, limit)
   end subroutine material_point_events
+
+  !> The thermal strain increment (Voigt, engineering shear) of a point whose temperature goes
+  !> from t_start to t_end: [1, 1, 1, 0, 0, 0] (alpha(t_end) (t_end - T_Z) - alpha(t_start)
+  !> (t_start - T_Z)), the secant form of CalculiX (fcs_thermal_properties); 0 without
+  !> *EXPANSION.
+  pure function material_thermal_strain_increment(this, t_start, t_end) result(increment)
+    class(material_t), intent(in) :: this
+    real(dp), intent(in) :: t_start, t_end
+    real(dp) :: increment(6)
+    increment = 0.0_dp
+    if (.not. this%thermal%has_expansion()) return
+    increment(1:3) = this%thermal%strain(t_end) - this%thermal%strain(t_start)
+  end function material_thermal_strain_increment
+
+  !> The elastic matrix at temperature t: C(E(t), nu(t)) for temperature-dependent constants,
+  !> else the material's own.
+  pure function material_elastic_matrix_at(this, t) result(c)
+    class(material_t), intent(in) :: this
+    real(dp), intent(in) :: t
+    real(dp) :: c(6, 6)
+    real(dp) :: e, nu
+    if (this%thermal%elastic_varies()) then
+      call this%thermal%elastic_at(t, e, nu)
+      c = isotropic_elastic_matrix(e, nu)
+    else
+      c = this%elastic_matrix()
+    end if
+  end function material_elastic_matrix_at
+
+  !> The stress of a point whose elastic constants change from their values at t_start to
+  !> those at t_end with its elastic strain held: C(t_end) C(t_start)^-1 sigma. This is the
+  !> term dC : C^-1 : sigma of the rate form sigma^J = C : (D - D_th) + dC/dT T' : C^-1 : sigma
+  !> (doc/theory.md, section 2.5), integrated so that sigma = C(T) eps_el exactly, CalculiX's
+  !> total form for small strains. Unchanged when the constants do not depend on temperature.
+  pure function material_rescale_stress(this, stress, t_start, t_end) result(rescaled)
+    class(material_t), intent(in) :: this
+    real(dp), intent(in) :: stress(6), t_start, t_end
+    real(dp) :: rescaled(6)
+    real(dp) :: e0, nu0, e1, nu1
+    rescaled = stress
+    if (.not. this%thermal%elastic_varies()) return
+    call this%thermal%elastic_at(t_start, e0, nu0)
+    call this%thermal%elastic_at(t_end, e1, nu1)
+    if (e0 == e1 .and. nu0 == nu1) return
+    rescaled = matmul(isotropic_elastic_matrix(e1, nu1), &
+                      matmul(isotropic_compliance_matrix(e0, nu0), stress))
+  end function material_rescale_stress
+
+  !> A copy of this material with its elastic constants at temperature t (the material
+  !> itself, copied, when they do not depend on temperature).
+  subroutine material_at_temperature(this, t, copy)
+    class(material_t), intent(in) :: this
+    real(dp), intent(in) :: t
+    class(material_t), allocatable, intent(out) :: copy
+    allocate (copy, source=this)
+    if (this%thermal%elastic_varies()) &
+      call this%thermal%elastic_at(t, copy%youngs_modulus, copy%poisson_ratio)
+  end subroutine material_at_temperature
+
+  !> Isotropic compliance matrix (the inverse of isotropic_elastic_matrix): engineering
+  !> strain from stress, Voigt order.
+  pure function isotropic_compliance_matrix(e, nu) result(s)
+    real(dp), intent(in) :: e, nu
+    real(dp) :: s(6, 6)
+    integer :: i
+    s = 0.0_dp
+    s(1:3, 1:3) = -nu / e
+    do i = 1, 3
+      s(i, i) = 1.0_dp / e
+      s(i + 3, i + 3) = 2.0_dp * (1.0_dp + nu) / e
+    end do
+  end function isotropic_compliance_matrix
 
   !> Isotropic elasticity matrix in Voigt order (11,22,33,12,13,23), engineering shear.
   pure function isotropic_elastic_matrix(e, nu) result(c)

@@ -25,6 +25,10 @@ module fcs_state
     real(dp), allocatable :: reaction(:, :)
     !> Displacements at the start of the current step (for ramped prescribed displacements).
     real(dp), allocatable :: step_start_u(:, :)
+    !> Nodal temperatures now and at the start of the current step (allocated only when the
+    !> model has temperatures: `init_temperature`).
+    real(dp), allocatable :: temperature(:)
+    real(dp), allocatable :: step_start_temperature(:)
     !> Total time, time within the current step, current step (1-based).
     real(dp) :: time = 0.0_dp
     real(dp) :: step_time = 0.0_dp
@@ -52,6 +56,7 @@ module fcs_state
     type(contact_state_t) :: contact
   contains
     procedure :: init => state_init
+    procedure :: init_temperature => state_init_temperature
     procedure :: save => state_save
     procedure :: load => state_load
   end type state_t
@@ -79,6 +84,14 @@ contains
     this%step_increment = 0
   end subroutine state_init
 
+  !> Nodal temperatures for a model that has them: every node at its initial temperature.
+  subroutine state_init_temperature(this, initial)
+    class(state_t), intent(inout) :: this
+    real(dp), intent(in) :: initial(:)
+    this%temperature = initial
+    this%step_start_temperature = initial
+  end subroutine state_init_temperature
+
   !> Write this state's records into group /state of `archive` (the element fields add theirs
   !> to the group: element_state_t%save).
   subroutine state_save(this, archive, err)
@@ -96,6 +109,11 @@ contains
     if (.not. allocated(err)) call archive%put('/state/counters', [this%step, this%increment, &
       this%step_increment, this%friction_kind, this%friction_node, &
       this%step_worst_residual_increment], err)
+    if (allocated(this%temperature)) then
+      if (.not. allocated(err)) call archive%put('/state/temperature', this%temperature, err)
+      if (.not. allocated(err)) call archive%put('/state/step_start_temperature', &
+                                                 this%step_start_temperature, err)
+    end if
   end subroutine state_save
 
   !> Read the records `save` wrote into this state, which is set up for the model (`init`), so
@@ -112,6 +130,11 @@ contains
     if (.not. allocated(err)) call archive%get('/state/step_start_u', this%step_start_u, err)
     if (.not. allocated(err)) call archive%get('/state/scalars', scalars, err)
     if (.not. allocated(err)) call archive%get('/state/counters', counters, err)
+    if (allocated(this%temperature)) then
+      if (.not. allocated(err)) call archive%get('/state/temperature', this%temperature, err)
+      if (.not. allocated(err)) call archive%get('/state/step_start_temperature', &
+                                                 this%step_start_temperature, err)
+    end if
     if (allocated(err)) return
     this%time = scalars(1)
     this%step_time = scalars(2)

@@ -4,15 +4,16 @@
 module fcs_assembly
   use fcs_kinds, only: dp
   use fcs_error, only: error_t
-  use fcs_model, only: model_t
+  use fcs_model, only: model_t, BODY_GRAV
   use fcs_material, only: material_slot_t
   use fcs_material_factory, only: create_material
-  use fcs_element_loops, only: element_loops_t
+  use fcs_element_loops, only: element_loops_t, BODY_FORCE_GRAVITY, BODY_FORCE_CENTRIFUGAL
   use fcs_sparse, only: sparse_matrix_t
   use fcs_loading, only: step_loading_t
+  use fcs_element_state, only: element_state_t
   implicit none
   private
-  public :: make_materials, assemble_pressures
+  public :: make_materials, assemble_pressures, apply_initial_stresses, assemble_body_loads
 
 contains
 
@@ -27,8 +28,70 @@ contains
       call create_material(model%materials(k)%youngs_modulus, model%materials(k)%poisson_ratio, &
                            model%materials(k)%plastic, slots(k)%m, err)
       if (allocated(err)) return
+      slots(k)%m%thermal = model%materials(k)%thermal
     end do
   end subroutine make_materials
+
+  !> The stresses of *INITIAL CONDITIONS, TYPE=STRESS set into the integration-point fields
+  !> at the start of the analysis, in deck order: a point's given stress, or, GEOSTATIC, at
+  !> every point of the element the stress of its reference height z: szz = s1 + (s2 - s1)
+  !> (z - z1) / (z2 - z1), sxx = k_x szz, syy = k_y szz (fcs_model, initial_stress_t).
+  subroutine apply_initial_stresses(elements, model, fields)
+    type(element_loops_t), intent(in) :: elements
+    type(model_t), intent(in) :: model
+    type(element_state_t), intent(inout) :: fields
+    real(dp), allocatable :: x(:, :)
+    real(dp) :: szz
+    integer :: i, q, e
+    if (.not. allocated(model%initial_stresses)) return
+    do i = 1, size(model%initial_stresses)
+      associate (item => model%initial_stresses(i))
+        e = item%element
+        if (.not. item%is_geostatic) then
+          fields%stress(:, item%point, e) = item%stress
+          cycle
+        end if
+        x = elements%point_positions(e)
+        associate (g => item%geostatic)
+          do q = 1, size(x, 2)
+            szz = g(1) + (g(3) - g(1)) * (x(3, q) - g(2)) / (g(4) - g(2))
+            fields%stress(:, q, e) = [g(5) * szz, g(6) * szz, szz, 0.0_dp, 0.0_dp, 0.0_dp]
+          end do
+        end associate
+      end associate
+    end do
+  end subroutine apply_initial_stresses
+
+  !> Body-load forces (*DLOAD GRAV, CENTRIF) at step time t added to f_ext: consistent nodal
+  !> forces of rho times the acceleration over each loaded element (fcs_element_loops,
+  !> body_force), rho the density of its material; CENTRIF at the current positions x with
+  !> NLGEOM, the reference ones without (as CalculiX).
+  subroutine assemble_body_loads(elements, loading, model, t, x, nlgeom, f_ext)
+    type(element_loops_t), intent(in) :: elements
+    type(step_loading_t), intent(in) :: loading
+    type(model_t), intent(in) :: model
+    real(dp), intent(in) :: t, x(:, :)
+    logical, intent(in) :: nlgeom
+    real(dp), intent(inout) :: f_ext(:)
+    real(dp) :: f(3 * size(elements%nodes, 1)), rho, magnitude
+    integer :: i, e, a, node, kind_of_force
+    do i = 1, size(loading%body_element)
+      e = loading%body_element(i)
+      magnitude = loading%body_load_at(model%amplitudes, i, t)
+      if (magnitude == 0.0_dp) cycle
+      rho = model%materials(model%sections(model%element_section(e))%material)%density
+      kind_of_force = BODY_FORCE_CENTRIFUGAL
+      if (loading%body_kind(i) == BODY_GRAV) kind_of_force = BODY_FORCE_GRAVITY
+      call elements%body_force(e, x, nlgeom, kind_of_force, loading%body_vector(:, i), &
+                               rho * magnitude, f)
+      associate (nodes => model%mesh%element_nodes(e))
+        do a = 1, size(nodes)
+          node = nodes(a)
+          f_ext(3 * node - 2:3 * node) = f_ext(3 * node - 2:3 * node) + f(3 * a - 2:3 * a)
+        end do
+      end associate
+    end do
+  end subroutine assemble_body_loads
 
   !> Pressure forces at step time t added to f_ext, on the current coordinates x (NLGEOM) or
   !> the reference ones; with `matrix` (NLGEOM only) the follower load stiffness -dF/dx is

@@ -10,7 +10,7 @@ module fcs_driver
   use fcs_run_options, only: run_options_t
   use fcs_state, only: state_t
   use fcs_loading, only: build_step_loading
-  use fcs_assembly, only: make_materials
+  use fcs_assembly, only: make_materials, apply_initial_stresses
   use fcs_static_explicit, only: analysis_t, take_increment, increment_record_t, build_pattern, &
                                  contact_positions, current_reactions, gather_element_fields
   use fcs_comm, only: comm_t
@@ -236,6 +236,8 @@ contains
                          'setting up the analysis', err)
       if (allocated(err)) return
       call a%state%init(model%mesh%x, model%mesh%n_elements, a%elements%max_points, n_state)
+      if (model%has_temperature) call a%state%init_temperature(model%initial_temperature)
+      call apply_initial_stresses(a%elements, model, a%state%elements)
       call contact_positions(a, model)
       if (size(model%contact_pairs) > 0) then
         call a%contact%init(model%contact_pairs, pair_frictions(model), model%mesh, a%x_contact, &
@@ -545,7 +547,14 @@ contains
     integer, intent(in) :: k
     type(error_t), allocatable, intent(out) :: err
     associate (state => run%analysis%state)
-      call build_step_loading(model, k, state%time - state%step_time, run%analysis%loading)
+      if (model%has_temperature .and. state%step_time == 0.0_dp) &
+        state%step_start_temperature = state%temperature
+      if (model%has_temperature) then
+        call build_step_loading(model, k, state%time - state%step_time, run%analysis%loading, &
+                                state%step_start_temperature)
+      else
+        call build_step_loading(model, k, state%time - state%step_time, run%analysis%loading)
+      end if
       ! *CHANGE FRICTION of this and the earlier steps (again when resuming within the step).
       if (run%analysis%contact%n_slaves() > 0) call apply_friction_changes(run%analysis%contact, &
         model, k, state%contact, err)

@@ -27,11 +27,22 @@ module fcs_loading
     !> Face pressures, same rule.
     integer, allocatable :: face_element(:), face_number(:), face_amplitude(:)
     real(dp), allocatable :: pressure_start(:), pressure_end(:)
+    !> Body loads (*DLOAD GRAV, CENTRIF): element, kind, amplitude, magnitude at the start and
+    !> end of the step (same rule), direction or axis (fcs_model, body_load_t).
+    integer, allocatable :: body_element(:), body_kind(:), body_amplitude(:)
+    real(dp), allocatable :: body_start(:), body_end(:), body_vector(:, :)
+    !> Nodal temperatures (models with temperatures only): each node's value at the start of
+    !> the step, its target and amplitude (0: none), the same rule as the forces.
+    real(dp), allocatable :: temperature_start(:), temperature_end(:)
+    integer, allocatable :: temperature_amplitude(:)
     !> Step times inside (0, period) where an amplitude has a point.
     real(dp), allocatable :: breakpoints(:)
   contains
     procedure :: force_at => loading_force_at
     procedure :: pressure_at => loading_pressure_at
+    procedure :: body_load_at => loading_body_load_at
+    procedure :: temperature_at => loading_temperature_at
+    procedure :: has_temperature => loading_has_temperature
     procedure :: prescribed_target => loading_prescribed_target
     procedure :: next_breakpoint => loading_next_breakpoint
   end type step_loading_t
@@ -39,14 +50,22 @@ module fcs_loading
 contains
 
   !> Build the loading of step `k` starting at total time `start_time`. Forces and pressures
-  !> start from the values they had at the end of step k-1.
-  subroutine build_step_loading(model, k, start_time, loading)
+  !> start from the values they had at the end of step k-1, temperatures from
+  !> `start_temperature` (the nodal temperatures at the start of the step; models with
+  !> temperatures).
+  subroutine build_step_loading(model, k, start_time, loading, start_temperature)
     type(model_t), intent(in) :: model
     integer, intent(in) :: k
     real(dp), intent(in) :: start_time
     type(step_loading_t), intent(out) :: loading
+    real(dp), intent(in), optional :: start_temperature(:)
     integer :: i
     associate (step => model%steps(k))
+      if (model%has_temperature .and. present(start_temperature)) then
+        loading%temperature_start = start_temperature
+        loading%temperature_end = step%temperature
+        loading%temperature_amplitude = step%temperature_amplitude
+      end if
       loading%period = step%period
       loading%start_time = start_time
       allocate (loading%bc_dof(size(step%boundary)), loading%bc_kind(size(step%boundary)), &
@@ -77,9 +96,46 @@ contains
         loading%pressure_start(i) = previous_pressure(model, k, step%pressures(i)%element, &
                                                       step%pressures(i)%face, start_time)
       end do
+      call body_loads(model, k, start_time, loading)
       call collect_breakpoints(model, step, start_time, loading)
     end associate
   end subroutine build_step_loading
+
+  !> The body loads of step k, each magnitude starting from its value at the end of step k-1
+  !> (0 if that step did not have it).
+  subroutine body_loads(model, k, start_time, loading)
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: k
+    real(dp), intent(in) :: start_time
+    type(step_loading_t), intent(inout) :: loading
+    integer :: i, j, n
+    n = 0
+    if (allocated(model%steps(k)%body_loads)) n = size(model%steps(k)%body_loads)
+    allocate (loading%body_element(n), loading%body_kind(n), loading%body_amplitude(n), &
+              loading%body_start(n), loading%body_end(n), loading%body_vector(6, n))
+    do i = 1, n
+      associate (b => model%steps(k)%body_loads(i))
+        loading%body_element(i) = b%element
+        loading%body_kind(i) = b%kind
+        loading%body_amplitude(i) = b%amplitude
+        loading%body_end(i) = b%magnitude
+        loading%body_vector(:, i) = b%vector
+        loading%body_start(i) = 0.0_dp
+        if (k == 1) cycle
+        if (.not. allocated(model%steps(k - 1)%body_loads)) cycle
+        associate (previous => model%steps(k - 1)%body_loads)
+          do j = 1, size(previous)
+            if (previous(j)%element /= b%element .or. previous(j)%kind /= b%kind) cycle
+            loading%body_start(i) = previous(j)%magnitude
+            if (previous(j)%amplitude > 0) loading%body_start(i) = loading%body_start(i) * &
+              amplitude_value(model%amplitudes(previous(j)%amplitude), &
+                              model%steps(k - 1)%period, start_time - model%steps(k - 1)%period)
+            exit
+          end do
+        end associate
+      end associate
+    end do
+  end subroutine body_loads
 
   !> Value of a concentrated force at the end of step k-1 (0 if it was not loaded).
   real(dp) function previous_force(model, k, node, dof, start_time) result(value)
@@ -142,6 +198,16 @@ contains
     do i = 1, size(step%pressures)
       if (step%pressures(i)%amplitude > 0) used(step%pressures(i)%amplitude) = .true.
     end do
+    if (allocated(step%body_loads)) then
+      do i = 1, size(step%body_loads)
+        if (step%body_loads(i)%amplitude > 0) used(step%body_loads(i)%amplitude) = .true.
+      end do
+    end if
+    if (allocated(step%temperature_amplitude)) then
+      do i = 1, size(step%temperature_amplitude)
+        if (step%temperature_amplitude(i) > 0) used(step%temperature_amplitude(i)) = .true.
+      end do
+    end if
     do a = 1, size(model%amplitudes)
       if (.not. used(a)) cycle
       if (model%amplitudes(a)%total_time) then
@@ -246,6 +312,36 @@ contains
     p = ramped(this%pressure_start(i), this%pressure_end(i), this%face_amplitude(i), amplitudes, &
                t, this%period, this%start_time)
   end function loading_pressure_at
+
+  !> Magnitude of body load i of the list at step time t.
+  pure real(dp) function loading_body_load_at(this, amplitudes, i, t) result(value)
+    class(step_loading_t), intent(in) :: this
+    type(amplitude_t), intent(in) :: amplitudes(:)
+    integer, intent(in) :: i
+    real(dp), intent(in) :: t
+    value = ramped(this%body_start(i), this%body_end(i), this%body_amplitude(i), amplitudes, &
+                   t, this%period, this%start_time)
+  end function loading_body_load_at
+
+  !> Whether the step has nodal temperatures.
+  pure logical function loading_has_temperature(this) result(has)
+    class(step_loading_t), intent(in) :: this
+    has = allocated(this%temperature_end)
+  end function loading_has_temperature
+
+  !> Nodal temperatures at step time t (ramp from the step's start, or value x amplitude: the
+  !> rule of the forces, CalculiX's tempload.f).
+  subroutine loading_temperature_at(this, amplitudes, t, temperature)
+    class(step_loading_t), intent(in) :: this
+    type(amplitude_t), intent(in) :: amplitudes(:)
+    real(dp), intent(in) :: t
+    real(dp), intent(out) :: temperature(:)
+    integer :: i
+    do i = 1, size(this%temperature_end)
+      temperature(i) = ramped(this%temperature_start(i), this%temperature_end(i), &
+        this%temperature_amplitude(i), amplitudes, t, this%period, this%start_time)
+    end do
+  end subroutine loading_temperature_at
 
   !> Target increment of prescribed dof i from step time t0 to t1, given the current
   !> displacement `current` of that dof and its value `step_start` at the start of the step.

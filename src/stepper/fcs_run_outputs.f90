@@ -157,7 +157,12 @@ contains
     associate (request => model%steps(a%state%step)%outputs(i), state => a%state)
       select case (request%kind)
       case (OUTPUT_NODE_PRINT)
-        call this%dat%node_print(model, request, state%time, state%u, state%reaction, err)
+        if (allocated(state%temperature)) then
+          call this%dat%node_print(model, request, state%time, state%u, state%reaction, err, &
+                                   state%temperature)
+        else
+          call this%dat%node_print(model, request, state%time, state%u, state%reaction, err)
+        end if
       case (OUTPUT_EL_PRINT)
         call a%elements%plastic_fields(state%elements, peeq, plastic_strain, back_stress)
         call this%dat%el_print(model, request, state%time, state%elements%stress, &
@@ -197,6 +202,8 @@ contains
       call this%results%write_coordinates(state%x, err)
       if (.not. allocated(err)) call this%results%write_field(field('displacement', FIELD_NODES, state%u), err)
       if (.not. allocated(err)) call this%results%write_field(field('force', FIELD_NODES, state%reaction), err)
+      if (.not. allocated(err) .and. allocated(state%temperature)) call this%results%write_field( &
+        field('NT', FIELD_NODES, reshape(state%temperature, [1, size(state%temperature)])), err)
       if (allocated(err)) return
       nodal = a%elements%nodal_average(state%elements%stress, model%mesh%n_nodes)
       allocate (nodal_mises(1, size(nodal, 2)), cell_mises(1, model%mesh%n_elements))

@@ -19,7 +19,7 @@ module fcs_static_explicit
   use fcs_factor_reuse, only: factor_reuse_t
   use fcs_metis_order, only: metis_equation_order
   use fcs_loading, only: step_loading_t
-  use fcs_assembly, only: assemble_pressures
+  use fcs_assembly, only: assemble_pressures, assemble_body_loads
   use fcs_element_loops, only: element_loops_t, event_limits_t
   use fcs_rmin_events, only: rmin_collector_t, rmin_event_t, EVENT_STRAIN_LIMIT, &
                              EVENT_ROTATION_LIMIT, event_kind_name, &
@@ -113,6 +113,12 @@ module fcs_static_explicit
     !> Integration points on their yield surface that the trial increment unloads (q, e):
     !> assembled with the elastic tangent for the rest of the increment.
     logical, allocatable :: unloading(:, :)
+    !> Nodal temperatures at the end of the trial increment (models with temperatures), and
+    !> whether temperature acts on some material (thermal load and update).
+    real(dp), allocatable :: temperature_trial(:), f_thermal(:)
+    !> The mean nodal size of the last trial's thermal load: a force scale of its own for
+    !> the out-of-balance tolerance (a freely expanding body carries no internal force).
+    real(dp) :: thermal_scale = 0.0_dp
   end type analysis_t
 
 contains
@@ -313,12 +319,21 @@ contains
       call a%comm%agree_error(err)
       if (.not. allocated(err) .and. a%contact%n_slaves() > 0 .and. predict_penetration) &
         call a%contact%check_penetration(model%mesh%node_id, a%x_contact, state%contact, a%du, err)
-      if (.not. allocated(err)) call a%elements%update(state%x, a%du, state%elements, step%nlgeom, err)
+      if (.not. allocated(err)) then
+        if (allocated(state%temperature)) then
+          call end_temperatures(a, model, t0, dt, r)
+          call a%elements%update(state%x, a%du, state%elements, step%nlgeom, err, &
+                                 state%temperature, a%temperature_trial)
+        else
+          call a%elements%update(state%x, a%du, state%elements, step%nlgeom, err)
+        end if
+      end if
       call a%comm%agree_error(err)
       if (allocated(err)) then
         call a%timers%stop('update')
         return
       end if
+      if (allocated(state%temperature)) state%temperature = a%temperature_trial
       state%u = state%u + reshape(a%du, shape(state%u))
       if (step%nlgeom) state%x = state%x + reshape(a%du, shape(state%x))
       if (r >= 1.0_dp) then
@@ -337,6 +352,22 @@ contains
     end associate
     call a%timers%stop('update')
   end subroutine apply_increment
+
+  !> The nodal temperatures at the end of the increment of fraction r of [t0, t0 + dt], into
+  !> a%temperature_trial (the time apply_increment gives the state).
+  subroutine end_temperatures(a, model, t0, dt, r)
+    type(analysis_t), intent(inout) :: a
+    type(model_t), intent(in) :: model
+    real(dp), intent(in) :: t0, dt, r
+    real(dp) :: t_end
+    if (r >= 1.0_dp) then
+      t_end = t0 + dt
+    else
+      t_end = t0 + r * dt
+    end if
+    if (.not. allocated(a%temperature_trial)) allocate (a%temperature_trial(size(a%state%temperature)))
+    call a%loading%temperature_at(model%amplitudes, t_end, a%temperature_trial)
+  end subroutine end_temperatures
 
   !> Equilibrium iterations on the increment just applied: while the out-of-balance force
   !> at its end exceeds the step's EQUILIBRIUM TOLERANCE, solve K dc = R with the tangent of
@@ -456,6 +487,7 @@ contains
     sums = [sum(a%flux, mask=a%flux > 0.0_dp), real(count(a%flux > 0.0_dp), dp)]
     record%force_scale = 0.0_dp
     if (sums(2) > 0.0_dp) record%force_scale = sums(1) / sums(2)
+    record%force_scale = max(record%force_scale, a%thermal_scale)
     ! The scale is never below the mean over the increments of the run so far (CalculiX
     ! averages its force scale over the increments of a step): a body unloaded to nearly no
     ! stress keeps a tolerance relative to the forces it carried, not to its round-off.
@@ -570,6 +602,9 @@ contains
     if (a%elements%has_states()) then
       call a%elements%assemble(a%state%x, a%state%elements, step%nlgeom, a%f_int, err, a%matrix, &
                                a%unloading)
+    else if (allocated(a%state%temperature)) then
+      call a%elements%assemble(a%state%x, a%state%elements, step%nlgeom, a%f_int, err, a%matrix, &
+                               temperature=a%state%temperature)
     else
       call a%elements%assemble(a%state%x, a%state%elements, step%nlgeom, a%f_int, err, a%matrix)
     end if
@@ -786,7 +821,56 @@ contains
     call a%loading%force_at(model%amplitudes, t1, a%f_ext1)
     call assemble_pressures(a%elements, a%loading, model, t0, a%state%x, nlgeom, a%f_ext0)
     call assemble_pressures(a%elements, a%loading, model, t1, a%state%x, nlgeom, a%f_ext1)
+    if (size(a%loading%body_element) > 0) then
+      call assemble_body_loads(a%elements, a%loading, model, t0, a%state%x, nlgeom, a%f_ext0)
+      call assemble_body_loads(a%elements, a%loading, model, t1, a%state%x, nlgeom, a%f_ext1)
+    end if
+    if (allocated(a%state%temperature)) call thermal_load(a, model, nlgeom, t1)
   end subroutine external_forces
+
+  !> The thermal load of the trial increment (fcs_element_loops, thermal_forces: the
+  !> temperatures going from the state's to those at step time t1) added to f_ext1, so that
+  !> it enters the load part du_load of the trial solution and is scaled by r with the other
+  !> loads (doc/theory.md 2.5); the end temperatures are kept in a%temperature_trial for the
+  !> events of the trial. f_ext0 and the out-of-balance force hold no thermal term: the
+  !> internal forces of the updated stresses carry it.
+  subroutine thermal_load(a, model, nlgeom, t1)
+    type(analysis_t), intent(inout) :: a
+    type(model_t), intent(in) :: model
+    logical, intent(in) :: nlgeom
+    real(dp), intent(in) :: t1
+    type(error_t), allocatable :: err
+    if (.not. allocated(a%temperature_trial)) allocate (a%temperature_trial(size(a%state%temperature)))
+    call a%loading%temperature_at(model%amplitudes, t1, a%temperature_trial)
+    if (.not. a%elements%has_thermal()) return
+    if (.not. allocated(a%f_thermal)) allocate (a%f_thermal(size(a%f_ext1)))
+    call a%elements%thermal_forces(a%state%x, a%state%elements, nlgeom, a%state%temperature, &
+                                   a%temperature_trial, a%f_thermal, err)
+    ! An inverted element is reported by the assembly that follows on the same configuration.
+    if (allocated(err)) a%f_thermal = 0.0_dp
+    call a%comm%sum_real(a%f_thermal)
+    a%f_ext1 = a%f_ext1 + a%f_thermal
+    a%thermal_scale = nodal_mean_norm(a%f_thermal)
+  end subroutine thermal_load
+
+  !> Mean over the nodes with a nonzero force of the norm of the nodal force f (3 n_nodes).
+  pure real(dp) function nodal_mean_norm(f) result(mean)
+    real(dp), intent(in) :: f(:)
+    real(dp) :: size_of
+    integer :: node, n
+    mean = 0.0_dp
+    n = 0
+    do node = 1, size(f) / 3
+      size_of = norm2(f(3 * node - 2:3 * node))
+      if (size_of > 0.0_dp) then
+        mean = mean + size_of
+        n = n + 1
+      end if
+    end do
+    if (n > 0) mean = mean / n
+  end function nodal_mean_norm
+
+
 
   !> The external forces at step time t on the current geometry.
   subroutine external_force_at(a, model, nlgeom, t, f_ext)
@@ -798,6 +882,8 @@ contains
     f_ext = 0.0_dp
     call a%loading%force_at(model%amplitudes, t, f_ext)
     call assemble_pressures(a%elements, a%loading, model, t, a%state%x, nlgeom, f_ext)
+    if (size(a%loading%body_element) > 0) &
+      call assemble_body_loads(a%elements, a%loading, model, t, a%state%x, nlgeom, f_ext)
   end subroutine external_force_at
 
   !> Constrained degrees of freedom and their prescribed increments over [t0, t1]. Nodes in
@@ -866,9 +952,16 @@ contains
     call a%collector%reset()
     if (a%contact%n_slaves() > 0) call a%contact%events(a%x_contact, a%state%contact, a%du_residual, &
                                                         a%du_load, a%collector)
-    call a%elements%collect_events(a%state%x, a%du_load, a%du_residual, a%state%elements, step%nlgeom, &
-      event_limits_t(step%rmin%max_strain_increment, step%rmin%max_rotation_increment, &
-                     step%rmin%max_plastic_strain_increment), a%collector, err)
+    if (allocated(a%state%temperature) .and. allocated(a%temperature_trial)) then
+      call a%elements%collect_events(a%state%x, a%du_load, a%du_residual, a%state%elements, &
+        step%nlgeom, event_limits_t(step%rmin%max_strain_increment, &
+        step%rmin%max_rotation_increment, step%rmin%max_plastic_strain_increment), a%collector, &
+        err, a%state%temperature, a%temperature_trial)
+    else
+      call a%elements%collect_events(a%state%x, a%du_load, a%du_residual, a%state%elements, &
+        step%nlgeom, event_limits_t(step%rmin%max_strain_increment, &
+        step%rmin%max_rotation_increment, step%rmin%max_plastic_strain_increment), a%collector, err)
+    end if
   end subroutine collect_events
 
   !> No point unloads at the start of an increment.
