@@ -68,8 +68,8 @@ contains
   !> The whole table, in the order of the deck reference.
   function keyword_table() result(table)
     type(keyword_spec_t), allocatable :: table(:)
-    table = [ model_keywords(), material_keywords(), contact_keywords(), step_keywords(), &
-              output_keywords() ]
+    table = [ model_keywords(), material_keywords(), contact_keywords(), constraint_keywords(), &
+              step_keywords(), output_keywords() ]
   end function keyword_table
 
   function model_keywords() result(t)
@@ -277,6 +277,22 @@ contains
          data_required=.true.) &
       ]
   end function contact_keywords
+
+  !> Linear constraints (fcs_linear_constraints; doc/theory.md 6.2).
+  function constraint_keywords() result(t)
+    type(keyword_spec_t), allocatable :: t(:)
+    t = [ &
+      kw('EQUATION', CONTEXT_MODEL, 'CalculiX', 'Linear equations between displacement ' // &
+         'components, sum_k a_k u_k = 0 (global axes). The first term''s degree of freedom ' // &
+         'is dependent: it is eliminated from the system (u_d = -sum_k>1 a_k u_k / a_1, as ' // &
+         'CalculiX does; a dependent term used in another equation is replaced by its own ' // &
+         'equation), and may not be prescribed by *BOUNDARY. RF at the nodes of an equation ' // &
+         'is their internal force, as CalculiX prints it (the constraint force).', &
+         'per equation: the number of terms N on its own line, then N terms node, direction ' // &
+         '(1..3), coefficient, at most four terms per line.', &
+         [p_none()], data_required=.true.) &
+      ]
+  end function constraint_keywords
 
   !> Parameters of *FRICTION: LAW, STICK SLOPE and every law parameter of the friction
   !> library's catalogue (fcs_friction_factory), so that the table stays the library's.

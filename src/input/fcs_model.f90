@@ -10,6 +10,7 @@ module fcs_model
   use fcs_material_factory, only: plastic_def_t
   use fcs_contact_pair, only: contact_pair_def_t
   use fcs_element_catalogue, only: element_catalogue_t
+  use fcs_linear_constraints, only: linear_equation_t
   implicit none
   private
   public :: model_t, material_def_t, section_t, amplitude_t, time_points_t, dof_condition_t
@@ -245,6 +246,9 @@ module fcs_model
     !> *SOLVER, REUSE TOLERANCE: relative residual of a solve with reused factors (0: off).
     real(dp) :: reuse_tolerance = 0.0_dp
     type(interaction_def_t), allocatable :: interactions(:)
+    !> Linear constraints between displacement components (*EQUATION), in global axes; the
+    !> first term of each is its dependent degree of freedom (eliminated, doc/theory.md 6.2).
+    type(linear_equation_t), allocatable :: equations(:)
     type(contact_pair_def_t), allocatable :: contact_pairs(:)
     !> Checksums of the model definition (its cards and the mesh) and of each step's cards,
     !> so that a restart can tell whether the deck still describes the checkpoint's model.

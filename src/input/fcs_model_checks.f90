@@ -11,6 +11,7 @@ module fcs_model_checks
   use fcs_mesh, only: SURFACE_FACES
   use fcs_model_supports, only: check_supports
   use fcs_build_plasticity, only: check_plasticity
+  use fcs_linear_constraints, only: constraint_map_t
   use fcs_strings, only: str, parse_int
   implicit none
   private
@@ -44,8 +45,42 @@ contains
       call diag%report(deck_end(deck), 'the deck ends here and defines no step (*STEP ... ' // &
                        '*END STEP): nothing to compute')
     end if
+    call check_constraints(model, diag)
     if (.not. diag%has_errors()) call check_supports(model, diag)
   end subroutine check_model
+
+  !> The linear constraints resolve (fcs_linear_constraints: one dependent term per degree
+  !> of freedom, no cycles), and no step prescribes a dependent degree of freedom by
+  !> *BOUNDARY: CalculiX stops on that too ("*ERROR in cascade: the DOF corresponding to node
+  !> N in direction d is detected on the dependent side of a MPC and a SPC").
+  subroutine check_constraints(model, diag)
+    type(model_t), intent(in) :: model
+    type(diagnostics_t), intent(inout) :: diag
+    type(constraint_map_t) :: map
+    type(error_t), allocatable :: err
+    integer :: k, i, d, r
+    if (size(model%equations) == 0) return
+    call map%init(model%equations, model%mesh%n_nodes, model%mesh%node_id, err)
+    if (allocated(err)) then
+      call diag%report_plain(err%message)
+      return
+    end if
+    do k = 1, size(model%steps)
+      do i = 1, size(model%steps(k)%boundary)
+        associate (c => model%steps(k)%boundary(i))
+          d = 3 * (c%node - 1) + c%dof
+          if (.not. map%dependent(d)) cycle
+          r = map%row_of(d)
+          call diag%report(model%equations(r)%loc, model%equations(r)%origin // ': node ' // &
+            str(model%mesh%node_id(c%node)) // ', direction ' // str(c%dof) // ' is the ' // &
+            'dependent term of this equation and is prescribed by *BOUNDARY in step "' // &
+            model%steps(k)%name // '" (CalculiX stops too: a degree of freedom cannot be on ' // &
+            'the dependent side of an equation and prescribed); make another term dependent')
+          return
+        end associate
+      end do
+    end do
+  end subroutine check_constraints
 
   !> element_section(e) from the *SOLID SECTIONs; an element in two sections or in none is an error.
   subroutine assign_sections(model, diag, deck)

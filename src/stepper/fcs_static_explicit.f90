@@ -30,6 +30,7 @@ module fcs_static_explicit
   use fcs_contact_system, only: contact_system_t
   use fcs_comm, only: comm_t
   use fcs_strings, only: str
+  use fcs_linear_constraints, only: constraint_map_t
   implicit none
   private
   public :: analysis_t, take_increment, increment_record_t, build_pattern, contact_positions
@@ -93,7 +94,12 @@ module fcs_static_explicit
     !> Equilibrium iterations: external forces at the end of the increment, nodal force
     !> flux (the force scale, per node), the correction of one iteration.
     real(dp), allocatable :: f_ext_end(:), flux(:), correction(:)
+    !> Degrees of freedom held in the solve: prescribed ones, those of nodes in no element,
+    !> and the dependent ones of the linear constraints (`links`).
     logical, allocatable :: constrained(:)
+    !> The linear constraints (*EQUATION) resolved into u_D = T u_I, eliminated from every
+    !> solve (fcs_linear_constraints, (L1)-(L2); doc/theory.md 6.2).
+    type(constraint_map_t) :: links
     type(rmin_collector_t) :: collector
     type(phase_timer_t) :: timers
     !> Node-to-point contact pairs, and their nodal forces (3*n_nodes).
@@ -247,8 +253,11 @@ contains
       call assemble_system(a, model, step, t0, dt, err)
       call a%timers%stop('assembly')
       if (allocated(err)) return
-      a%rhs_residual = merge(0.0_dp, a%f_ext0 + a%f_contact - a%f_int, a%constrained)
-      call impose_constraints(a)
+      a%rhs_residual = a%f_ext0 + a%f_contact - a%f_int
+      call a%links%reduce_vector(a%rhs_residual)
+      where (a%constrained) a%rhs_residual = 0.0_dp
+      call impose_constraints(a, err)
+      if (allocated(err)) return
       call solve_system(a, model%mesh%node_id, err)
       call a%comm%agree_error(err)
       if (allocated(err)) return
@@ -443,7 +452,9 @@ contains
     a%f_contact = 0.0_dp
     if (a%contact%n_slaves() > 0) call a%contact%forces(a%x_contact, a%state%contact, a%f_contact)
     call external_force_at(a, model, step%nlgeom, a%state%step_time, a%f_ext_end)
-    a%rhs_residual = merge(0.0_dp, a%f_ext_end + a%f_contact - a%f_int, a%constrained)
+    a%rhs_residual = a%f_ext_end + a%f_contact - a%f_int
+    call a%links%reduce_vector(a%rhs_residual)
+    where (a%constrained) a%rhs_residual = 0.0_dp
     worst = 0.0_dp
     record%residual_node = 0
     do node = 1, model%mesh%n_nodes
@@ -484,10 +495,12 @@ contains
     call a%timers%stop('assembly')
     if (allocated(err)) return
     a%correction = 0.0_dp
-    call constrain_system(a, a%correction)
+    call constrain_system(a, a%correction, err)
+    if (allocated(err)) return
     a%rhs = merge(0.0_dp, residual, a%constrained)
     call a%reuse%prepare(a%solver, a%matrix, a%timers, err)
     if (.not. allocated(err)) call a%reuse%solve(a%solver, a%matrix, a%rhs, a%correction, a%timers, err)
+    if (.not. allocated(err)) call a%links%expand_vector(a%correction)
     if (.not. allocated(err)) call check_finite(a%correction, model%mesh%node_id, err)
     call a%comm%agree_error(err)
   end subroutine correction
@@ -665,20 +678,34 @@ contains
   !> from its own entries (their right-hand-side parts are summed), rank 0 puts `scale` on
   !> the constrained diagonals, scale being the mean absolute diagonal of the free rows of
   !> the summed matrix (approximated by the sum of the processes' diagonals).
-  subroutine impose_constraints(a)
+  subroutine impose_constraints(a, err)
     type(analysis_t), intent(inout) :: a
-    call constrain_system(a, a%prescribed)
-    where (.not. a%constrained) a%rhs = a%rhs + a%f_ext1 - a%f_ext0
+    type(error_t), allocatable, intent(out) :: err
+    real(dp), allocatable :: load(:)
+    call constrain_system(a, a%prescribed, err)
+    if (allocated(err)) return
+    load = a%f_ext1 - a%f_ext0
+    call a%links%reduce_vector(load)
+    where (.not. a%constrained) a%rhs = a%rhs + load
   end subroutine impose_constraints
 
-  !> Eliminate the prescribed degrees of freedom (values `values`) from the matrix: a%rhs gets
-  !> the eliminated columns' contribution on the free rows and scale * value on the
-  !> constrained ones, whose diagonals become `scale`.
-  subroutine constrain_system(a, values)
+  !> Eliminate the dependent degrees of freedom of the linear constraints (K <- T^T K T,
+  !> fcs_linear_constraints (L2); each process its own share), then the prescribed ones
+  !> (values `values`) from the matrix: a%rhs gets the eliminated columns' contribution on
+  !> the free rows and scale * value on the constrained ones, whose diagonals become `scale`.
+  subroutine constrain_system(a, values, err)
     type(analysis_t), intent(inout) :: a
     real(dp), intent(in) :: values(:)
+    type(error_t), allocatable, intent(out) :: err
     real(dp) :: total(2), scale
     integer :: n_free
+    logical :: missing
+    call a%links%reduce_matrix(a%matrix, missing)
+    if (missing) then
+      call fatal_error(err, 'eliminating the linear constraints: the sparse pattern lacks ' // &
+                       'an entry of T^T K T (internal error: cliques not expanded)')
+      return
+    end if
     call a%matrix%free_diagonal_sum(a%constrained, total(1), n_free)
     total(2) = real(n_free, dp)
     call a%comm%sum_real(total)
@@ -736,6 +763,7 @@ contains
       clique_ptr = [clique_ptr, [(last + node, node = 1, n_nodes)], &
                     last + n_nodes + a%pressure_ptr(2:) - 1]
     end if
+    call a%links%expand_cliques(clique_ptr, clique_nodes)
     call a%matrix%build(model%mesh%n_nodes, clique_ptr, clique_nodes)
     a%ordering_due = a%comm%size > 1
   end subroutine build_pattern
@@ -761,6 +789,7 @@ contains
       call a%elements%cliques([(e, e = 1, model%mesh%n_elements)], clique_ptr, clique_nodes)
       if (a%contact%n_slaves() > 0) call a%contact%cliques(a%state%contact, clique_ptr, &
                                                            clique_nodes, keep_centres=.true.)
+      call a%links%expand_cliques(clique_ptr, clique_nodes)
       call whole%build(model%mesh%n_nodes, clique_ptr, clique_nodes)
       call metis_equation_order(whole, position, err)
       call whole%free()
@@ -816,6 +845,7 @@ contains
     do node = 1, model%mesh%n_nodes
       if (model%free_node(node)) a%constrained(3 * node - 2:3 * node) = .true.
     end do
+    if (a%links%active()) a%constrained = a%constrained .or. a%links%dependent
     do i = 1, size(a%loading%bc_dof)
       dof = a%loading%bc_dof(i)
       node = (dof - 1) / 3 + 1
@@ -841,6 +871,8 @@ contains
       call a%reuse%solve(a%solver, a%matrix, a%rhs_residual, a%du_residual, a%timers, err, &
                          reference_norm=norm2(a%rhs))
     if (allocated(err)) return
+    call a%links%expand_vector(a%du_load)
+    call a%links%expand_vector(a%du_residual)
     call check_finite(a%du_load, node_id, err)
     if (.not. allocated(err)) call check_finite(a%du_residual, node_id, err)
   end subroutine solve_system

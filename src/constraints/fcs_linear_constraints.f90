@@ -1,0 +1,460 @@
+!> Linear multi-point constraints (*EQUATION and the constraints built from *MPC, *RIGID BODY
+!> and *TRANSFORM) and their elimination from the assembled system, as CalculiX eliminates
+!> them (ccx manual, section "Homogeneous linear equations": the first term of an equation is
+!> the dependent one, written as a function of the others and removed from the system).
+!>
+!> Each equation  sum_k a_k u_k = 0  makes its first degree of freedom d dependent:
+!>
+!>     u_d = sum_{k>1} (-a_k / a_1) u_k                                                    (L1)
+!>
+!> A dependent degree of freedom that appears among the terms of another equation is replaced
+!> by its own expression (CalculiX's cascade), so that every dependent degree of freedom is a
+!> combination of independent ones only: u = T u_I. The system K du = f then becomes
+!>
+!>     (T^T K T) du_I = T^T f,    du_D = (L1) of du_I                                      (L2)
+!>
+!> done in place on the assembled sparse matrix (`reduce_matrix`: every entry in a dependent
+!> row or column is moved to the independent rows and columns it stands for, with the
+!> products of the coefficients; the dependent rows and columns are left zero for the caller
+!> to set to the identity, as for prescribed values) and on the right-hand sides
+!> (`reduce_vector`: T^T f). The transformation is linear in K, so in a distributed run every
+!> process transforms its own share of the matrix and the sum is T^T K T. The pattern must
+!> hold the couplings T^T K T creates: `expand_cliques` adds to every clique the independent
+!> nodes of its dependent nodes, before the pattern is built from the cliques.
+module fcs_linear_constraints
+  use fcs_kinds, only: dp, i8
+  use fcs_error, only: error_t, input_error
+  use fcs_diagnostics, only: source_loc_t, format_location
+  use fcs_sparse, only: sparse_matrix_t, DOFS_PER_NODE
+  use fcs_strings, only: str
+  implicit none
+  private
+  public :: constraint_term_t, linear_equation_t, constraint_map_t
+
+  !> One term a u of an equation: node index, direction 1..3, coefficient a.
+  type :: constraint_term_t
+    integer :: node = 0
+    integer :: dof = 0
+    real(dp) :: coefficient = 0.0_dp
+  end type constraint_term_t
+
+  !> A homogeneous linear equation sum_k a_k u_k = 0 between displacement components (global
+  !> axes); terms(1) is the dependent one. `loc` is the deck line that defines it, `origin`
+  !> its keyword ('*EQUATION', '*MPC PLANE', ...), both for messages.
+  type :: linear_equation_t
+    type(constraint_term_t), allocatable :: terms(:)
+    type(source_loc_t) :: loc
+    character(len=:), allocatable :: origin
+  end type linear_equation_t
+
+  !> The constraints resolved into u_D = T_DI u_I (L1 after the cascade): for dependent
+  !> degree of freedom dependent_dofs(r), the independent degrees of freedom
+  !> independent(row_ptr(r):row_ptr(r+1)-1) with their coefficients.
+  type :: constraint_map_t
+    integer :: n_dofs = 0
+    logical, allocatable :: dependent(:)
+    integer, allocatable :: dependent_dofs(:)
+    integer, allocatable :: row_ptr(:)
+    integer, allocatable :: independent(:)
+    real(dp), allocatable :: coefficient(:)
+    !> Row of a dependent degree of freedom (0 for an independent one).
+    integer, allocatable :: row_of(:)
+    !> For node a, the nodes of the independent degrees of freedom its dependent ones refer
+    !> to: links(link_ptr(a):link_ptr(a+1)-1).
+    integer, allocatable :: link_ptr(:), links(:)
+  contains
+    procedure :: init => map_init
+    procedure :: free => map_free
+    procedure :: active => map_active
+    procedure :: expand_cliques => map_expand_cliques
+    procedure :: reduce_matrix => map_reduce_matrix
+    procedure :: reduce_vector => map_reduce_vector
+    procedure :: expand_vector => map_expand_vector
+  end type constraint_map_t
+
+  !> One resolved row while the cascade is worked out.
+  type :: row_t
+    integer, allocatable :: dofs(:)
+    real(dp), allocatable :: values(:)
+  end type row_t
+
+  integer, parameter :: UNVISITED = 0, IN_PROGRESS = 1, RESOLVED = 2
+
+contains
+
+  !> Resolve `equations` on a mesh of n_nodes nodes (node_id: their deck numbers, for
+  !> messages). Input errors: a zero first coefficient, a degree of freedom on the dependent
+  !> side of two equations, a dependent degree of freedom that appears again in its own
+  !> equation, equations whose dependent terms depend on each other in a cycle.
+  subroutine map_init(this, equations, n_nodes, node_id, err)
+    class(constraint_map_t), intent(inout) :: this
+    type(linear_equation_t), intent(in) :: equations(:)
+    integer, intent(in) :: n_nodes, node_id(:)
+    type(error_t), allocatable, intent(out) :: err
+    type(row_t), allocatable :: rows(:)
+    integer, allocatable :: state(:), owner(:)
+    integer :: i, k, d, n_terms
+    call this%free()
+    this%n_dofs = DOFS_PER_NODE * n_nodes
+    allocate (this%dependent(this%n_dofs), owner(this%n_dofs), state(size(equations)), &
+              rows(size(equations)))
+    this%dependent = .false.
+    owner = 0
+    state = UNVISITED
+    do i = 1, size(equations)
+      associate (terms => equations(i)%terms)
+        d = dof_index(terms(1))
+        if (terms(1)%coefficient == 0.0_dp) then
+          call input_error(err, format_location(equations(i)%loc, equations(i)%origin // &
+            ': the coefficient of the first (dependent) term must not be zero'))
+          return
+        end if
+        if (owner(d) /= 0) then
+          call input_error(err, format_location(equations(i)%loc, equations(i)%origin // &
+            ': ' // dof_name(terms(1), node_id) // ' is already the dependent term of the ' // &
+            'equation at ' // line_of(equations(owner(d))) // ' (a degree of freedom can be ' // &
+            'dependent in one equation only)'))
+          return
+        end if
+        owner(d) = i
+        this%dependent(d) = .true.
+        do k = 2, size(terms)
+          if (dof_index(terms(k)) == d) then
+            call input_error(err, format_location(equations(i)%loc, equations(i)%origin // &
+              ': the dependent term ' // dof_name(terms(1), node_id) // ' appears again in ' // &
+              'the same equation (term ' // str(k) // ')'))
+            return
+          end if
+        end do
+      end associate
+    end do
+    do i = 1, size(equations)
+      if (state(i) == UNVISITED) call resolve(i, err)
+      if (allocated(err)) return
+    end do
+    call flatten()
+    call node_links(n_nodes)
+  contains
+    recursive subroutine resolve(i, err)
+      integer, intent(in) :: i
+      type(error_t), allocatable, intent(out) :: err
+      integer, allocatable :: dofs(:)
+      real(dp), allocatable :: values(:)
+      integer :: k, j, e
+      real(dp) :: c
+      state(i) = IN_PROGRESS
+      allocate (dofs(0), values(0))
+      associate (terms => equations(i)%terms)
+        do k = 2, size(terms)
+          j = dof_index(terms(k))
+          c = -terms(k)%coefficient / terms(1)%coefficient
+          e = owner(j)
+          if (e == 0) then
+            dofs = [dofs, j]
+            values = [values, c]
+            cycle
+          end if
+          if (state(e) == IN_PROGRESS) then
+            call input_error(err, format_location(equations(i)%loc, equations(i)%origin // &
+              ': the dependent terms of this equation and of the one at ' // &
+              line_of(equations(e)) // ' depend on each other in a cycle (' // &
+              dof_name(terms(k), node_id) // '); make one of them dependent on independent ' // &
+              'degrees of freedom only'))
+            return
+          end if
+          if (state(e) == UNVISITED) call resolve(e, err)
+          if (allocated(err)) return
+          dofs = [dofs, rows(e)%dofs]
+          values = [values, c * rows(e)%values]
+        end do
+      end associate
+      call merge_terms(dofs, values, rows(i))
+      state(i) = RESOLVED
+    end subroutine resolve
+
+    subroutine flatten()
+      integer :: r, n
+      allocate (this%dependent_dofs(size(equations)), this%row_ptr(size(equations) + 1), &
+                this%row_of(this%n_dofs))
+      this%row_of = 0
+      n_terms = 0
+      do r = 1, size(equations)
+        n_terms = n_terms + size(rows(r)%dofs)
+      end do
+      allocate (this%independent(n_terms), this%coefficient(n_terms))
+      this%row_ptr(1) = 1
+      do r = 1, size(equations)
+        d = dof_index(equations(r)%terms(1))
+        this%dependent_dofs(r) = d
+        this%row_of(d) = r
+        n = size(rows(r)%dofs)
+        this%row_ptr(r + 1) = this%row_ptr(r) + n
+        this%independent(this%row_ptr(r):this%row_ptr(r + 1) - 1) = rows(r)%dofs
+        this%coefficient(this%row_ptr(r):this%row_ptr(r + 1) - 1) = rows(r)%values
+      end do
+    end subroutine flatten
+
+    subroutine node_links(n_nodes)
+      integer, intent(in) :: n_nodes
+      integer, allocatable :: count_links(:), fill(:), marker(:)
+      integer :: r, p, a, b, pass
+      allocate (count_links(n_nodes), this%link_ptr(n_nodes + 1), marker(n_nodes))
+      do pass = 1, 2
+        count_links = 0
+        marker = 0
+        do r = 1, size(this%dependent_dofs)
+          a = (this%dependent_dofs(r) - 1) / DOFS_PER_NODE + 1
+          do p = this%row_ptr(r), this%row_ptr(r + 1) - 1
+            b = (this%independent(p) - 1) / DOFS_PER_NODE + 1
+            if (b == a) cycle
+            if (pass == 2) then
+              if (any(this%links(this%link_ptr(a):fill(a) - 1) == b)) cycle
+              this%links(fill(a)) = b
+              fill(a) = fill(a) + 1
+            else
+              count_links(a) = count_links(a) + 1
+            end if
+          end do
+        end do
+        if (pass == 1) then
+          this%link_ptr(1) = 1
+          do a = 1, n_nodes
+            this%link_ptr(a + 1) = this%link_ptr(a) + count_links(a)
+          end do
+          allocate (this%links(this%link_ptr(n_nodes + 1) - 1))
+          fill = this%link_ptr(1:n_nodes)
+        end if
+      end do
+      ! Trim the duplicates left unused at the end of each node's slice.
+      call compact_links(this, fill)
+    end subroutine node_links
+  end subroutine map_init
+
+  !> Keep only the filled part links(link_ptr(a):fill(a)-1) of every node's slice.
+  subroutine compact_links(this, fill)
+    type(constraint_map_t), intent(inout) :: this
+    integer, intent(in) :: fill(:)
+    integer, allocatable :: ptr(:), kept(:)
+    integer :: a, n
+    n = size(fill)
+    allocate (ptr(n + 1))
+    ptr(1) = 1
+    do a = 1, n
+      ptr(a + 1) = ptr(a) + (fill(a) - this%link_ptr(a))
+    end do
+    allocate (kept(ptr(n + 1) - 1))
+    do a = 1, n
+      kept(ptr(a):ptr(a + 1) - 1) = this%links(this%link_ptr(a):fill(a) - 1)
+    end do
+    call move_alloc(ptr, this%link_ptr)
+    call move_alloc(kept, this%links)
+  end subroutine compact_links
+
+  !> Sum the values of repeated degrees of freedom; drop terms that cancel exactly.
+  subroutine merge_terms(dofs, values, row)
+    integer, intent(in) :: dofs(:)
+    real(dp), intent(in) :: values(:)
+    type(row_t), intent(out) :: row
+    integer :: k, j, n
+    allocate (row%dofs(size(dofs)), row%values(size(dofs)))
+    n = 0
+    outer: do k = 1, size(dofs)
+      do j = 1, n
+        if (row%dofs(j) == dofs(k)) then
+          row%values(j) = row%values(j) + values(k)
+          cycle outer
+        end if
+      end do
+      n = n + 1
+      row%dofs(n) = dofs(k)
+      row%values(n) = values(k)
+    end do outer
+    row%dofs = pack(row%dofs(1:n), row%values(1:n) /= 0.0_dp)
+    row%values = pack(row%values(1:n), row%values(1:n) /= 0.0_dp)
+  end subroutine merge_terms
+
+  subroutine map_free(this)
+    class(constraint_map_t), intent(inout) :: this
+    if (allocated(this%dependent)) deallocate (this%dependent)
+    if (allocated(this%dependent_dofs)) deallocate (this%dependent_dofs)
+    if (allocated(this%row_ptr)) deallocate (this%row_ptr)
+    if (allocated(this%independent)) deallocate (this%independent)
+    if (allocated(this%coefficient)) deallocate (this%coefficient)
+    if (allocated(this%row_of)) deallocate (this%row_of)
+    if (allocated(this%link_ptr)) deallocate (this%link_ptr)
+    if (allocated(this%links)) deallocate (this%links)
+    this%n_dofs = 0
+  end subroutine map_free
+
+  !> True when there is at least one constraint.
+  pure logical function map_active(this)
+    class(constraint_map_t), intent(in) :: this
+    map_active = .false.
+    if (allocated(this%dependent_dofs)) map_active = size(this%dependent_dofs) > 0
+  end function map_active
+
+  !> Add to every clique the nodes its dependent nodes are linked to, and one clique per
+  !> linked node (the node and its links), so that the pattern built from the cliques holds
+  !> every entry of T^T K T (L2).
+  subroutine map_expand_cliques(this, clique_ptr, clique_nodes)
+    class(constraint_map_t), intent(in) :: this
+    integer, allocatable, intent(inout) :: clique_ptr(:), clique_nodes(:)
+    integer, allocatable :: ptr(:), nodes(:)
+    integer :: c, j, a, n, n_nodes, extra
+    if (.not. this%active()) return
+    n_nodes = size(this%link_ptr) - 1
+    n = size(clique_nodes)
+    do c = 1, size(clique_ptr) - 1
+      do j = clique_ptr(c), clique_ptr(c + 1) - 1
+        a = clique_nodes(j)
+        n = n + this%link_ptr(a + 1) - this%link_ptr(a)
+      end do
+    end do
+    extra = count(this%link_ptr(2:) > this%link_ptr(1:n_nodes))
+    n = n + extra + size(this%links)
+    allocate (ptr(size(clique_ptr) + extra), nodes(n))
+    n = 0
+    ptr(1) = 1
+    do c = 1, size(clique_ptr) - 1
+      do j = clique_ptr(c), clique_ptr(c + 1) - 1
+        a = clique_nodes(j)
+        n = n + 1
+        nodes(n) = a
+        nodes(n + 1:n + this%link_ptr(a + 1) - this%link_ptr(a)) = &
+          this%links(this%link_ptr(a):this%link_ptr(a + 1) - 1)
+        n = n + this%link_ptr(a + 1) - this%link_ptr(a)
+      end do
+      ptr(c + 1) = n + 1
+    end do
+    c = size(clique_ptr)
+    do a = 1, n_nodes
+      if (this%link_ptr(a + 1) == this%link_ptr(a)) cycle
+      n = n + 1
+      nodes(n) = a
+      nodes(n + 1:n + this%link_ptr(a + 1) - this%link_ptr(a)) = &
+        this%links(this%link_ptr(a):this%link_ptr(a + 1) - 1)
+      n = n + this%link_ptr(a + 1) - this%link_ptr(a)
+      c = c + 1
+      ptr(c) = n + 1
+    end do
+    call move_alloc(ptr, clique_ptr)
+    call move_alloc(nodes, clique_nodes)
+  end subroutine map_expand_cliques
+
+  !> K <- T^T K T in place (L2): every entry K_ik with i or k dependent moves to the entries
+  !> (a, b) of the independent degrees of freedom a of i and b of k, times their
+  !> coefficients (an independent degree of freedom stands for itself with coefficient 1);
+  !> the dependent rows and columns are left zero. `missing` is true if the pattern lacks a
+  !> target entry (the cliques were not expanded: an internal error of the caller).
+  subroutine map_reduce_matrix(this, matrix, missing)
+    class(constraint_map_t), intent(in) :: this
+    type(sparse_matrix_t), intent(inout) :: matrix
+    logical, intent(out) :: missing
+    integer :: i, k, ra, rb, pa, pb, a, b
+    integer(i8) :: p
+    real(dp) :: v, ta, tb
+    logical :: lacking
+    missing = .false.
+    if (.not. this%active()) return
+    do i = 1, matrix%n
+      do p = matrix%row_ptr(i), matrix%row_ptr(i + 1) - 1
+        k = matrix%col(p)
+        if (.not. (this%dependent(i) .or. this%dependent(k))) cycle
+        v = matrix%val(p)
+        matrix%val(p) = 0.0_dp
+        if (v == 0.0_dp) cycle
+        ra = this%row_of(i)
+        rb = this%row_of(k)
+        do pa = span_start(ra), span_end(ra)
+          call term(ra, pa, i, a, ta)
+          do pb = span_start(rb), span_end(rb)
+            call term(rb, pb, k, b, tb)
+            call matrix%add_value(a, b, ta * tb * v, lacking)
+            missing = missing .or. lacking
+          end do
+        end do
+      end do
+    end do
+  contains
+    !> Positions of the terms of row r (one position, the degree of freedom itself, for an
+    !> independent one: r = 0).
+    pure integer function span_start(r)
+      integer, intent(in) :: r
+      span_start = 1
+      if (r > 0) span_start = this%row_ptr(r)
+    end function span_start
+
+    pure integer function span_end(r)
+      integer, intent(in) :: r
+      span_end = 1
+      if (r > 0) span_end = this%row_ptr(r + 1) - 1
+    end function span_end
+
+    !> The term at position p of row r, or (dof, 1) for an independent degree of freedom.
+    pure subroutine term(r, p, dof, target, factor)
+      integer, intent(in) :: r, p, dof
+      integer, intent(out) :: target
+      real(dp), intent(out) :: factor
+      if (r == 0) then
+        target = dof
+        factor = 1.0_dp
+      else
+        target = this%independent(p)
+        factor = this%coefficient(p)
+      end if
+    end subroutine term
+  end subroutine map_reduce_matrix
+
+  !> f <- T^T f (L2): the value at every dependent degree of freedom is added to its
+  !> independent ones times their coefficients, and set to zero.
+  subroutine map_reduce_vector(this, f)
+    class(constraint_map_t), intent(in) :: this
+    real(dp), intent(inout) :: f(:)
+    integer :: r, p, d
+    if (.not. this%active()) return
+    do r = 1, size(this%dependent_dofs)
+      d = this%dependent_dofs(r)
+      do p = this%row_ptr(r), this%row_ptr(r + 1) - 1
+        f(this%independent(p)) = f(this%independent(p)) + this%coefficient(p) * f(d)
+      end do
+      f(d) = 0.0_dp
+    end do
+  end subroutine map_reduce_vector
+
+  !> u_D <- T_DI u_I (L1): the dependent values from the independent ones.
+  subroutine map_expand_vector(this, u)
+    class(constraint_map_t), intent(in) :: this
+    real(dp), intent(inout) :: u(:)
+    integer :: r, p, d
+    if (.not. this%active()) return
+    do r = 1, size(this%dependent_dofs)
+      d = this%dependent_dofs(r)
+      u(d) = 0.0_dp
+      do p = this%row_ptr(r), this%row_ptr(r + 1) - 1
+        u(d) = u(d) + this%coefficient(p) * u(this%independent(p))
+      end do
+    end do
+  end subroutine map_expand_vector
+
+  pure integer function dof_index(t)
+    type(constraint_term_t), intent(in) :: t
+    dof_index = DOFS_PER_NODE * (t%node - 1) + t%dof
+  end function dof_index
+
+  !> "node 12, direction 2" (deck numbering).
+  function dof_name(t, node_id) result(text)
+    type(constraint_term_t), intent(in) :: t
+    integer, intent(in) :: node_id(:)
+    character(len=:), allocatable :: text
+    text = 'node ' // str(node_id(t%node)) // ', direction ' // str(t%dof)
+  end function dof_name
+
+  !> "file:line" of an equation.
+  function line_of(equation) result(text)
+    type(linear_equation_t), intent(in) :: equation
+    character(len=:), allocatable :: text
+    text = '(unknown line)'
+    if (allocated(equation%loc%file)) text = equation%loc%file // ':' // str(equation%loc%line)
+  end function line_of
+
+end module fcs_linear_constraints
