@@ -69,29 +69,42 @@ contains
       'are ignored, as CalculiX ignores them')
   end subroutine handle_node
 
-  !> *ELEMENT, TYPE=C3D8: id, 8 node ids.
+  !> *ELEMENT, TYPE=kind: id, then the kind's node ids (CalculiX order); a record continues on
+  !> the next line after a trailing comma (C3D20: 15 + 5 node ids, as CalculiX writes them).
   subroutine handle_element(card, model, diag)
     type(card_t), intent(in) :: card
     type(model_t), intent(inout) :: model
     type(diagnostics_t), intent(inout) :: diag
-    integer :: i, a, b, id, node_id, n_added
-    integer :: nodes(8)
-    integer, allocatable :: added(:)
+    integer :: i, a, b, id, node_id, n_added, kind, n
+    integer, allocatable :: nodes(:), added(:)
     type(data_line_t), allocatable :: records(:)
+    character(len=:), allocatable :: type_name, needs
     logical :: ok, duplicate
-    records = element_records(card, 9)
+    type_name = param_upper(card, 'TYPE')
+    kind = model%mesh%find_kind(type_name)
+    if (kind == 0) return ! the keyword table has refused the TYPE already
+    if (.not. formulation_available(type_name)) then
+      call diag%report(card%loc, '*ELEMENT: TYPE=' // type_name // ' is not available yet ' // &
+                       '(its formulation - ' // trim(formulation_missing(type_name)) // &
+                       ' - is not implemented); C3D8 with *SOLID SECTION, FORMULATION=BBAR ' // &
+                       'is the nearest available kind')
+      return
+    end if
+    n = model%mesh%kinds(kind)%n_nodes
+    allocate (nodes(n))
+    needs = '*ELEMENT: a ' // type_name // ' element needs its id and ' // str(n) // ' node ids; '
+    records = element_records(card, n + 1)
     allocate (added(size(records)))
     n_added = 0
     do i = 1, size(records)
       associate (line => records(i))
-        if (size(line%fields) < 9 .and. .not. line%continued) then
-          call diag%report(line%loc, '*ELEMENT: a C3D8 element needs its id and 8 node ids; ' // &
-                           'found ' // str(size(line%fields)) // ' fields (a record continues ' // &
-                           'on the next line only after a trailing comma)')
+        if (size(line%fields) < n + 1 .and. .not. line%continued) then
+          call diag%report(line%loc, needs // 'found ' // str(size(line%fields)) // &
+                           ' fields (a record continues on the next line only after a ' // &
+                           'trailing comma)')
           cycle
-        else if (size(line%fields) /= 9) then
-          call diag%report(line%loc, '*ELEMENT: a C3D8 element needs its id and 8 node ids; ' // &
-                           'found ' // str(size(line%fields)) // ' fields')
+        else if (size(line%fields) /= n + 1) then
+          call diag%report(line%loc, needs // 'found ' // str(size(line%fields)) // ' fields')
           cycle
         end if
         if (.not. line_int(line, 1, id, 'element id', 'ELEMENT', diag)) cycle
@@ -100,7 +113,7 @@ contains
           cycle
         end if
         ok = .true.
-        do a = 1, 8
+        do a = 1, n
           if (.not. line_int(line, a + 1, node_id, 'node id', 'ELEMENT', diag)) then
             ok = .false.
             exit
@@ -115,17 +128,18 @@ contains
           end if
         end do
         if (.not. ok) cycle
-        do a = 1, 7
-          do b = a + 1, 8
+        do a = 1, n - 1
+          do b = a + 1, n
             if (nodes(a) == nodes(b)) ok = .false.
           end do
         end do
         if (.not. ok) then
           call diag%report(line%loc, '*ELEMENT: element ' // str(id) // ' uses a node twice ' // &
-                           '(degenerate hexahedra are not supported)')
+                           '(degenerate (collapsed) elements are not supported; use the ' // &
+                           'tetrahedron or wedge kind instead)')
           cycle
         end if
-        call model%mesh%add_element(id, nodes, duplicate, model%mesh%find_kind('C3D8'))
+        call model%mesh%add_element(id, nodes, duplicate, kind)
         if (duplicate) then
           call diag%report(line%loc, '*ELEMENT: element ' // str(id) // ' is defined twice')
           cycle
@@ -138,6 +152,26 @@ contains
     if (card%find_param('ELSET') > 0) &
       call model%mesh%add_to_element_set(param_upper(card, 'ELSET'), added(1:n_added))
   end subroutine handle_element
+
+  !> False for the kinds whose formulation the element loops do not have yet.
+  pure logical function formulation_available(type_name)
+    character(len=*), intent(in) :: type_name
+    formulation_available = len_trim(formulation_missing(type_name)) == 0
+  end function formulation_available
+
+  !> The missing formulation of a kind ('' when it is available).
+  pure function formulation_missing(type_name) result(text)
+    character(len=*), intent(in) :: type_name
+    character(len=40) :: text
+    select case (type_name)
+    case ('C3D8R')
+      text = 'one-point rule with hourglass control'
+    case ('C3D8I')
+      text = 'incompatible modes'
+    case default
+      text = ''
+    end select
+  end function formulation_missing
 
   !> *NSET: node ids, node set names, or GENERATE ranges.
   subroutine handle_nset(card, model, diag)

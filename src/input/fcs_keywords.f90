@@ -86,10 +86,17 @@ contains
          [p('NSET', PARAM_NAME, description='Also add the nodes to this node set.')], &
          data_required=.true.), &
       kw('ELEMENT', CONTEXT_MODEL, 'CalculiX', 'Define elements.', &
-         'element id, then its 8 node ids (the line may continue after a trailing comma).', &
-         [p('TYPE', PARAM_CHOICE, required=.true., choices=[s('C3D8')], &
-            description='Element type. C3D8: 8-node hexahedron with full 2x2x2 integration, ' // &
-            'as in CalculiX (use *SOLID SECTION, FORMULATION=BBAR against volumetric locking).'), &
+         'element id, then its node ids in CalculiX order (a record continues on the next ' // &
+         'line after a trailing comma).', &
+         [p('TYPE', PARAM_CHOICE, required=.true., choices=[s('C3D4'), s('C3D6'), s('C3D8'), &
+            s('C3D8R'), s('C3D8I'), s('C3D10'), s('C3D15'), s('C3D20'), s('C3D20R')], &
+            description='Element type, CalculiX''s 3D solids: C3D4 (linear tetrahedron, 1 point), ' // &
+            'C3D6 (linear wedge, 2 points), C3D8 (8-node hexahedron, 2x2x2 points; *SOLID ' // &
+            'SECTION, FORMULATION=BBAR against volumetric locking), C3D8R (1 point, hourglass ' // &
+            'control), C3D8I (incompatible modes), C3D10 (quadratic tetrahedron, 4 points), ' // &
+            'C3D15 (quadratic wedge, 9 points), C3D20 (20-node hexahedron, 3x3x3 points), ' // &
+            'C3D20R (20-node hexahedron, 2x2x2 points). Node numbering and integration as ' // &
+            'CalculiX''s (doc/elements.md).'), &
           p('ELSET', PARAM_NAME, description='Also add the elements to this element set.')], &
          data_required=.true.), &
       kw('NSET', CONTEXT_MODEL, 'CalculiX', 'Define or extend a node set.', &

@@ -313,13 +313,30 @@ contains
       n_bad = n_bad + 1
       if (n_bad > MAX_NAMED) cycle
       call report_at_element(diag, deck, model, e, 'element ' // str(model%mesh%element_id(e)) // &
-        ' is inverted or degenerate (Jacobian determinant <= 0). C3D8 numbering: nodes 1-4 go ' // &
-        'around one face and 5-8 around the opposite face in the same sense, so that 1-2-3-4 ' // &
-        'seen from node 5 is counterclockwise')
+        ' is inverted or degenerate (Jacobian determinant <= 0). ' // &
+        numbering_hint(model%mesh%kinds(model%mesh%element_kind(e))%n_faces))
     end do
     if (n_bad > MAX_NAMED) call diag%report_plain(model%deck_path // ': ' // &
       str(n_bad - MAX_NAMED) // ' more inverted or degenerate element(s)')
   end subroutine check_jacobians
+
+  !> How CalculiX numbers the corners of a solid with `n_faces` faces (4 tetrahedron, 5 wedge,
+  !> 6 hexahedron; mid-side nodes follow the corners, edge by edge).
+  pure function numbering_hint(n_faces) result(text)
+    integer, intent(in) :: n_faces
+    character(len=:), allocatable :: text
+    select case (n_faces)
+    case (4)
+      text = 'Tetrahedron numbering: 1-2-3 seen from node 4 is counterclockwise'
+    case (5)
+      text = 'Wedge numbering: nodes 1-3 go around one triangle and 4-6 around the other in ' // &
+             'the same sense, so that 1-2-3 seen from node 4 is counterclockwise'
+    case default
+      text = 'C3D8 numbering: nodes 1-4 go around one face and 5-8 around the opposite face ' // &
+             'in the same sense, so that 1-2-3-4 seen from node 5 is counterclockwise'
+    end select
+    if (n_faces < 4 .or. n_faces > 6) text = text // ' (hexahedra)'
+  end function numbering_hint
 
   !> Every element read from the mesh file `path` (elements first.. of the mesh, element k of
   !> them on line lines(k) of the file, 0 in a binary file) must have a positive Jacobian: an

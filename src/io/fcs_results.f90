@@ -8,7 +8,11 @@
 !>     /mesh/node_ids            (n)       int   user node ids
 !>     /mesh/coordinates         (n, 3)    real  reference coordinates
 !>     /mesh/element_ids         (ne)      int   user element ids
-!>     /mesh/connectivity        (ne, 8)   int   0-based node indices, C3D8 = VTK/XDMF hexahedron
+!>     /mesh/connectivity        (ne, 8)   int   0-based node indices, C3D8 = VTK/XDMF hexahedron;
+!>                               (ne, r)   in a mesh with other kinds: r = the largest element's
+!>                                         node count, shorter rows padded with -1, and then
+!>     /mesh/topology            (L)       int   XDMF Mixed topology: per element its XDMF cell
+!>                                         type code and 0-based node indices (fcs_xdmf)
 !>     /surfaces/<grid>                    attributes kind="POINTS"|"QUADS", n_points=m
 !>     /surfaces/<grid>/connectivity (c, k) int  0-based into the grid's own m points;
 !>                                         POINTS: (c, 1), one vertex per cell; QUADS: (c, 4)
@@ -53,7 +57,7 @@ module fcs_results
   use fcs_strings, only: str, string_t, basename, parse_int
   use fcs_hdf5, only: h5_file_t
   use fcs_xdmf, only: xdmf_series_t, xdmf_frame_t, xdmf_grid_t, xdmf_attribute_t, xdmf_data_t, &
-    XDMF_HEXAHEDRON, XDMF_QUADRILATERAL, XDMF_POLYVERTEX, XDMF_NODE, XDMF_CELL, &
+    XDMF_HEXAHEDRON, XDMF_QUADRILATERAL, XDMF_POLYVERTEX, XDMF_MIXED, XDMF_NODE, XDMF_CELL, &
     XDMF_SCALAR, XDMF_VECTOR, XDMF_TENSOR6, XDMF_MATRIX
   use fcs_version, only: FCS3D_IDENTITY
   use fcs_memory, only: allocation_failed
@@ -102,6 +106,8 @@ module fcs_results
     character(len=:), allocatable :: xdmf_path
     integer :: n_nodes = 0
     integer :: n_elements = 0
+    !> Length of /mesh/topology (0: all elements are 8-node hexahedra, no such dataset).
+    integer :: mixed_length = 0
     type(surface_grid_t), allocatable :: surfaces(:)
     integer :: n_surfaces = 0
     !> The complete frames, as listed in the XDMF.
@@ -138,8 +144,11 @@ contains
 
   !> Create `<path_stem>.h5` and `<path_stem>.xdmf` (replacing existing ones) with the mesh:
   !> `node_ids(n)`, reference coordinates `x_ref(3, n)`, `element_ids(ne)` and `connectivity(8, ne)`
-  !> of 1-based node indices (columns of `x_ref`) in C3D8 order.
-  subroutine results_create(this, path_stem, node_ids, x_ref, element_ids, connectivity, err)
+  !> of 1-based node indices (columns of `x_ref`) in C3D8 order. A mesh of other kinds passes
+  !> `cell_types(ne)`, each element's XDMF cell type (`xdmf_cell_type`), and `connectivity(r, ne)`
+  !> in CalculiX order (= VTK's for these kinds), rows past an element's nodes 0.
+  subroutine results_create(this, path_stem, node_ids, x_ref, element_ids, connectivity, err, &
+                            cell_types)
     class(results_file_t), intent(inout) :: this
     character(len=*), intent(in) :: path_stem
     integer, intent(in) :: node_ids(:)
@@ -147,8 +156,16 @@ contains
     integer, intent(in) :: element_ids(:)
     integer, intent(in) :: connectivity(:, :)
     type(error_t), allocatable, intent(out) :: err
+    integer, intent(in), optional :: cell_types(:)
+    integer, allocatable :: topology(:)
     call start(this, path_stem, 'creating results', err)
     if (allocated(err)) return
+    if (present(cell_types)) then
+      if (size(connectivity, 1) /= 8 .or. any(cell_types /= 9)) then
+        call mixed_topology(this, connectivity, cell_types, topology, err)
+        if (allocated(err)) return
+      end if
+    end if
     call check_mesh(this, node_ids, x_ref, element_ids, connectivity, err)
     if (allocated(err)) return
     call this%h5%create(this%h5_path, err, file_locking=.false.)
@@ -159,6 +176,8 @@ contains
     call this%h5%reserve(FRAME_MARGIN + 8_i8 * (size(node_ids, kind=i8) + size(x_ref, kind=i8) + &
       size(element_ids, kind=i8) + size(connectivity, kind=i8)), err)
     if (.not. allocated(err)) call write_mesh(this, node_ids, x_ref, element_ids, connectivity, err)
+    if (.not. allocated(err) .and. allocated(topology)) call this%h5%write_dataset('/mesh/topology', &
+      topology, err)
     if (.not. allocated(err)) call this%h5%flush(err)
     if (allocated(err)) then
       call prefix(err, 'creating results')
@@ -263,6 +282,7 @@ contains
     this%xdmf_path = path_stem // '.xdmf'
     this%n_nodes = 0
     this%n_elements = 0
+    this%mixed_length = 0
     if (allocated(this%surfaces)) deallocate (this%surfaces)
     allocate (this%surfaces(4))
     this%n_surfaces = 0
@@ -310,13 +330,14 @@ contains
       problem = 'x_ref has ' // str(size(x_ref, 1)) // ' rows, expected 3'
     else if (size(node_ids) /= size(x_ref, 2)) then
       problem = str(size(node_ids)) // ' node ids for ' // str(size(x_ref, 2)) // ' nodes'
-    else if (size(connectivity, 1) /= 8) then
+    else if (size(connectivity, 1) /= 8 .and. this%mixed_length == 0) then
       problem = 'connectivity has ' // str(size(connectivity, 1)) // ' rows, expected 8'
     else if (size(element_ids) /= size(connectivity, 2)) then
       problem = str(size(element_ids)) // ' element ids for ' // str(size(connectivity, 2)) // &
         ' elements'
     else if (size(connectivity) > 0) then
-      if (minval(connectivity) < 1 .or. maxval(connectivity) > size(x_ref, 2)) problem = &
+      if (minval(connectivity) < merge(0, 1, this%mixed_length > 0) .or. &
+          maxval(connectivity) > size(x_ref, 2)) problem = &
         'connectivity refers to node indices outside 1..' // str(size(x_ref, 2))
     end if
     if (len(problem) > 0) then
@@ -326,6 +347,31 @@ contains
     this%n_nodes = size(x_ref, 2)
     this%n_elements = size(connectivity, 2)
   end subroutine check_mesh
+
+  !> The XDMF Mixed topology of a mesh: per element its cell type and its 0-based nodes (the
+  !> nonzero rows of its connectivity column). Sets `mixed_length`.
+  subroutine mixed_topology(this, connectivity, cell_types, topology, err)
+    class(results_file_t), intent(inout) :: this
+    integer, intent(in) :: connectivity(:, :), cell_types(:)
+    integer, allocatable, intent(out) :: topology(:)
+    type(error_t), allocatable, intent(out) :: err
+    integer :: e, n, at
+    if (size(cell_types) /= size(connectivity, 2) .or. any(cell_types <= 0)) then
+      call fatal_error(err, 'creating results ' // this%h5_path // ': ' // &
+        str(size(cell_types)) // ' cell types (all known) expected for ' // &
+        str(size(connectivity, 2)) // ' elements')
+      return
+    end if
+    allocate (topology(size(connectivity, 2) + count(connectivity > 0)))
+    at = 0
+    do e = 1, size(connectivity, 2)
+      n = count(connectivity(:, e) > 0)
+      topology(at + 1) = cell_types(e)
+      topology(at + 2:at + 1 + n) = connectivity(1:n, e) - 1
+      at = at + 1 + n
+    end do
+    this%mixed_length = size(topology)
+  end subroutine mixed_topology
 
   !> Root attributes, /mesh, and the empty /frames and /surfaces groups.
   subroutine write_mesh(this, node_ids, x_ref, element_ids, connectivity, err)
@@ -392,6 +438,12 @@ contains
       return
     end if
     this%n_elements = int(dims(2))
+    this%mixed_length = 0
+    if (this%h5%exists('/mesh/topology')) then
+      call this%h5%dataset_shape('/mesh/topology', dims, err)
+      if (allocated(err)) return
+      this%mixed_length = int(dims(1))
+    end if
   end subroutine load_mesh_sizes
 
   ! ---------------------------------------------------------------------------------------------
@@ -882,10 +934,15 @@ contains
     this%frame%name = 'frame ' // frame_label(number)
     this%frame%time = time
     volume%name = VOLUME_GRID
-    volume%topology = XDMF_HEXAHEDRON
     volume%n_cells = this%n_elements
-    volume%nodes_per_cell = 8
-    volume%connectivity = integer_data('/mesh/connectivity', this%n_elements, 8, table=.true.)
+    if (this%mixed_length > 0) then
+      volume%topology = XDMF_MIXED
+      volume%connectivity = integer_data('/mesh/topology', this%mixed_length, 1)
+    else
+      volume%topology = XDMF_HEXAHEDRON
+      volume%nodes_per_cell = 8
+      volume%connectivity = integer_data('/mesh/connectivity', this%n_elements, 8, table=.true.)
+    end if
     volume%geometry = real_data('/mesh/coordinates', this%n_nodes, 3)
     call volume%add_attribute(xdmf_attribute_t('node_id', XDMF_NODE, XDMF_SCALAR, &
       integer_data('/mesh/node_ids', this%n_nodes, 1)))

@@ -12,7 +12,11 @@
 !>
 !> Reference: XDMF model and format, version 2 (xdmf.org, "XDMF Model and Format"); attribute
 !> types Scalar, Vector, Tensor6 (symmetric, components xx xy xz yy yz zz, as VTK's Xdmf2 reader
-!> expands them) and Matrix; topologies Hexahedron, Quadrilateral, Polyvertex.
+!> expands them) and Matrix; topologies Hexahedron, Quadrilateral, Polyvertex and Mixed (a flat
+!> list of cells, each its XDMF cell type code followed by its node indices: Tetrahedron 6,
+!> Wedge 8, Hexahedron 9, Tetrahedron_10 38, Wedge_15 40, Hexahedron_20 48; the node order of
+!> each is VTK's, which for these kinds is CalculiX's: corners, then the mid-side nodes edge by
+!> edge in the same order).
 !>
 !> `xdmf_series_t%write` replaces the XDMF file atomically: it writes "<path>.tmp", fsyncs it,
 !> renames it over "<path>" and fsyncs the directory, so a viewer never reads half a file
@@ -25,12 +29,14 @@ module fcs_xdmf
   implicit none
   private
   public :: xdmf_series_t, xdmf_frame_t, xdmf_grid_t, xdmf_attribute_t, xdmf_data_t
-  public :: XDMF_HEXAHEDRON, XDMF_QUADRILATERAL, XDMF_POLYVERTEX
+  public :: XDMF_HEXAHEDRON, XDMF_QUADRILATERAL, XDMF_POLYVERTEX, XDMF_MIXED
+  public :: xdmf_cell_type
   public :: XDMF_NODE, XDMF_CELL
   public :: XDMF_SCALAR, XDMF_VECTOR, XDMF_TENSOR6, XDMF_MATRIX
 
   !> Topologies (XDMF TopologyType).
   integer, parameter :: XDMF_HEXAHEDRON = 1, XDMF_QUADRILATERAL = 2, XDMF_POLYVERTEX = 3
+  integer, parameter :: XDMF_MIXED = 4
   !> Attribute centres (XDMF Center).
   integer, parameter :: XDMF_NODE = 1, XDMF_CELL = 2
   !> Attribute types (XDMF AttributeType).
@@ -217,7 +223,7 @@ contains
     if (.not. allocated(err) .and. len(stamp) > 0) call file%write(stamp, err)
     if (.not. allocated(err)) call file%write(indent // '  <Topology TopologyType="' // &
       topology_name(grid%topology) // '" NumberOfElements="' // str(grid%n_cells) // &
-      '" NodesPerElement="' // str(grid%nodes_per_cell) // '">', err)
+      nodes_per_element(grid) // '>', err)
     if (.not. allocated(err)) call file%write(data_item(series, grid%connectivity, &
       indent // '    '), err)
     if (.not. allocated(err)) call file%write(indent // '  </Topology>', err)
@@ -268,6 +274,40 @@ contains
       xml_text(series%heavy_file) // ':' // xml_text(data%path) // '</DataItem>'
   end function data_item
 
+  !> The NodesPerElement attribute of a grid's topology (none for Mixed).
+  function nodes_per_element(grid) result(text)
+    type(xdmf_grid_t), intent(in) :: grid
+    character(len=:), allocatable :: text
+    if (grid%topology == XDMF_MIXED) then
+      text = '"'
+    else
+      text = '" NodesPerElement="' // str(grid%nodes_per_cell) // '"'
+    end if
+  end function nodes_per_element
+
+  !> XDMF's cell type code (for Mixed topologies) of a solid with `n_faces` faces and `n_nodes`
+  !> nodes (tetrahedra 4 faces, wedges 5, hexahedra 6; linear or quadratic serendipity), 0 if
+  !> XDMF has none.
+  pure integer function xdmf_cell_type(n_faces, n_nodes) result(code)
+    integer, intent(in) :: n_faces, n_nodes
+    select case (100 * n_faces + n_nodes)
+    case (404)
+      code = 6
+    case (506)
+      code = 8
+    case (608)
+      code = 9
+    case (410)
+      code = 38
+    case (515)
+      code = 40
+    case (620)
+      code = 48
+    case default
+      code = 0
+    end select
+  end function xdmf_cell_type
+
   pure function topology_name(topology) result(name)
     integer, intent(in) :: topology
     character(len=:), allocatable :: name
@@ -278,6 +318,8 @@ contains
       name = 'Quadrilateral'
     case (XDMF_POLYVERTEX)
       name = 'Polyvertex'
+    case (XDMF_MIXED)
+      name = 'Mixed'
     case default
       name = 'NoTopology'
     end select

@@ -10,6 +10,7 @@ module fcs_run_outputs
   use fcs_static_explicit, only: analysis_t, current_reactions, gather_element_fields
   use fcs_contact_system, only: pair_totals_t
   use fcs_results, only: results_file_t, GRID_POINTS
+  use fcs_xdmf, only: xdmf_cell_type
   use fcs_dat_output, only: dat_file_t
   use fcs_checkpoint, only: checkpoint_info_t
   use fcs_monitors, only: monitors_t
@@ -52,7 +53,7 @@ contains
     if (.not. this%writer) return
     call this%dat%open(this%job // '.dat', err)
     if (.not. allocated(err)) call this%results%create(this%job, model%mesh%node_id, model%mesh%x, &
-                                                        model%mesh%element_id, model%mesh%connectivity, err)
+      model%mesh%element_id, model%mesh%connectivity, err, cell_types(model))
     if (.not. allocated(err)) call define_contact_grids(this, a, err)
   end subroutine outputs_create
 
@@ -89,10 +90,23 @@ contains
         str(info%n_frames) // ' frame(s) written before the checkpoint are lost; a new ' // &
         this%job // '.h5 holds the frames written from the checkpoint on')
       call this%results%create(this%job, model%mesh%node_id, model%mesh%x, model%mesh%element_id, &
-                               model%mesh%connectivity, err)
+                               model%mesh%connectivity, err, cell_types(model))
     end if
     if (.not. allocated(err)) call define_contact_grids(this, a, err)
   end subroutine outputs_reopen
+
+  !> Each element's XDMF cell type, from its kind's faces and nodes.
+  function cell_types(model) result(types)
+    type(model_t), intent(in) :: model
+    integer, allocatable :: types(:)
+    integer :: e
+    allocate (types(model%mesh%n_elements))
+    do e = 1, model%mesh%n_elements
+      associate (kind => model%mesh%kinds(model%mesh%element_kind(e)))
+        types(e) = xdmf_cell_type(kind%n_faces, kind%n_nodes)
+      end associate
+    end do
+  end function cell_types
 
   !> Complete frames in the results file.
   integer function outputs_n_frames(this) result(n)
