@@ -77,7 +77,7 @@ def tie_equations(lower, upper, m):
     return lines
 
 
-def make_deck(path, n, m, pressure):
+def make_deck(path, n, m, pressure, steps=1):
     lower = cc.Box(np.linspace(0, 1, m + 1), np.linspace(0, 1, m + 1), np.linspace(0, 0.5, 3),
                    first_node=1, first_element=1)
     upper = cc.Box(np.linspace(0, 1, n + 1), np.linspace(0, 1, n + 1), np.linspace(0.5, 1.0, 3),
@@ -99,11 +99,15 @@ def make_deck(path, n, m, pressure):
     lines += cc.face_surface_cards('SIDE_UPPER', upper, 0, 1)
     lines += cc.material_cards('MAT', 'BOTH', YOUNG, POISSON)
     lines += tie_equations(lower, upper, m)
-    lines += ['*STEP', '*STATIC', '1., 1.', '*BOUNDARY', 'BASE, 3, 3', 'SYM_X, 1, 1',
-              'SYM_Y, 2, 2', '*DSLOAD', 'TOP, P, %.12g' % pressure,
-              'SIDE_LOWER, P, %.12g' % LATERAL, 'SIDE_UPPER, P, %.12g' % LATERAL,
-              '*EL PRINT, ELSET=BOTH', 'S', '*NODE PRINT, NSET=BASE, TOTALS=ONLY', 'RF',
-              '*NODE PRINT, NSET=CORNER', 'U', '*END STEP']
+    for step in range(1, steps + 1):
+        # Further steps (the restart test) double the loads, in increments of a quarter.
+        static = '1., 1.' if steps == 1 else '0.25, 1., , 0.25'
+        lines += ['*STEP', '*STATIC', static, '*BOUNDARY', 'BASE, 3, 3', 'SYM_X, 1, 1',
+                  'SYM_Y, 2, 2', '*DSLOAD', 'TOP, P, %.12g' % (step * pressure),
+                  'SIDE_LOWER, P, %.12g' % (step * LATERAL),
+                  'SIDE_UPPER, P, %.12g' % (step * LATERAL),
+                  '*EL PRINT, ELSET=BOTH', 'S', '*NODE PRINT, NSET=BASE, TOTALS=ONLY', 'RF',
+                  '*NODE PRINT, NSET=CORNER', 'U', '*END STEP']
     cc.write_deck(path, lines)
 
 
@@ -136,12 +140,14 @@ def main():
     d.add_argument('--upper', type=int, required=True)
     d.add_argument('--lower', type=int, required=True)
     d.add_argument('--pressure', type=float, default=PRESSURE)
+    d.add_argument('--steps', type=int, default=1,
+                   help='steps (the second and later double the loads; restart test)')
     c = sub.add_parser('check')
     c.add_argument('job')
     c.add_argument('--pressure', type=float, default=PRESSURE)
     args = parser.parse_args()
     if args.command == 'deck':
-        make_deck(args.path, args.upper, args.lower, args.pressure)
+        make_deck(args.path, args.upper, args.lower, args.pressure, args.steps)
     else:
         check(args.job, args.pressure)
 
