@@ -45,6 +45,10 @@ module fcs_linear_constraints
     type(constraint_term_t), allocatable :: terms(:)
     type(source_loc_t) :: loc
     character(len=:), allocatable :: origin
+    !> The independent terms are nodes outside the structure (a rigid body's reference and
+    !> rotation nodes): RF there is the force the constraint transmits, (T^T f_int) at them,
+    !> as CalculiX prints it for its RIGID MPCs.
+    logical :: transmits = .false.
   end type linear_equation_t
 
   !> The constraints resolved into u_D = T_DI u_I (L1 after the cascade): for dependent

@@ -297,7 +297,30 @@ contains
          'is their internal force, as CalculiX prints it (the constraint force).', &
          'per equation: the number of terms N on its own line, then N terms node, direction ' // &
          '(1..3), coefficient, at most four terms per line.', &
-         [p_none()], data_required=.true.) &
+         [p_none()], data_required=.true.), &
+      kw('MPC', CONTEXT_MODEL, 'CalculiX', 'Multi-point constraints PLANE (the nodes after ' // &
+         'the first three stay in the plane of the first three) and STRAIGHT (the nodes after ' // &
+         'the first two stay on their line), linearised in the initial configuration into ' // &
+         'linear equations (doc/theory.md 6.2.1): exact for small rotations of the plane or ' // &
+         'line. CalculiX''s are nonlinear and turn NLGEOM on; fcs3d keeps each step''s NLGEOM ' // &
+         '(a warning says so). BEAM, MEANROT and user MPCs are refused.', &
+         'MPC name (PLANE or STRAIGHT) and up to 15 nodes, then further lines of up to 16 ' // &
+         'nodes; zero entries are skipped.', [p_none()], data_required=.true.), &
+      kw('RIGID BODY', CONTEXT_MODEL, 'CalculiX', 'The nodes of a set move rigidly with a ' // &
+         'reference node (translation) and a rotation node (whose three degrees of freedom ' // &
+         'are the rotation about x, y, z, radians: *BOUNDARY and *CLOAD on it prescribe ' // &
+         'rotations and apply moments), linearised in the initial configuration: u_p = u_ref ' // &
+         '+ theta x (x_p - x_ref), exact for small rotations (CalculiX''s rigid body is ' // &
+         'nonlinear). RF at the reference and rotation nodes is the force and moment the body ' // &
+         'transmits, as CalculiX prints them.', '', &
+         [p('NSET', PARAM_NAME, description='The nodes of the body (or ELSET).'), &
+          p('ELSET', PARAM_NAME, description='The elements whose nodes form the body (or NSET).'), &
+          p('REF NODE', PARAM_INTEGER, required=.true., description='Reference node (its ' // &
+            'displacement is the translation of the body); CalculiX generates one when it is ' // &
+            'missing, fcs3d needs it defined by *NODE.'), &
+          p('ROT NODE', PARAM_INTEGER, required=.true., description='Rotation node (its ' // &
+            'three degrees of freedom are the rotation of the body, radians); defined by *NODE, ' // &
+            'in no element.')]) &
       ]
   end function constraint_keywords
 

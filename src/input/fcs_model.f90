@@ -249,6 +249,8 @@ module fcs_model
     !> Linear constraints between displacement components (*EQUATION), in global axes; the
     !> first term of each is its dependent degree of freedom (eliminated, doc/theory.md 6.2).
     type(linear_equation_t), allocatable :: equations(:)
+    !> Rotation nodes of *RIGID BODY: their three degrees of freedom are rotations [rad].
+    integer, allocatable :: rotation_nodes(:)
     type(contact_pair_def_t), allocatable :: contact_pairs(:)
     !> Checksums of the model definition (its cards and the mesh) and of each step's cards,
     !> so that a restart can tell whether the deck still describes the checkpoint's model.

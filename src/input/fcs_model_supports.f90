@@ -7,7 +7,8 @@
 !> constraint sum_k a_k u_k = 0 removes the rigid motions it does not allow: its row is
 !> sum_k a_k [e_k, (x_k - c)/L x e_k] (zero for an equation that rigid motions satisfy, such
 !> as a tie of coincident or interpolated nodes). A node in no element that a constraint
-!> names is not free: it moves with the constraint. A displacement or velocity condition on degree
+!> names is not free: it moves with the constraint. The degrees of freedom of a *RIGID BODY's
+!> rotation node are the rotation w of the rigid motion, not a displacement. A displacement or velocity condition on degree
 !> of freedom d of a node at x (relative to the assembly centroid c, scaled by the assembly
 !> size L) removes the row [e_d, (x - c)/L x e_d] from the rigid motions u = t + w x (x - c);
 !> the modes left are the null space of the 6 x 6 sum of those rows' outer products. This
@@ -170,6 +171,8 @@ contains
       axis(step%boundary(i)%dof) = 1.0_dp
       row(1:3) = axis
       row(4:6) = cross((model%mesh%x(:, node) - centre(:, a)) / size_l(a), axis)
+      ! The rotation node of a *RIGID BODY: its degree of freedom d is the rotation w_d.
+      if (any(model%rotation_nodes == node)) row = [0.0_dp, 0.0_dp, 0.0_dp, axis]
       gram(:, :, a) = gram(:, :, a) + spread(row, 2, 6) * spread(row, 1, 6)
     end do
     call add_equation_rows(model, assembly, slot, centre, size_l, gram)
@@ -196,6 +199,11 @@ contains
           node = terms(j)%node
           axis = 0.0_dp
           axis(terms(j)%dof) = terms(j)%coefficient
+          if (any(model%rotation_nodes == node)) then
+            ! A rotation w = omega / L (the rigid motions are u = t + omega x (x - c) / L).
+            row(4:6) = row(4:6) + axis / size_l(a)
+            cycle
+          end if
           row(1:3) = row(1:3) + axis
           row(4:6) = row(4:6) + cross((model%mesh%x(:, node) - centre(:, a)) / size_l(a), axis)
         end do

@@ -624,7 +624,31 @@ contains
     if (allocated(a%loading%bc_dof)) call external_force_at(a, model, nlgeom, a%state%step_time, a%f_ext_end)
     where (.not. supported_dofs(a, model)) a%f_ext_end = 0.0_dp
     reaction = reshape(a%f_int - a%f_contact - a%f_ext_end, shape(reaction))
+    call transmitted_reactions(a, model, reaction)
   end subroutine current_reactions
+
+  !> At the nodes outside the structure that constraints transmit force to (the reference and
+  !> rotation nodes of a *RIGID BODY), RF is the force (moment) the constraint transmits:
+  !> T^T (f_int - f_c) there (L2), less the load applied there at a prescribed degree of
+  !> freedom, as CalculiX prints RF at the nodes of its RIGID MPCs (resultsforc: their
+  !> constraint forces are left on those nodes).
+  subroutine transmitted_reactions(a, model, reaction)
+    type(analysis_t), intent(in) :: a
+    type(model_t), intent(in) :: model
+    real(dp), intent(inout) :: reaction(:, :)
+    real(dp), allocatable :: transmitted(:)
+    integer :: k, j, node
+    if (.not. any(model%equations(:)%transmits)) return
+    transmitted = a%f_int - a%f_contact
+    call a%links%reduce_vector(transmitted)
+    do k = 1, size(model%equations)
+      if (.not. model%equations(k)%transmits) cycle
+      do j = 2, size(model%equations(k)%terms)
+        node = model%equations(k)%terms(j)%node
+        reaction(:, node) = transmitted(3 * node - 2:3 * node) - a%f_ext_end(3 * node - 2:3 * node)
+      end do
+    end do
+  end subroutine transmitted_reactions
 
   !> The degrees of freedom the current step prescribes (and those of nodes in no element).
   function supported_dofs(a, model) result(supported)
