@@ -60,6 +60,7 @@ contains
     type(error_t), allocatable :: err
     integer :: k, i, d, r
     if (size(model%equations) == 0) return
+    call check_rotation_nodes(model, diag)
     call map%init(model%equations, model%mesh%n_nodes, model%mesh%node_id, err)
     if (allocated(err)) then
       call diag%report_plain(err%message)
@@ -81,6 +82,27 @@ contains
       end do
     end do
   end subroutine check_constraints
+
+  !> The rotation node of a *RIGID BODY holds rotations: it may not be a node of an element.
+  subroutine check_rotation_nodes(model, diag)
+    type(model_t), intent(in) :: model
+    type(diagnostics_t), intent(inout) :: diag
+    integer :: e, k, r
+    do e = 1, model%mesh%n_elements
+      do k = 1, size(model%rotation_nodes)
+        if (.not. any(model%mesh%element_nodes(e) == model%rotation_nodes(k))) cycle
+        do r = 1, size(model%equations)
+          if (.not. model%equations(r)%transmits) cycle
+          if (.not. any(model%equations(r)%terms(:)%node == model%rotation_nodes(k))) cycle
+          call diag%report(model%equations(r)%loc, '*RIGID BODY: ROT NODE ' // &
+            str(model%mesh%node_id(model%rotation_nodes(k))) // ' is a node of element ' // &
+            str(model%mesh%element_id(e)) // '; its degrees of freedom are the rotations of ' // &
+            'the body: use a node in no element')
+          return
+        end do
+      end do
+    end do
+  end subroutine check_rotation_nodes
 
   !> element_section(e) from the *SOLID SECTIONs; an element in two sections or in none is an error.
   subroutine assign_sections(model, diag, deck)
