@@ -21,6 +21,13 @@
 !> process transforms its own share of the matrix and the sum is T^T K T. The pattern must
 !> hold the couplings T^T K T creates: `expand_cliques` adds to every clique the independent
 !> nodes of its dependent nodes, before the pattern is built from the cliques.
+!>
+!> Local axes (*TRANSFORM) enter the same map: at a node with a frame R (columns: the local
+!> axes in global components) the three unknowns of the solve are the local components,
+!> u = R u_local (CalculiX: prescribed values, loads and equation terms at such a node are
+!> in its local axes). T then maps every global degree of freedom of such a node to its local
+!> unknowns (those of them that are dependent replaced by their equations), and (L2) holds
+!> with that T: every degree of freedom that T does not map to itself is "affected".
 module fcs_linear_constraints
   use fcs_kinds, only: dp, i8
   use fcs_error, only: error_t, input_error
@@ -63,8 +70,18 @@ module fcs_linear_constraints
     real(dp), allocatable :: coefficient(:)
     !> Row of a dependent degree of freedom (0 for an independent one).
     integer, allocatable :: row_of(:)
-    !> For node a, the nodes of the independent degrees of freedom its dependent ones refer
-    !> to: links(link_ptr(a):link_ptr(a+1)-1).
+    !> T restricted to the affected degrees of freedom (dependent ones, and those of nodes
+    !> with local axes): global degree of freedom affected_dofs(r) is the sum of
+    !> factors(p) times the unknowns targets(p), p = target_ptr(r) .. target_ptr(r+1)-1.
+    logical, allocatable :: affected(:)
+    integer, allocatable :: affected_dofs(:), target_ptr(:), targets(:)
+    real(dp), allocatable :: factors(:)
+    !> Local axes of every node (3, 3, n_nodes; identity where there are none), and which
+    !> nodes have them.
+    real(dp), allocatable :: frame(:, :, :)
+    logical, allocatable :: transformed(:)
+    !> For node a, the nodes of the unknowns its affected degrees of freedom stand for:
+    !> links(link_ptr(a):link_ptr(a+1)-1).
     integer, allocatable :: link_ptr(:), links(:)
   contains
     procedure :: init => map_init
@@ -74,6 +91,9 @@ module fcs_linear_constraints
     procedure :: reduce_matrix => map_reduce_matrix
     procedure :: reduce_vector => map_reduce_vector
     procedure :: expand_vector => map_expand_vector
+    procedure :: to_local => map_to_local
+    procedure :: to_global => map_to_global
+    procedure :: row_of_affected
   end type constraint_map_t
 
   !> One resolved row while the cascade is worked out.
@@ -90,11 +110,14 @@ contains
   !> messages). Input errors: a zero first coefficient, a degree of freedom on the dependent
   !> side of two equations, a dependent degree of freedom that appears again in its own
   !> equation, equations whose dependent terms depend on each other in a cycle.
-  subroutine map_init(this, equations, n_nodes, node_id, err)
+  !> `frame` and `transformed` give the local axes of the nodes that have them (*TRANSFORM).
+  subroutine map_init(this, equations, n_nodes, node_id, err, frame, transformed)
     class(constraint_map_t), intent(inout) :: this
     type(linear_equation_t), intent(in) :: equations(:)
     integer, intent(in) :: n_nodes, node_id(:)
     type(error_t), allocatable, intent(out) :: err
+    real(dp), intent(in), optional :: frame(:, :, :)
+    logical, intent(in), optional :: transformed(:)
     type(row_t), allocatable :: rows(:)
     integer, allocatable :: state(:), owner(:)
     integer :: i, k, d, n_terms
@@ -137,6 +160,19 @@ contains
       if (allocated(err)) return
     end do
     call flatten()
+    allocate (this%frame(3, 3, n_nodes), this%transformed(n_nodes))
+    this%frame = 0.0_dp
+    do k = 1, 3
+      this%frame(k, k, :) = 1.0_dp
+    end do
+    this%transformed = .false.
+    if (present(frame) .and. present(transformed)) then
+      this%transformed = transformed
+      do k = 1, n_nodes
+        if (transformed(k)) this%frame(:, :, k) = frame(:, :, k)
+      end do
+    end if
+    call global_targets(this)
     call node_links(n_nodes)
   contains
     recursive subroutine resolve(i, err)
@@ -200,16 +236,15 @@ contains
 
     subroutine node_links(n_nodes)
       integer, intent(in) :: n_nodes
-      integer, allocatable :: count_links(:), fill(:), marker(:)
+      integer, allocatable :: count_links(:), fill(:)
       integer :: r, p, a, b, pass
-      allocate (count_links(n_nodes), this%link_ptr(n_nodes + 1), marker(n_nodes))
+      allocate (count_links(n_nodes), this%link_ptr(n_nodes + 1))
       do pass = 1, 2
         count_links = 0
-        marker = 0
-        do r = 1, size(this%dependent_dofs)
-          a = (this%dependent_dofs(r) - 1) / DOFS_PER_NODE + 1
-          do p = this%row_ptr(r), this%row_ptr(r + 1) - 1
-            b = (this%independent(p) - 1) / DOFS_PER_NODE + 1
+        do r = 1, size(this%affected_dofs)
+          a = (this%affected_dofs(r) - 1) / DOFS_PER_NODE + 1
+          do p = this%target_ptr(r), this%target_ptr(r + 1) - 1
+            b = (this%targets(p) - 1) / DOFS_PER_NODE + 1
             if (b == a) cycle
             if (pass == 2) then
               if (any(this%links(this%link_ptr(a):fill(a) - 1) == b)) cycle
@@ -254,6 +289,64 @@ contains
     call move_alloc(kept, this%links)
   end subroutine compact_links
 
+  !> T on the affected degrees of freedom: a dependent one (at a node without local axes) is
+  !> its row; global direction i of a node with local axes R is sum_a R(i, a) times local
+  !> unknown a, itself replaced by its row when it is dependent.
+  subroutine global_targets(this)
+    type(constraint_map_t), intent(inout) :: this
+    integer, allocatable :: dofs(:)
+    real(dp), allocatable :: values(:)
+    type(row_t) :: merged
+    type(row_t), allocatable :: lists(:)
+    integer :: i, node, direction, a, slot, r, n, k
+    allocate (this%affected(this%n_dofs))
+    this%affected = this%dependent
+    do node = 1, size(this%transformed)
+      if (this%transformed(node)) this%affected(3 * node - 2:3 * node) = .true.
+    end do
+    this%affected_dofs = pack([(i, i = 1, this%n_dofs)], this%affected)
+    allocate (lists(size(this%affected_dofs)))
+    do k = 1, size(this%affected_dofs)
+      i = this%affected_dofs(k)
+      node = (i - 1) / DOFS_PER_NODE + 1
+      direction = i - DOFS_PER_NODE * (node - 1)
+      allocate (dofs(0), values(0))
+      if (this%transformed(node)) then
+        do a = 1, 3
+          if (this%frame(direction, a, node) == 0.0_dp) cycle
+          slot = DOFS_PER_NODE * (node - 1) + a
+          r = this%row_of(slot)
+          if (r == 0) then
+            dofs = [dofs, slot]
+            values = [values, this%frame(direction, a, node)]
+          else
+            dofs = [dofs, this%independent(this%row_ptr(r):this%row_ptr(r + 1) - 1)]
+            values = [values, this%frame(direction, a, node) * &
+                              this%coefficient(this%row_ptr(r):this%row_ptr(r + 1) - 1)]
+          end if
+        end do
+      else
+        r = this%row_of(i)
+        dofs = this%independent(this%row_ptr(r):this%row_ptr(r + 1) - 1)
+        values = this%coefficient(this%row_ptr(r):this%row_ptr(r + 1) - 1)
+      end if
+      call merge_terms(dofs, values, merged)
+      lists(k) = merged
+      deallocate (dofs, values)
+    end do
+    allocate (this%target_ptr(size(lists) + 1))
+    this%target_ptr(1) = 1
+    do k = 1, size(lists)
+      this%target_ptr(k + 1) = this%target_ptr(k) + size(lists(k)%dofs)
+    end do
+    n = this%target_ptr(size(lists) + 1) - 1
+    allocate (this%targets(n), this%factors(n))
+    do k = 1, size(lists)
+      this%targets(this%target_ptr(k):this%target_ptr(k + 1) - 1) = lists(k)%dofs
+      this%factors(this%target_ptr(k):this%target_ptr(k + 1) - 1) = lists(k)%values
+    end do
+  end subroutine global_targets
+
   !> Sum the values of repeated degrees of freedom; drop terms that cancel exactly.
   subroutine merge_terms(dofs, values, row)
     integer, intent(in) :: dofs(:)
@@ -287,6 +380,13 @@ contains
     if (allocated(this%row_of)) deallocate (this%row_of)
     if (allocated(this%link_ptr)) deallocate (this%link_ptr)
     if (allocated(this%links)) deallocate (this%links)
+    if (allocated(this%affected)) deallocate (this%affected)
+    if (allocated(this%affected_dofs)) deallocate (this%affected_dofs)
+    if (allocated(this%target_ptr)) deallocate (this%target_ptr)
+    if (allocated(this%targets)) deallocate (this%targets)
+    if (allocated(this%factors)) deallocate (this%factors)
+    if (allocated(this%frame)) deallocate (this%frame)
+    if (allocated(this%transformed)) deallocate (this%transformed)
     this%n_dofs = 0
   end subroutine map_free
 
@@ -294,7 +394,7 @@ contains
   pure logical function map_active(this)
     class(constraint_map_t), intent(in) :: this
     map_active = .false.
-    if (allocated(this%dependent_dofs)) map_active = size(this%dependent_dofs) > 0
+    if (allocated(this%affected_dofs)) map_active = size(this%affected_dofs) > 0
   end function map_active
 
   !> Add to every clique the nodes its dependent nodes are linked to, and one clique per
@@ -345,56 +445,71 @@ contains
     call move_alloc(nodes, clique_nodes)
   end subroutine map_expand_cliques
 
-  !> K <- T^T K T in place (L2): every entry K_ik with i or k dependent moves to the entries
-  !> (a, b) of the independent degrees of freedom a of i and b of k, times their
-  !> coefficients (an independent degree of freedom stands for itself with coefficient 1);
-  !> the dependent rows and columns are left zero. `missing` is true if the pattern lacks a
-  !> target entry (the cliques were not expanded: an internal error of the caller).
+  !> K <- T^T K T in place (L2): every entry K_ik with i or k affected moves to the entries
+  !> (a, b) of the unknowns a of i and b of k, times their factors (an unaffected degree of
+  !> freedom stands for itself with factor 1); the dependent rows and columns are left zero.
+  !> The affected entries are taken out first, so that none is moved twice. `missing` is true
+  !> if the pattern lacks a target entry (the cliques were not expanded: an internal error
+  !> of the caller).
   subroutine map_reduce_matrix(this, matrix, missing)
     class(constraint_map_t), intent(in) :: this
     type(sparse_matrix_t), intent(inout) :: matrix
     logical, intent(out) :: missing
-    integer :: i, k, ra, rb, pa, pb, a, b
+    integer, allocatable :: rows(:), columns(:)
+    real(dp), allocatable :: values(:)
+    integer :: i, k, n, e, ra, rb, pa, pb, a, b
     integer(i8) :: p
-    real(dp) :: v, ta, tb
+    real(dp) :: ta, tb
     logical :: lacking
     missing = .false.
     if (.not. this%active()) return
+    n = 0
+    do i = 1, matrix%n
+      do p = matrix%row_ptr(i), matrix%row_ptr(i + 1) - 1
+        if (this%affected(i) .or. this%affected(matrix%col(p))) n = n + 1
+      end do
+    end do
+    allocate (rows(n), columns(n), values(n))
+    n = 0
     do i = 1, matrix%n
       do p = matrix%row_ptr(i), matrix%row_ptr(i + 1) - 1
         k = matrix%col(p)
-        if (.not. (this%dependent(i) .or. this%dependent(k))) cycle
-        v = matrix%val(p)
+        if (.not. (this%affected(i) .or. this%affected(k))) cycle
+        n = n + 1
+        rows(n) = i
+        columns(n) = k
+        values(n) = matrix%val(p)
         matrix%val(p) = 0.0_dp
-        if (v == 0.0_dp) cycle
-        ra = this%row_of(i)
-        rb = this%row_of(k)
-        do pa = span_start(ra), span_end(ra)
-          call term(ra, pa, i, a, ta)
-          do pb = span_start(rb), span_end(rb)
-            call term(rb, pb, k, b, tb)
-            call matrix%add_value(a, b, ta * tb * v, lacking)
-            missing = missing .or. lacking
-          end do
+      end do
+    end do
+    do e = 1, n
+      if (values(e) == 0.0_dp) cycle
+      ra = this%row_of_affected(rows(e))
+      rb = this%row_of_affected(columns(e))
+      do pa = span_start(ra), span_end(ra)
+        call term(ra, pa, rows(e), a, ta)
+        do pb = span_start(rb), span_end(rb)
+          call term(rb, pb, columns(e), b, tb)
+          call matrix%add_value(a, b, ta * tb * values(e), lacking)
+          missing = missing .or. lacking
         end do
       end do
     end do
   contains
-    !> Positions of the terms of row r (one position, the degree of freedom itself, for an
-    !> independent one: r = 0).
+    !> Positions of the targets of affected row r (one position, the degree of freedom
+    !> itself, for an unaffected one: r = 0).
     pure integer function span_start(r)
       integer, intent(in) :: r
       span_start = 1
-      if (r > 0) span_start = this%row_ptr(r)
+      if (r > 0) span_start = this%target_ptr(r)
     end function span_start
 
     pure integer function span_end(r)
       integer, intent(in) :: r
       span_end = 1
-      if (r > 0) span_end = this%row_ptr(r + 1) - 1
+      if (r > 0) span_end = this%target_ptr(r + 1) - 1
     end function span_end
 
-    !> The term at position p of row r, or (dof, 1) for an independent degree of freedom.
     pure subroutine term(r, p, dof, target, factor)
       integer, intent(in) :: r, p, dof
       integer, intent(out) :: target
@@ -403,42 +518,92 @@ contains
         target = dof
         factor = 1.0_dp
       else
-        target = this%independent(p)
-        factor = this%coefficient(p)
+        target = this%targets(p)
+        factor = this%factors(p)
       end if
     end subroutine term
   end subroutine map_reduce_matrix
 
-  !> f <- T^T f (L2): the value at every dependent degree of freedom is added to its
-  !> independent ones times their coefficients, and set to zero.
+  !> f <- T^T f (L2): the value at every affected degree of freedom goes to its unknowns
+  !> times their factors (at a node with local axes: its local components).
   subroutine map_reduce_vector(this, f)
     class(constraint_map_t), intent(in) :: this
     real(dp), intent(inout) :: f(:)
-    integer :: r, p, d
+    real(dp), allocatable :: taken(:)
+    integer :: r, p
     if (.not. this%active()) return
-    do r = 1, size(this%dependent_dofs)
-      d = this%dependent_dofs(r)
-      do p = this%row_ptr(r), this%row_ptr(r + 1) - 1
-        f(this%independent(p)) = f(this%independent(p)) + this%coefficient(p) * f(d)
+    taken = f(this%affected_dofs)
+    f(this%affected_dofs) = 0.0_dp
+    do r = 1, size(this%affected_dofs)
+      do p = this%target_ptr(r), this%target_ptr(r + 1) - 1
+        f(this%targets(p)) = f(this%targets(p)) + this%factors(p) * taken(r)
       end do
-      f(d) = 0.0_dp
     end do
   end subroutine map_reduce_vector
 
-  !> u_D <- T_DI u_I (L1): the dependent values from the independent ones.
+  !> u <- T u (L1): the global components of the affected degrees of freedom from the
+  !> unknowns of the solve.
   subroutine map_expand_vector(this, u)
     class(constraint_map_t), intent(in) :: this
     real(dp), intent(inout) :: u(:)
-    integer :: r, p, d
+    real(dp), allocatable :: values(:)
+    integer :: r, p
     if (.not. this%active()) return
-    do r = 1, size(this%dependent_dofs)
-      d = this%dependent_dofs(r)
-      u(d) = 0.0_dp
-      do p = this%row_ptr(r), this%row_ptr(r + 1) - 1
-        u(d) = u(d) + this%coefficient(p) * u(this%independent(p))
+    allocate (values(size(this%affected_dofs)))
+    values = 0.0_dp
+    do r = 1, size(this%affected_dofs)
+      do p = this%target_ptr(r), this%target_ptr(r + 1) - 1
+        values(r) = values(r) + this%factors(p) * u(this%targets(p))
       end do
     end do
+    u(this%affected_dofs) = values
   end subroutine map_expand_vector
+
+  !> Row of an affected degree of freedom in affected_dofs (0 when not affected).
+  pure integer function row_of_affected(this, dof) result(r)
+    class(constraint_map_t), intent(in) :: this
+    integer, intent(in) :: dof
+    integer :: lo, hi, mid
+    r = 0
+    if (.not. this%affected(dof)) return
+    lo = 1
+    hi = size(this%affected_dofs)
+    do while (lo <= hi)
+      mid = (lo + hi) / 2
+      if (this%affected_dofs(mid) == dof) then
+        r = mid
+        return
+      else if (this%affected_dofs(mid) < dof) then
+        lo = mid + 1
+      else
+        hi = mid - 1
+      end if
+    end do
+  end function row_of_affected
+
+  !> Component `direction` of the nodal vector v(:, node) in the node's local axes (the
+  !> global one at a node without).
+  pure real(dp) function map_to_local(this, v, node, direction) result(c)
+    class(constraint_map_t), intent(in) :: this
+    real(dp), intent(in) :: v(3)
+    integer, intent(in) :: node, direction
+    c = v(direction)
+    if (.not. allocated(this%transformed)) return
+    if (this%transformed(node)) c = dot_product(this%frame(:, direction, node), v)
+  end function map_to_local
+
+  !> f(node) <- R f(node) at every node with local axes: a vector given in local components
+  !> there (the loads of *CLOAD) into global ones.
+  subroutine map_to_global(this, f)
+    class(constraint_map_t), intent(in) :: this
+    real(dp), intent(inout) :: f(:)
+    integer :: node
+    if (.not. allocated(this%transformed)) return
+    do node = 1, size(this%transformed)
+      if (this%transformed(node)) f(3 * node - 2:3 * node) = &
+        matmul(this%frame(:, :, node), f(3 * node - 2:3 * node))
+    end do
+  end subroutine map_to_global
 
   pure integer function dof_index(t)
     type(constraint_term_t), intent(in) :: t
