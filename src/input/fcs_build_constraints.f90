@@ -10,12 +10,12 @@ module fcs_build_constraints
   use fcs_diagnostics, only: diagnostics_t
   use fcs_deck_fields, only: line_int, line_real, is_integer_text, param_value, resolve_nodes, &
                              resolve_elements
-  use fcs_model, only: model_t
+  use fcs_model, only: model_t, transform_def_t
   use fcs_linear_constraints, only: constraint_term_t, linear_equation_t
   use fcs_strings, only: str, to_upper, parse_int
   implicit none
   private
-  public :: handle_equation, handle_mpc, handle_rigid_body
+  public :: handle_equation, handle_mpc, handle_rigid_body, handle_transform, resolve_transforms
 
   !> Terms per data line of *EQUATION, as CalculiX reads them (12 entries per line).
   integer, parameter :: MAX_TERMS_PER_LINE = 4
@@ -386,6 +386,92 @@ contains
       end do
     end do
   end subroutine handle_rigid_body
+
+  !> *TRANSFORM, NSET=, TYPE=R|C: one data line with the points a and b (ccx manual,
+  !> *TRANSFORM); the axes are worked out per node after the last card (`resolve_transforms`).
+  subroutine handle_transform(card, model, diag)
+    type(card_t), intent(in) :: card
+    type(model_t), intent(inout) :: model
+    type(diagnostics_t), intent(inout) :: diag
+    type(transform_def_t) :: t
+    integer :: k
+    if (card%n_lines /= 1) then
+      call diag%report(card%loc, '*TRANSFORM: expected one data line (a_x, a_y, a_z, b_x, b_y, b_z)')
+      return
+    end if
+    associate (line => card%lines(1))
+      if (size(line%fields) /= 6) then
+        call diag%report(line%loc, '*TRANSFORM: expected six coordinates a_x, a_y, a_z, b_x, ' // &
+                         'b_y, b_z (' // str(size(line%fields)) // ' fields)')
+        return
+      end if
+      do k = 1, 3
+        if (.not. line_real(line, k, t%a(k), 'coordinate of a', 'TRANSFORM', diag)) return
+        if (.not. line_real(line, k + 3, t%b(k), 'coordinate of b', 'TRANSFORM', diag)) return
+      end do
+      t%loc = line%loc
+    end associate
+    t%node_set = model%mesh%find_node_set(to_upper(param_value(card, 'NSET')))
+    if (t%node_set == 0) then
+      call diag%report(card%loc, '*TRANSFORM: node set "' // param_value(card, 'NSET') // &
+                       '" is not defined')
+      return
+    end if
+    t%cylindrical = to_upper(param_value(card, 'TYPE')) == 'C'
+    if (.not. t%cylindrical) then
+      if (norm2(t%a) <= 0.0_dp .or. norm2(cross(t%a, t%b)) <= 1.0e-10_dp * norm2(t%a) * norm2(t%b)) then
+        call diag%report(t%loc, '*TRANSFORM, TYPE=R: a must be a point off the origin and b a ' // &
+                         'point off the line through the origin and a')
+        return
+      end if
+    else if (norm2(t%b - t%a) <= 0.0_dp) then
+      call diag%report(t%loc, '*TRANSFORM, TYPE=C: the two points of the axis coincide')
+      return
+    end if
+    model%transforms = [model%transforms, t]
+  end subroutine handle_transform
+
+  !> Local axes of every node of a *TRANSFORM's set (a later card overrides an earlier one for
+  !> a node in both, as in CalculiX): TYPE=R: e_x = a / |a|, e_z = a x b / |a x b|,
+  !> e_y = e_z x e_x; TYPE=C: e_z = (b - a) / |b - a|, e_x the unit normal from the axis to
+  !> the node (radial), e_y = e_z x e_x (tangential). A node on the axis of a cylindrical
+  !> system has no radial direction: an input error.
+  subroutine resolve_transforms(model, diag)
+    type(model_t), intent(inout) :: model
+    type(diagnostics_t), intent(inout) :: diag
+    real(dp) :: ex(3), ey(3), ez(3), r(3)
+    integer :: k, j, node
+    allocate (model%node_frame(3, 3, model%mesh%n_nodes), model%transformed(model%mesh%n_nodes))
+    model%node_frame = 0.0_dp
+    model%transformed = .false.
+    do k = 1, size(model%transforms)
+      associate (t => model%transforms(k), members => model%mesh%node_sets(model%transforms(k)%node_set)%members)
+        do j = 1, size(members)
+          node = members(j)
+          if (t%cylindrical) then
+            ez = (t%b - t%a) / norm2(t%b - t%a)
+            r = model%mesh%x(:, node) - t%a
+            r = r - dot_product(r, ez) * ez
+            if (norm2(r) <= 1.0e-10_dp * max(norm2(t%b - t%a), norm2(model%mesh%x(:, node) - t%a))) then
+              call diag%report(t%loc, '*TRANSFORM, TYPE=C: node ' // str(model%mesh%node_id(node)) // &
+                               ' lies on the axis, where the radial direction is undefined')
+              return
+            end if
+            ex = r / norm2(r)
+          else
+            ex = t%a / norm2(t%a)
+            ez = cross(t%a, t%b)
+            ez = ez / norm2(ez)
+          end if
+          ey = cross(ez, ex)
+          model%node_frame(:, 1, node) = ex
+          model%node_frame(:, 2, node) = ey
+          model%node_frame(:, 3, node) = ez
+          model%transformed(node) = .true.
+        end do
+      end associate
+    end do
+  end subroutine resolve_transforms
 
   !> The node named by parameter `name` (required).
   logical function given_node(card, model, name, node, diag) result(ok)

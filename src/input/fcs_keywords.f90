@@ -320,7 +320,17 @@ contains
             'missing, fcs3d needs it defined by *NODE.'), &
           p('ROT NODE', PARAM_INTEGER, required=.true., description='Rotation node (its ' // &
             'three degrees of freedom are the rotation of the body, radians); defined by *NODE, ' // &
-            'in no element.')]) &
+            'in no element.')]), &
+      kw('TRANSFORM', CONTEXT_MODEL, 'CalculiX', 'Local axes for the nodes of a node set: ' // &
+         '*BOUNDARY, *CLOAD and *EQUATION terms on them are in these axes, and *NODE PRINT ' // &
+         'prints their U and RF in them (rows marked L), as CalculiX does. The three ' // &
+         'unknowns of such a node are its local components (doc/theory.md 6.2.2).', &
+         'a_x, a_y, a_z, b_x, b_y, b_z: TYPE=R: a point a on the local x axis and a point b ' // &
+         'in the local x-y plane (both through the origin); TYPE=C: two points a, b on the ' // &
+         'axis (local x radial, y tangential, z along b - a).', &
+         [p('NSET', PARAM_NAME, required=.true., description='The nodes that get the axes.'), &
+          p('TYPE', PARAM_CHOICE, default='R', choices=[s('R'), s('C')], &
+            description='R: rectangular; C: cylindrical.')], data_required=.true.) &
       ]
   end function constraint_keywords
 

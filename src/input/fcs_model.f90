@@ -14,7 +14,7 @@ module fcs_model
   implicit none
   private
   public :: model_t, material_def_t, section_t, amplitude_t, time_points_t, dof_condition_t
-  public :: face_load_t, output_request_t, step_t, rmin_settings_t
+  public :: face_load_t, output_request_t, step_t, rmin_settings_t, transform_def_t
   public :: friction_def_t, friction_change_t, interaction_def_t, contact_pair_def_t, checkpoint_settings_t
   public :: history_item_t, history_request_t, HISTORY_NSET_U, HISTORY_NSET_RF
   public :: HISTORY_CONTACT, HISTORY_ENERGY, HISTORY_RESIDUAL
@@ -52,6 +52,17 @@ module fcs_model
     type(plastic_def_t) :: plastic
     type(source_loc_t) :: plastic_loc, cyclic_loc, drucker_prager_loc, dp_hardening_loc
   end type material_def_t
+
+  !> *TRANSFORM: local axes for the nodes of a node set. TYPE=R: a is a point on the local x
+  !> axis, b a point of the local x-y plane (through the origin); TYPE=C: a and b are two
+  !> points of the axis of a cylindrical system (local x radial, y tangential, z axial).
+  type :: transform_def_t
+    integer :: node_set = 0
+    logical :: cylindrical = .false.
+    real(dp) :: a(3) = 0.0_dp
+    real(dp) :: b(3) = 0.0_dp
+    type(source_loc_t) :: loc
+  end type transform_def_t
 
   !> *SOLID SECTION: a material and a formulation for an element set. The material may be
   !> defined after the section (as CalculiX allows): its name is resolved after the last card.
@@ -251,6 +262,13 @@ module fcs_model
     type(linear_equation_t), allocatable :: equations(:)
     !> Rotation nodes of *RIGID BODY: their three degrees of freedom are rotations [rad].
     integer, allocatable :: rotation_nodes(:)
+    !> *TRANSFORM cards, and the local axes they give the nodes (resolved after the last
+    !> card): node_frame(:, a, node) is local axis a in global components; `transformed`
+    !> marks the nodes that have local axes (*BOUNDARY, *CLOAD, *EQUATION terms and the
+    !> printed U and RF are in them there, as in CalculiX).
+    type(transform_def_t), allocatable :: transforms(:)
+    real(dp), allocatable :: node_frame(:, :, :)
+    logical, allocatable :: transformed(:)
     type(contact_pair_def_t), allocatable :: contact_pairs(:)
     !> Checksums of the model definition (its cards and the mesh) and of each step's cards,
     !> so that a restart can tell whether the deck still describes the checkpoint's model.

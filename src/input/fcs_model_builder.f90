@@ -31,7 +31,8 @@ module fcs_model_builder
   use fcs_build_contact, only: handle_surface_interaction, handle_surface_behavior, &
                                handle_friction, handle_contact_pair, handle_tie, &
                                resolve_pair_interactions, handle_change_friction
-  use fcs_build_constraints, only: handle_equation, handle_mpc, handle_rigid_body
+  use fcs_build_constraints, only: handle_equation, handle_mpc, handle_rigid_body, &
+                                   handle_transform, resolve_transforms
   use fcs_model, only: model_t, step_t
   use fcs_element_loops, only: mesh_kinds
   use fcs_model_checks, only: check_model
@@ -87,6 +88,7 @@ contains
     model%steps = state%steps
     if (.not. diag%is_full()) call resolve_section_materials(model, diag)
     if (.not. diag%is_full()) call resolve_pair_interactions(model, diag)
+    if (.not. diag%is_full()) call resolve_transforms(model, diag)
     if (.not. diag%has_errors()) call check_model(model, diag, deck)
     model%warnings = diag%warning_list()
     if (diag%has_errors()) then
@@ -169,7 +171,7 @@ contains
     call model%mesh%init(mesh_kinds(model%element_kinds))
     allocate (model%materials(0), model%sections(0), model%amplitudes(0), &
               model%time_points(0), model%steps(0), model%interactions(0), model%equations(0), &
-              model%rotation_nodes(0), model%contact_pairs(0), &
+              model%rotation_nodes(0), model%transforms(0), model%contact_pairs(0), &
               model%histories(0), model%warnings(0))
   end subroutine init_model
 
@@ -258,6 +260,8 @@ contains
       call handle_mpc(card, model, diag)
     case ('RIGID BODY')
       call handle_rigid_body(card, model, diag)
+    case ('TRANSFORM')
+      call handle_transform(card, model, diag)
     case ('AMPLITUDE')
       call handle_amplitude(card, model, diag)
     case ('TIME POINTS')
@@ -494,9 +498,9 @@ contains
              'MEMBRANE SECTION', 'SPRING', 'DASHPOT', 'MASS', 'USER ELEMENT', 'GAP'])) then
       reason = 'fcs3d has 8-node hexahedra (C3D8) only'
     else if (is_one_of(keyword, [character(len=34) :: &
-             'COUPLING', 'DISTRIBUTING', 'KINEMATIC', 'TRANSFORM', 'CYCLIC SYMMETRY MODEL'])) then
-      reason = 'constraints other than *BOUNDARY, *EQUATION, *MPC (PLANE, STRAIGHT) and *RIGID ' // &
-               'BODY are not available yet'
+             'COUPLING', 'DISTRIBUTING', 'KINEMATIC', 'CYCLIC SYMMETRY MODEL'])) then
+      reason = 'constraints other than *BOUNDARY, *EQUATION, *MPC (PLANE, STRAIGHT), *RIGID ' // &
+               'BODY and *TRANSFORM are not available yet'
     else if (is_one_of(keyword, [character(len=34) :: 'ORIENTATION', 'EXPANSION', &
              'CONDUCTIVITY', 'SPECIFIC HEAT', 'HYPERELASTIC', 'HYPERFOAM', 'CREEP', &
              'USER MATERIAL', 'DEFORMATION PLASTICITY', 'RATE DEPENDENT', 'CAP PLASTICITY', &

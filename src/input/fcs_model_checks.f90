@@ -61,6 +61,14 @@ contains
     integer :: k, i, d, r
     if (size(model%equations) == 0) return
     call check_rotation_nodes(model, diag)
+    do k = 1, size(model%equations)
+      if (model%equations(k)%origin == '*EQUATION') cycle
+      if (.not. any(model%transformed(model%equations(k)%terms(:)%node))) cycle
+      call diag%report(model%equations(k)%loc, model%equations(k)%origin // ': a node of it ' // &
+        'has local axes (*TRANSFORM); fcs3d builds this constraint in global axes and does ' // &
+        'not combine it with *TRANSFORM')
+      return
+    end do
     call map%init(model%equations, model%mesh%n_nodes, model%mesh%node_id, err)
     if (allocated(err)) then
       call diag%report_plain(err%message)

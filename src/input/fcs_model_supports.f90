@@ -169,6 +169,8 @@ contains
       a = slot(assembly(node))
       axis = 0.0_dp
       axis(step%boundary(i)%dof) = 1.0_dp
+      ! A condition at a node with local axes (*TRANSFORM) is on a local component.
+      if (model%transformed(node)) axis = model%node_frame(:, step%boundary(i)%dof, node)
       row(1:3) = axis
       row(4:6) = cross((model%mesh%x(:, node) - centre(:, a)) / size_l(a), axis)
       ! The rotation node of a *RIGID BODY: its degree of freedom d is the rotation w_d.
@@ -199,6 +201,7 @@ contains
           node = terms(j)%node
           axis = 0.0_dp
           axis(terms(j)%dof) = terms(j)%coefficient
+          if (model%transformed(node)) axis = terms(j)%coefficient * model%node_frame(:, terms(j)%dof, node)
           if (any(model%rotation_nodes == node)) then
             ! A rotation w = omega / L (the rigid motions are u = t + omega x (x - c) / L).
             row(4:6) = row(4:6) + axis / size_l(a)

@@ -86,7 +86,13 @@ contains
       call header(file, title, set_name, time, err)
       do i = 1, size(nodes)
         if (allocated(err)) return
-        write (line, '(i10,3es14.6)') model%mesh%node_id(nodes(i)), values(:, nodes(i))
+        ! A node with local axes (*TRANSFORM) is printed in them, marked L, as CalculiX does.
+        if (model%transformed(nodes(i))) then
+          write (line, '(i10,3es14.6,a)') model%mesh%node_id(nodes(i)), &
+            matmul(transpose(model%node_frame(:, :, nodes(i))), values(:, nodes(i))), ' L'
+        else
+          write (line, '(i10,3es14.6)') model%mesh%node_id(nodes(i)), values(:, nodes(i))
+        end if
         call file%write(trim(line), err)
       end do
     end if

@@ -624,8 +624,38 @@ contains
     if (allocated(a%loading%bc_dof)) call external_force_at(a, model, nlgeom, a%state%step_time, a%f_ext_end)
     where (.not. supported_dofs(a, model)) a%f_ext_end = 0.0_dp
     reaction = reshape(a%f_int - a%f_contact - a%f_ext_end, shape(reaction))
+    call local_axes_reactions(a, model, reaction)
     call transmitted_reactions(a, model, reaction)
   end subroutine current_reactions
+
+  !> At a node with local axes (*TRANSFORM) the prescribed degrees of freedom are local
+  !> components: the load taken off is that of the prescribed local directions,
+  !> R (f_int - f_c - P R^T f_ext) with P the projection on them.
+  subroutine local_axes_reactions(a, model, reaction)
+    type(analysis_t), intent(inout) :: a
+    type(model_t), intent(in) :: model
+    real(dp), intent(inout) :: reaction(:, :)
+    real(dp) :: local(3), load(3)
+    logical, allocatable :: prescribed(:)
+    integer :: node, i
+    if (.not. any(model%transformed)) return
+    call external_force_at(a, model, model%steps(min(a%state%step, size(model%steps)))%nlgeom, &
+                           a%state%step_time, a%f_ext_end)
+    allocate (prescribed(3 * model%mesh%n_nodes))
+    prescribed = .false.
+    if (allocated(a%loading%bc_dof)) prescribed(a%loading%bc_dof) = .true.
+    do node = 1, model%mesh%n_nodes
+      if (.not. model%transformed(node)) cycle
+      associate (frame => model%node_frame(:, :, node))
+        local = matmul(transpose(frame), a%f_int(3 * node - 2:3 * node) - a%f_contact(3 * node - 2:3 * node))
+        load = matmul(transpose(frame), a%f_ext_end(3 * node - 2:3 * node))
+        do i = 1, 3
+          if (prescribed(3 * node - 3 + i)) local(i) = local(i) - load(i)
+        end do
+        reaction(:, node) = matmul(frame, local)
+      end associate
+    end do
+  end subroutine local_axes_reactions
 
   !> At the nodes outside the structure that constraints transmit force to (the reference and
   !> rotation nodes of a *RIGID BODY), RF is the force (moment) the constraint transmits:
@@ -841,6 +871,9 @@ contains
     a%f_ext1 = 0.0_dp
     call a%loading%force_at(model%amplitudes, t0, a%f_ext0)
     call a%loading%force_at(model%amplitudes, t1, a%f_ext1)
+    ! Concentrated loads on nodes with local axes (*TRANSFORM) are given in those axes.
+    call a%links%to_global(a%f_ext0)
+    call a%links%to_global(a%f_ext1)
     call assemble_pressures(a%elements, a%loading, model, t0, a%state%x, nlgeom, a%f_ext0)
     call assemble_pressures(a%elements, a%loading, model, t1, a%state%x, nlgeom, a%f_ext1)
   end subroutine external_forces
@@ -854,6 +887,7 @@ contains
     real(dp), intent(out) :: f_ext(:)
     f_ext = 0.0_dp
     call a%loading%force_at(model%amplitudes, t, f_ext)
+    call a%links%to_global(f_ext)
     call assemble_pressures(a%elements, a%loading, model, t, a%state%x, nlgeom, f_ext)
   end subroutine external_force_at
 
@@ -875,8 +909,11 @@ contains
       node = (dof - 1) / 3 + 1
       direction = dof - 3 * (node - 1)
       a%constrained(dof) = .true.
+      ! At a node with local axes (*TRANSFORM) the unknowns, and so the prescribed values,
+      ! are the local components.
       a%prescribed(dof) = a%loading%prescribed_target(model%amplitudes, i, t0, t1, &
-        a%state%u(direction, node), a%state%step_start_u(direction, node))
+        a%links%to_local(a%state%u(:, node), node, direction), &
+        a%links%to_local(a%state%step_start_u(:, node), node, direction))
     end do
   end subroutine prescribed_increments
 
