@@ -130,7 +130,8 @@ contains
   end subroutine read_terms
 
   !> *MPC: a name, then the nodes (first line: up to 15 after the name; further lines up to 16;
-  !> zero entries discarded), as CalculiX reads it (ccx manual, *MPC). PLANE (the nodes after
+  !> zero entries discarded; a node set stands for its nodes), as CalculiX reads it (ccx
+  !> manual, *MPC). PLANE (the nodes after
   !> the first three stay in the plane of the first three) and STRAIGHT (the nodes after the
   !> first two stay on their line) are linearised in the initial configuration (doc/theory.md
   !> 6.2.1); CalculiX's are nonlinear, and it turns NLGEOM on for them: fcs3d keeps each step's
@@ -139,10 +140,11 @@ contains
     type(card_t), intent(in) :: card
     type(model_t), intent(inout) :: model
     type(diagnostics_t), intent(inout) :: diag
-    integer, allocatable :: nodes(:)
+    integer, allocatable :: nodes(:), members(:)
     character(len=:), allocatable :: kind
     integer :: i, j, id, node
-    logical :: ok
+    logical :: ok, from_set
+    from_set = .false.
     kind = to_upper(card%lines(1)%fields(1)%s)
     if (kind /= 'PLANE' .and. kind /= 'STRAIGHT') then
       call diag%report(card%lines(1)%loc, '*MPC: "' // card%lines(1)%fields(1)%s // '" is not ' // &
@@ -160,9 +162,17 @@ contains
         end if
         do j = merge(2, 1, i == 1), size(line%fields)
           if (len(line%fields(j)%s) == 0) cycle
+          if (.not. is_integer_text(line%fields(j)%s)) then
+            ! A node set, as CalculiX accepts: its nodes in the set's order.
+            call resolve_nodes(model%mesh, line%fields(j)%s, line, 'MPC', diag, members)
+            if (size(members) == 0) return
+            nodes = [nodes, members]
+            from_set = from_set .or. size(nodes) == size(members)
+            cycle
+          end if
           call parse_int(line%fields(j)%s, id, ok)
           if (.not. ok) then
-            call diag%report(line%loc, '*MPC: expected a node number, not "' // &
+            call diag%report(line%loc, '*MPC: expected a node number or a node set, not "' // &
                              line%fields(j)%s // '" (field ' // str(j) // ')')
             return
           end if
@@ -180,12 +190,48 @@ contains
       'turns NLGEOM on; fcs3d linearises it in the initial configuration and keeps each ' // &
       'step''s NLGEOM (exact for small rotations of the ' // &
       merge('plane', 'line ', kind == 'PLANE') // ')')
+    ! fcs3d's node sets are sorted, not in the order of the deck, which CalculiX takes the
+    ! defining nodes from: when the list starts with a set, the defining nodes are chosen
+    ! from the geometry instead (the first node, the one farthest from it, and for PLANE the
+    ! one farthest from their line): the same plane or line when the nodes lie in one.
+    if (from_set .and. size(nodes) >= 3) call choose_defining(model, nodes, merge(3, 2, kind == 'PLANE'))
     if (kind == 'PLANE') then
       call plane_equations(card, model, nodes, diag)
     else
       call straight_equations(card, model, nodes, diag)
     end if
   end subroutine handle_mpc
+
+  !> Move to the front of `nodes` n_defining well-spread nodes: nodes(1), the node farthest
+  !> from it, and (n_defining = 3) the node farthest from the line through those two.
+  subroutine choose_defining(model, nodes, n_defining)
+    type(model_t), intent(in) :: model
+    integer, intent(inout) :: nodes(:)
+    integer, intent(in) :: n_defining
+    real(dp) :: d(size(nodes)), e(3)
+    integer :: k, best
+    do k = 1, size(nodes)
+      d(k) = norm2(model%mesh%x(:, nodes(k)) - model%mesh%x(:, nodes(1)))
+    end do
+    best = maxloc(d, 1)
+    call swap(nodes, 2, best)
+    if (n_defining < 3) return
+    e = model%mesh%x(:, nodes(2)) - model%mesh%x(:, nodes(1))
+    do k = 1, size(nodes)
+      d(k) = norm2(cross(model%mesh%x(:, nodes(k)) - model%mesh%x(:, nodes(1)), e))
+    end do
+    best = maxloc(d, 1)
+    call swap(nodes, 3, best)
+  contains
+    subroutine swap(list, i, j)
+      integer, intent(inout) :: list(:)
+      integer, intent(in) :: i, j
+      integer :: kept
+      kept = list(i)
+      list(i) = list(j)
+      list(j) = kept
+    end subroutine swap
+  end subroutine choose_defining
 
   !> PLANE, linearised: with r = x_p - x_a, e1 = x_b - x_a, e2 = x_c - x_a, n = e1 x e2, the
   !> change of (x_p - x_a) . n is

@@ -25,9 +25,9 @@ module fcs_keywords
   integer, parameter :: CONTEXT_MODEL = 1, CONTEXT_STEP = 2, CONTEXT_ANY = 3
 
   !> Output parameters that fcs3d honours by what it always does.
-  character(len=*), parameter :: GLOBAL_ONLY = 'YES or NO give the same: fcs3d has no local ' // &
-    'systems (*TRANSFORM and *ORIENTATION are not supported), so every result is in the ' // &
-    'global system, as CalculiX prints it without them.'
+  character(len=*), parameter :: GLOBAL_ONLY = 'YES or NO give the same: results here are ' // &
+    'in the global system (*ORIENTATION is not supported; local *TRANSFORM axes are used by ' // &
+    '*NODE PRINT only), as CalculiX writes them without local systems.'
   character(len=*), parameter :: SOLIDS_IN_3D = 'CalculiX''s choice for expanded shell and ' // &
     'beam elements; fcs3d''s solid elements are written in 3D either way (OUTPUT=2D is ' // &
     'accepted with a warning).'
@@ -505,8 +505,11 @@ contains
       kw('NODE PRINT', CONTEXT_STEP, 'CalculiX', 'Print nodal results to <job>.dat in ' // &
          'CalculiX''s layout.', 'U (displacements), RF (reaction forces).', &
          [p('NSET', PARAM_NAME, required=.true., description='Node set to print.'), &
-          p('GLOBAL', PARAM_CHOICE, default='YES', choices=[s('YES'), s('NO')], &
-            description=GLOBAL_ONLY), &
+          p('GLOBAL', PARAM_CHOICE, choices=[s('YES'), s('NO')], &
+            description='NO (the default when absent, as in CalculiX): U and RF of nodes with ' // &
+            'local axes (*TRANSFORM) are printed in those axes, their rows marked L; YES: in ' // &
+            'global axes. (Absent rather than a filled-in default, so that the checkpoints of ' // &
+            'decks written before local axes existed still match their steps.)'), &
           p('FREQUENCY', PARAM_INTEGER, default='0', description='Also print every N ' // &
             'increments (0: only at the end of the step and at the time points).'), &
           p('TIME POINTS', PARAM_NAME, description='Print at these times.'), &

@@ -115,6 +115,9 @@ module fcs_model
     integer :: frequency = 0
     integer :: time_points = 0
     integer :: totals = TOTALS_NO
+    !> *NODE PRINT, GLOBAL=YES: nodes with local axes (*TRANSFORM) printed in global axes
+    !> too (default NO, as CalculiX: in their local axes, rows marked L).
+    logical :: global = .false.
   end type output_request_t
 
   !> Limits of the R-minimum step control (defaults explained in doc/theory.md).

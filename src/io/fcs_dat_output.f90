@@ -62,10 +62,10 @@ contains
         select case (request%variables(v)%s)
         case ('U')
           call node_block(this%file, 'displacements (vx,vy,vz)', set%name, time, model, nodes, u, &
-                          request%totals, err)
+                          request%totals, request%global, err)
         case ('RF')
           call node_block(this%file, 'forces (fx,fy,fz)', set%name, time, model, nodes, rf, &
-                          request%totals, err)
+                          request%totals, request%global, err)
         end select
         if (allocated(err)) return
       end do
@@ -73,12 +73,14 @@ contains
     call this%file%commit(err)
   end subroutine dat_node_print
 
-  subroutine node_block(file, title, set_name, time, model, nodes, values, totals, err)
+  subroutine node_block(file, title, set_name, time, model, nodes, values, totals, global, err)
     type(text_file_t), intent(inout) :: file
     character(len=*), intent(in) :: title, set_name
     real(dp), intent(in) :: time, values(:, :)
     type(model_t), intent(in) :: model
     integer, intent(in) :: nodes(:), totals
+    !> Global axes at every node (GLOBAL=YES); else local ones where a node has them.
+    logical, intent(in) :: global
     type(error_t), allocatable, intent(out) :: err
     character(len=64) :: line
     integer :: i
@@ -87,7 +89,7 @@ contains
       do i = 1, size(nodes)
         if (allocated(err)) return
         ! A node with local axes (*TRANSFORM) is printed in them, marked L, as CalculiX does.
-        if (model%transformed(nodes(i))) then
+        if (model%transformed(nodes(i)) .and. .not. global) then
           write (line, '(i10,3es14.6,a)') model%mesh%node_id(nodes(i)), &
             matmul(transpose(model%node_frame(:, :, nodes(i))), values(:, nodes(i))), ' L'
         else
