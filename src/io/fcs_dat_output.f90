@@ -84,12 +84,15 @@ contains
     type(error_t), allocatable, intent(out) :: err
     character(len=64) :: line
     integer :: i
+    logical :: frames
+    frames = .false.
+    if (allocated(model%transformed) .and. .not. global) frames = any(model%transformed)
     if (totals /= TOTALS_ONLY) then
       call header(file, title, set_name, time, err)
       do i = 1, size(nodes)
         if (allocated(err)) return
         ! A node with local axes (*TRANSFORM) is printed in them, marked L, as CalculiX does.
-        if (model%transformed(nodes(i)) .and. .not. global) then
+        if (in_local_axes(frames, model, nodes(i))) then
           write (line, '(i10,3es14.6,a)') model%mesh%node_id(nodes(i)), &
             matmul(transpose(model%node_frame(:, :, nodes(i))), values(:, nodes(i))), ' L'
         else
@@ -106,6 +109,15 @@ contains
       call file%write(trim(line), err)
     end if
   end subroutine node_block
+
+  !> True when `node` has local axes and they are printed (`frames`).
+  logical function in_local_axes(frames, model, node)
+    logical, intent(in) :: frames
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: node
+    in_local_axes = .false.
+    if (frames) in_local_axes = model%transformed(node)
+  end function in_local_axes
 
   !> *EL PRINT: S, E and/or PEEQ (PE) at the integration points of the request's element set;
   !> peeq(q, e) is the equivalent plastic strain; element e has n_points(e) integration points.
