@@ -1250,7 +1250,6 @@ contains
     integer, allocatable :: members(:), elements(:), faces(:)
     logical, allocatable :: used(:)
     integer :: g, h
-    logical :: kind_clash
     allocate (used(content%n_nodes))
     do g = 1, content%n_groups
       do h = 1, g - 1
@@ -1274,12 +1273,7 @@ contains
           if (size(members) == 0) cycle
           elements = element_index(quad_faces%hexahedron(members))
           faces = quad_faces%face(members)
-          call mesh%add_faces_to_surface(group%name, elements, faces, kind_clash)
-          if (kind_clash) then
-            call input_error(err, path // ': physical ' // group_label(group) // ': the mesh already &
-              &has a node-based surface ' // group%name)
-            return
-          end if
+          call mesh%add_faces_to_surface(group%name, elements, faces)
         case default
           members = group_members(content, content%loose_nodes, g, used)
           if (size(members) == 0) cycle
