@@ -33,6 +33,7 @@ contains
       request%kind = OUTPUT_NODE_PRINT
       allowed = [string_t('U'), string_t('RF'), string_t('NT')]
       request%set = model%mesh%find_node_set(param_upper(card, 'NSET'))
+      request%global = param_upper(card, 'GLOBAL') == 'YES'
       if (request%set == 0) call diag%report(card%loc, '*NODE PRINT: node set "' // &
                                              param_value(card, 'NSET') // '" is not defined')
     case ('EL PRINT')

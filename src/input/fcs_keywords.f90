@@ -27,9 +27,9 @@ module fcs_keywords
   integer, parameter :: CONTEXT_MODEL = 1, CONTEXT_STEP = 2, CONTEXT_ANY = 3
 
   !> Output parameters that fcs3d honours by what it always does.
-  character(len=*), parameter :: GLOBAL_ONLY = 'YES or NO give the same: fcs3d has no local ' // &
-    'systems (*TRANSFORM and *ORIENTATION are not supported), so every result is in the ' // &
-    'global system, as CalculiX prints it without them.'
+  character(len=*), parameter :: GLOBAL_ONLY = 'YES or NO give the same: results here are ' // &
+    'in the global system (*ORIENTATION is not supported; local *TRANSFORM axes are used by ' // &
+    '*NODE PRINT only), as CalculiX writes them without local systems.'
   character(len=*), parameter :: SOLIDS_IN_3D = 'CalculiX''s choice for expanded shell and ' // &
     'beam elements; fcs3d''s solid elements are written in 3D either way (OUTPUT=2D is ' // &
     'accepted with a warning).'
@@ -70,8 +70,8 @@ contains
   !> The whole table, in the order of the deck reference.
   function keyword_table() result(table)
     type(keyword_spec_t), allocatable :: table(:)
-    table = [ model_keywords(), material_keywords(), contact_keywords(), step_keywords(), &
-              output_keywords() ]
+    table = [ model_keywords(), material_keywords(), contact_keywords(), constraint_keywords(), &
+              step_keywords(), output_keywords() ]
   end function keyword_table
 
   function model_keywords() result(t)
@@ -317,6 +317,55 @@ contains
       ]
   end function contact_keywords
 
+  !> Linear constraints (fcs_linear_constraints; doc/theory.md 6.2).
+  function constraint_keywords() result(t)
+    type(keyword_spec_t), allocatable :: t(:)
+    t = [ &
+      kw('EQUATION', CONTEXT_MODEL, 'CalculiX', 'Linear equations between displacement ' // &
+         'components, sum_k a_k u_k = 0 (global axes). The first term''s degree of freedom ' // &
+         'is dependent: it is eliminated from the system (u_d = -sum_k>1 a_k u_k / a_1, as ' // &
+         'CalculiX does; a dependent term used in another equation is replaced by its own ' // &
+         'equation), and may not be prescribed by *BOUNDARY. RF at the nodes of an equation ' // &
+         'is their internal force, as CalculiX prints it (the constraint force).', &
+         'per equation: the number of terms N on its own line, then N terms node, direction ' // &
+         '(1..3), coefficient, at most four terms per line.', &
+         [p_none()], data_required=.true.), &
+      kw('MPC', CONTEXT_MODEL, 'CalculiX', 'Multi-point constraints PLANE (the nodes after ' // &
+         'the first three stay in the plane of the first three) and STRAIGHT (the nodes after ' // &
+         'the first two stay on their line), linearised in the initial configuration into ' // &
+         'linear equations (doc/theory.md 6.2.1): exact for small rotations of the plane or ' // &
+         'line. CalculiX''s are nonlinear and turn NLGEOM on; fcs3d keeps each step''s NLGEOM ' // &
+         '(a warning says so). BEAM, MEANROT and user MPCs are refused.', &
+         'MPC name (PLANE or STRAIGHT) and up to 15 nodes, then further lines of up to 16 ' // &
+         'nodes; zero entries are skipped.', [p_none()], data_required=.true.), &
+      kw('RIGID BODY', CONTEXT_MODEL, 'CalculiX', 'The nodes of a set move rigidly with a ' // &
+         'reference node (translation) and a rotation node (whose three degrees of freedom ' // &
+         'are the rotation about x, y, z, radians: *BOUNDARY and *CLOAD on it prescribe ' // &
+         'rotations and apply moments), linearised in the initial configuration: u_p = u_ref ' // &
+         '+ theta x (x_p - x_ref), exact for small rotations (CalculiX''s rigid body is ' // &
+         'nonlinear). RF at the reference and rotation nodes is the force and moment the body ' // &
+         'transmits, as CalculiX prints them.', '', &
+         [p('NSET', PARAM_NAME, description='The nodes of the body (or ELSET).'), &
+          p('ELSET', PARAM_NAME, description='The elements whose nodes form the body (or NSET).'), &
+          p('REF NODE', PARAM_INTEGER, required=.true., description='Reference node (its ' // &
+            'displacement is the translation of the body); CalculiX generates one when it is ' // &
+            'missing, fcs3d needs it defined by *NODE.'), &
+          p('ROT NODE', PARAM_INTEGER, required=.true., description='Rotation node (its ' // &
+            'three degrees of freedom are the rotation of the body, radians); defined by *NODE, ' // &
+            'in no element.')]), &
+      kw('TRANSFORM', CONTEXT_MODEL, 'CalculiX', 'Local axes for the nodes of a node set: ' // &
+         '*BOUNDARY, *CLOAD and *EQUATION terms on them are in these axes, and *NODE PRINT ' // &
+         'prints their U and RF in them (rows marked L), as CalculiX does. The three ' // &
+         'unknowns of such a node are its local components (doc/theory.md 6.2.2).', &
+         'a_x, a_y, a_z, b_x, b_y, b_z: TYPE=R: a point a on the local x axis and a point b ' // &
+         'in the local x-y plane (both through the origin); TYPE=C: two points a, b on the ' // &
+         'axis (local x radial, y tangential, z along b - a).', &
+         [p('NSET', PARAM_NAME, required=.true., description='The nodes that get the axes.'), &
+          p('TYPE', PARAM_CHOICE, default='R', choices=[s('R'), s('C')], &
+            description='R: rectangular; C: cylindrical.')], data_required=.true.) &
+      ]
+  end function constraint_keywords
+
   !> Parameters of *FRICTION: LAW, STICK SLOPE and every law parameter of the friction
   !> library's catalogue (fcs_friction_factory), so that the table stays the library's.
   function friction_keyword_params() result(params)
@@ -520,8 +569,11 @@ contains
       kw('NODE PRINT', CONTEXT_STEP, 'CalculiX', 'Print nodal results to <job>.dat in ' // &
          'CalculiX''s layout.', 'U (displacements), RF (reaction forces), NT (nodal temperatures).', &
          [p('NSET', PARAM_NAME, required=.true., description='Node set to print.'), &
-          p('GLOBAL', PARAM_CHOICE, default='YES', choices=[s('YES'), s('NO')], &
-            description=GLOBAL_ONLY), &
+          p('GLOBAL', PARAM_CHOICE, choices=[s('YES'), s('NO')], &
+            description='NO (the default when absent, as in CalculiX): U and RF of nodes with ' // &
+            'local axes (*TRANSFORM) are printed in those axes, their rows marked L; YES: in ' // &
+            'global axes. (Absent rather than a filled-in default, so that the checkpoints of ' // &
+            'decks written before local axes existed still match their steps.)'), &
           p('FREQUENCY', PARAM_INTEGER, default='0', description='Also print every N ' // &
             'increments (0: only at the end of the step and at the time points).'), &
           p('TIME POINTS', PARAM_NAME, description='Print at these times.'), &

@@ -11,11 +11,12 @@ module fcs_model
   use fcs_thermal_properties, only: thermal_properties_t
   use fcs_contact_pair, only: contact_pair_def_t
   use fcs_element_catalogue, only: element_catalogue_t
+  use fcs_linear_constraints, only: linear_equation_t
   implicit none
   private
   public :: model_t, material_def_t, section_t, amplitude_t, time_points_t, dof_condition_t
   public :: face_load_t, output_request_t, step_t, rmin_settings_t, initial_stress_t
-  public :: body_load_t, BODY_GRAV, BODY_CENTRIF
+  public :: body_load_t, BODY_GRAV, BODY_CENTRIF, transform_def_t
   public :: friction_def_t, friction_change_t, interaction_def_t, contact_pair_def_t, checkpoint_settings_t
   public :: history_item_t, history_request_t, HISTORY_NSET_U, HISTORY_NSET_RF
   public :: HISTORY_CONTACT, HISTORY_ENERGY, HISTORY_RESIDUAL
@@ -62,6 +63,17 @@ module fcs_model
     type(thermal_properties_t) :: thermal
     type(source_loc_t) :: expansion_loc, elastic_loc
   end type material_def_t
+
+  !> *TRANSFORM: local axes for the nodes of a node set. TYPE=R: a is a point on the local x
+  !> axis, b a point of the local x-y plane (through the origin); TYPE=C: a and b are two
+  !> points of the axis of a cylindrical system (local x radial, y tangential, z axial).
+  type :: transform_def_t
+    integer :: node_set = 0
+    logical :: cylindrical = .false.
+    real(dp) :: a(3) = 0.0_dp
+    real(dp) :: b(3) = 0.0_dp
+    type(source_loc_t) :: loc
+  end type transform_def_t
 
   !> *SOLID SECTION: a material and a formulation for an element set. The material may be
   !> defined after the section (as CalculiX allows): its name is resolved after the last card.
@@ -141,6 +153,9 @@ module fcs_model
     integer :: frequency = 0
     integer :: time_points = 0
     integer :: totals = TOTALS_NO
+    !> *NODE PRINT, GLOBAL=YES: nodes with local axes (*TRANSFORM) printed in global axes
+    !> too (default NO, as CalculiX: in their local axes, rows marked L).
+    logical :: global = .false.
   end type output_request_t
 
   !> Limits of the R-minimum step control (defaults explained in doc/theory.md).
@@ -295,6 +310,18 @@ module fcs_model
     !> *SOLVER, REUSE TOLERANCE: relative residual of a solve with reused factors (0: off).
     real(dp) :: reuse_tolerance = 0.0_dp
     type(interaction_def_t), allocatable :: interactions(:)
+    !> Linear constraints between displacement components (*EQUATION), in global axes; the
+    !> first term of each is its dependent degree of freedom (eliminated, doc/theory.md 6.2).
+    type(linear_equation_t), allocatable :: equations(:)
+    !> Rotation nodes of *RIGID BODY: their three degrees of freedom are rotations [rad].
+    integer, allocatable :: rotation_nodes(:)
+    !> *TRANSFORM cards, and the local axes they give the nodes (resolved after the last
+    !> card): node_frame(:, a, node) is local axis a in global components; `transformed`
+    !> marks the nodes that have local axes (*BOUNDARY, *CLOAD, *EQUATION terms and the
+    !> printed U and RF are in them there, as in CalculiX).
+    type(transform_def_t), allocatable :: transforms(:)
+    real(dp), allocatable :: node_frame(:, :, :)
+    logical, allocatable :: transformed(:)
     type(contact_pair_def_t), allocatable :: contact_pairs(:)
     !> Checksums of the model definition (its cards and the mesh) and of each step's cards,
     !> so that a restart can tell whether the deck still describes the checkpoint's model.

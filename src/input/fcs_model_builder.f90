@@ -35,6 +35,8 @@ module fcs_model_builder
   use fcs_build_contact, only: handle_surface_interaction, handle_surface_behavior, &
                                handle_friction, handle_contact_pair, handle_tie, &
                                resolve_pair_interactions, handle_change_friction
+  use fcs_build_constraints, only: handle_equation, handle_mpc, handle_rigid_body, &
+                                   handle_transform, resolve_transforms
   use fcs_model, only: model_t, step_t
   use fcs_element_loops, only: mesh_kinds
   use fcs_model_checks, only: check_model
@@ -92,6 +94,7 @@ contains
     if (.not. diag%is_full()) call resolve_temperatures(model, state, diag)
     if (.not. diag%is_full()) call resolve_section_materials(model, diag)
     if (.not. diag%is_full()) call resolve_pair_interactions(model, diag)
+    if (.not. diag%is_full()) call resolve_transforms(model, diag)
     if (.not. diag%has_errors()) call check_model(model, diag, deck)
     if (.not. diag%has_errors()) call check_body_loads(model, diag)
     model%warnings = diag%warning_list()
@@ -174,7 +177,8 @@ contains
     if (allocated(err)) return
     call model%mesh%init(mesh_kinds(model%element_kinds))
     allocate (model%materials(0), model%sections(0), model%amplitudes(0), &
-              model%time_points(0), model%steps(0), model%interactions(0), model%contact_pairs(0), &
+              model%time_points(0), model%steps(0), model%interactions(0), model%equations(0), &
+              model%rotation_nodes(0), model%transforms(0), model%contact_pairs(0), &
               model%histories(0), model%warnings(0))
   end subroutine init_model
 
@@ -267,6 +271,14 @@ contains
       call handle_contact_pair(card, model, diag)
     case ('TIE')
       call handle_tie(card, model, diag)
+    case ('EQUATION')
+      call handle_equation(card, model, diag)
+    case ('MPC')
+      call handle_mpc(card, model, diag)
+    case ('RIGID BODY')
+      call handle_rigid_body(card, model, diag)
+    case ('TRANSFORM')
+      call handle_transform(card, model, diag)
     case ('AMPLITUDE')
       call handle_amplitude(card, model, diag)
     case ('TIME POINTS')
@@ -501,10 +513,12 @@ contains
       reason = 'fcs3d solves quasi-static problems with its static-explicit stepper only (*STATIC)'
     else if (is_one_of(keyword, [character(len=34) :: 'SHELL SECTION', 'BEAM SECTION', &
              'MEMBRANE SECTION', 'SPRING', 'DASHPOT', 'MASS', 'USER ELEMENT', 'GAP'])) then
-      reason = 'fcs3d has 8-node hexahedra (C3D8) only'
-    else if (is_one_of(keyword, [character(len=34) :: 'EQUATION', 'MPC', 'RIGID BODY', &
-             'COUPLING', 'DISTRIBUTING', 'KINEMATIC', 'TRANSFORM', 'CYCLIC SYMMETRY MODEL'])) then
-      reason = 'constraints other than *BOUNDARY are not available yet'
+      reason = 'fcs3d has 3D solid elements only (C3D4, C3D6, C3D8, C3D8R, C3D8I, C3D10, ' // &
+               'C3D15, C3D20, C3D20R)'
+    else if (is_one_of(keyword, [character(len=34) :: &
+             'COUPLING', 'DISTRIBUTING', 'KINEMATIC', 'CYCLIC SYMMETRY MODEL'])) then
+      reason = 'constraints other than *BOUNDARY, *EQUATION, *MPC (PLANE, STRAIGHT), *RIGID ' // &
+               'BODY and *TRANSFORM are not available yet'
     else if (is_one_of(keyword, [character(len=34) :: 'ORIENTATION', &
              'CONDUCTIVITY', 'SPECIFIC HEAT', 'HYPERELASTIC', 'HYPERFOAM', 'CREEP', &
              'USER MATERIAL', 'DEFORMATION PLASTICITY', 'RATE DEPENDENT', 'CAP PLASTICITY', &

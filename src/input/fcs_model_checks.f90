@@ -11,6 +11,7 @@ module fcs_model_checks
   use fcs_mesh, only: SURFACE_FACES
   use fcs_model_supports, only: check_supports
   use fcs_build_plasticity, only: check_plasticity
+  use fcs_linear_constraints, only: constraint_map_t
   use fcs_strings, only: str, parse_int
   implicit none
   private
@@ -45,6 +46,7 @@ contains
       call diag%report(deck_end(deck), 'the deck ends here and defines no step (*STEP ... ' // &
                        '*END STEP): nothing to compute')
     end if
+    call check_constraints(model, diag)
     if (.not. diag%has_errors()) call check_supports(model, diag)
   end subroutine check_model
 
@@ -72,6 +74,69 @@ contains
       end associate
     end do
   end subroutine check_thermal_kinds
+
+  !> The linear constraints resolve (fcs_linear_constraints: one dependent term per degree
+  !> of freedom, no cycles), and no step prescribes a dependent degree of freedom by
+  !> *BOUNDARY: CalculiX stops on that too ("*ERROR in cascade: the DOF corresponding to node
+  !> N in direction d is detected on the dependent side of a MPC and a SPC").
+  subroutine check_constraints(model, diag)
+    type(model_t), intent(in) :: model
+    type(diagnostics_t), intent(inout) :: diag
+    type(constraint_map_t) :: map
+    type(error_t), allocatable :: err
+    integer :: k, i, d, r
+    if (size(model%equations) == 0) return
+    call check_rotation_nodes(model, diag)
+    do k = 1, size(model%equations)
+      if (model%equations(k)%origin == '*EQUATION') cycle
+      if (.not. any(model%transformed(model%equations(k)%terms(:)%node))) cycle
+      call diag%report(model%equations(k)%loc, model%equations(k)%origin // ': a node of it ' // &
+        'has local axes (*TRANSFORM); fcs3d builds this constraint in global axes and does ' // &
+        'not combine it with *TRANSFORM')
+      return
+    end do
+    call map%init(model%equations, model%mesh%n_nodes, model%mesh%node_id, err)
+    if (allocated(err)) then
+      call diag%report_plain(err%message)
+      return
+    end if
+    do k = 1, size(model%steps)
+      do i = 1, size(model%steps(k)%boundary)
+        associate (c => model%steps(k)%boundary(i))
+          d = 3 * (c%node - 1) + c%dof
+          if (.not. map%dependent(d)) cycle
+          r = map%row_of(d)
+          call diag%report(model%equations(r)%loc, model%equations(r)%origin // ': node ' // &
+            str(model%mesh%node_id(c%node)) // ', direction ' // str(c%dof) // ' is the ' // &
+            'dependent term of this equation and is prescribed by *BOUNDARY in step "' // &
+            model%steps(k)%name // '" (CalculiX stops too: a degree of freedom cannot be on ' // &
+            'the dependent side of an equation and prescribed); make another term dependent')
+          return
+        end associate
+      end do
+    end do
+  end subroutine check_constraints
+
+  !> The rotation node of a *RIGID BODY holds rotations: it may not be a node of an element.
+  subroutine check_rotation_nodes(model, diag)
+    type(model_t), intent(in) :: model
+    type(diagnostics_t), intent(inout) :: diag
+    integer :: e, k, r
+    do e = 1, model%mesh%n_elements
+      do k = 1, size(model%rotation_nodes)
+        if (.not. any(model%mesh%element_nodes(e) == model%rotation_nodes(k))) cycle
+        do r = 1, size(model%equations)
+          if (.not. model%equations(r)%transmits) cycle
+          if (.not. any(model%equations(r)%terms(:)%node == model%rotation_nodes(k))) cycle
+          call diag%report(model%equations(r)%loc, '*RIGID BODY: ROT NODE ' // &
+            str(model%mesh%node_id(model%rotation_nodes(k))) // ' is a node of element ' // &
+            str(model%mesh%element_id(e)) // '; its degrees of freedom are the rotations of ' // &
+            'the body: use a node in no element')
+          return
+        end do
+      end do
+    end do
+  end subroutine check_rotation_nodes
 
   !> element_section(e) from the *SOLID SECTIONs; an element in two sections or in none is an error.
   subroutine assign_sections(model, diag, deck)

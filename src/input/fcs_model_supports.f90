@@ -2,8 +2,13 @@
 !> and rigid-body modes that no *BOUNDARY removes, step by step.
 !>
 !> Bodies are the connected groups of elements (sharing nodes). Bodies joined by a contact
-!> pair or a tie form an assembly: contact can hold one body against another, so the six
-!> rigid-body modes are checked per assembly. A displacement or velocity condition on degree
+!> pair, a tie or a linear constraint (*EQUATION) form an assembly: contact can hold one body
+!> against another, so the six rigid-body modes are checked per assembly. A linear
+!> constraint sum_k a_k u_k = 0 removes the rigid motions it does not allow: its row is
+!> sum_k a_k [e_k, (x_k - c)/L x e_k] (zero for an equation that rigid motions satisfy, such
+!> as a tie of coincident or interpolated nodes). A node in no element that a constraint
+!> names is not free: it moves with the constraint. The degrees of freedom of a *RIGID BODY's
+!> rotation node are the rotation w of the rigid motion, not a displacement. A displacement or velocity condition on degree
 !> of freedom d of a node at x (relative to the assembly centroid c, scaled by the assembly
 !> size L) removes the row [e_d, (x - c)/L x e_d] from the rigid motions u = t + w x (x - c);
 !> the modes left are the null space of the 6 x 6 sum of those rows' outer products. This
@@ -72,6 +77,9 @@ contains
     do e = 1, model%mesh%n_elements
       model%free_node(model%mesh%element_nodes(e)) = .false.
     end do
+    do e = 1, size(model%equations)
+      model%free_node(model%equations(e)%terms(:)%node) = .false.
+    end do
   end subroutine mark_free_nodes
 
   subroutine check_loads_on_free_nodes(model, diag)
@@ -116,6 +124,13 @@ contains
       do j = 1, size(slaves)
         if (.not. model%free_node(slaves(j))) call unite(parent, master_node, slaves(j))
       end do
+    end do
+    do k = 1, size(model%equations)
+      associate (terms => model%equations(k)%terms)
+        do j = 2, size(terms)
+          call unite(parent, terms(1)%node, terms(j)%node)
+        end do
+      end associate
     end do
     allocate (assembly(n))
     do j = 1, n
@@ -162,14 +177,52 @@ contains
       a = slot(assembly(node))
       axis = 0.0_dp
       axis(step%boundary(i)%dof) = 1.0_dp
+      ! A condition at a node with local axes (*TRANSFORM) is on a local component.
+      if (model%transformed(node)) axis = model%node_frame(:, step%boundary(i)%dof, node)
       row(1:3) = axis
       row(4:6) = cross((model%mesh%x(:, node) - centre(:, a)) / size_l(a), axis)
+      ! The rotation node of a *RIGID BODY: its degree of freedom d is the rotation w_d.
+      if (any(model%rotation_nodes == node)) row = [0.0_dp, 0.0_dp, 0.0_dp, axis]
       gram(:, :, a) = gram(:, :, a) + spread(row, 2, 6) * spread(row, 1, 6)
     end do
+    call add_equation_rows(model, assembly, slot, centre, size_l, gram)
     do a = 1, size(roots)
       call report_free_modes(model, step, assembly, roots(a), gram(:, :, a), moved, diag)
     end do
   end subroutine check_step
+
+  !> The rows of the linear constraints (module header) added to their assembly's matrix,
+  !> each scaled by its largest coefficient.
+  subroutine add_equation_rows(model, assembly, slot, centre, size_l, gram)
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: assembly(:), slot(:)
+    real(dp), intent(in) :: centre(:, :), size_l(:)
+    real(dp), intent(inout) :: gram(:, :, :)
+    real(dp) :: row(6), axis(3)
+    integer :: k, j, a, node
+    do k = 1, size(model%equations)
+      associate (terms => model%equations(k)%terms)
+        if (assembly(terms(1)%node) == 0) cycle
+        a = slot(assembly(terms(1)%node))
+        row = 0.0_dp
+        do j = 1, size(terms)
+          node = terms(j)%node
+          axis = 0.0_dp
+          axis(terms(j)%dof) = terms(j)%coefficient
+          if (model%transformed(node)) axis = terms(j)%coefficient * model%node_frame(:, terms(j)%dof, node)
+          if (any(model%rotation_nodes == node)) then
+            ! A rotation w = omega / L (the rigid motions are u = t + omega x (x - c) / L).
+            row(4:6) = row(4:6) + axis / size_l(a)
+            cycle
+          end if
+          row(1:3) = row(1:3) + axis
+          row(4:6) = row(4:6) + cross((model%mesh%x(:, node) - centre(:, a)) / size_l(a), axis)
+        end do
+        row = row / maxval(abs(terms(:)%coefficient))
+        gram(:, :, a) = gram(:, :, a) + spread(row, 2, 6) * spread(row, 1, 6)
+      end associate
+    end do
+  end subroutine add_equation_rows
 
   !> The null space of `gram` (6 x 6, scaled rigid motions) as an error, if not empty.
   subroutine report_free_modes(model, step, assembly, id, gram, moved, diag)

@@ -65,16 +65,17 @@ contains
         select case (request%variables(v)%s)
         case ('U')
           call node_block(this%file, 'displacements (vx,vy,vz)', set%name, time, model, nodes, u, &
-                          request%totals, err)
+                          request%totals, request%global, err)
         case ('RF')
           call node_block(this%file, 'forces (fx,fy,fz)', set%name, time, model, nodes, rf, &
-                          request%totals, err)
+                          request%totals, request%global, err)
         case ('NT')
           allocate (nt(1, size(u, 2)))
           nt = 0.0_dp
           if (present(temperature)) nt(1, :) = temperature
+          ! A scalar: no local axes.
           call node_block(this%file, 'temperatures', set%name, time, model, nodes, nt, &
-                          TOTALS_NO, err)
+                          TOTALS_NO, .true., err)
           deallocate (nt)
         end select
         if (allocated(err)) return
@@ -83,20 +84,31 @@ contains
     call this%file%commit(err)
   end subroutine dat_node_print
 
-  subroutine node_block(file, title, set_name, time, model, nodes, values, totals, err)
+  subroutine node_block(file, title, set_name, time, model, nodes, values, totals, global, err)
     type(text_file_t), intent(inout) :: file
     character(len=*), intent(in) :: title, set_name
     real(dp), intent(in) :: time, values(:, :)
     type(model_t), intent(in) :: model
     integer, intent(in) :: nodes(:), totals
+    !> Global axes at every node (GLOBAL=YES); else local ones where a node has them.
+    logical, intent(in) :: global
     type(error_t), allocatable, intent(out) :: err
     character(len=64) :: line
     integer :: i
+    logical :: frames
+    frames = .false.
+    if (allocated(model%transformed) .and. .not. global) frames = any(model%transformed)
     if (totals /= TOTALS_ONLY) then
       call header(file, title, set_name, time, err)
       do i = 1, size(nodes)
         if (allocated(err)) return
-        write (line, '(i10,3es14.6)') model%mesh%node_id(nodes(i)), values(:, nodes(i))
+        ! A node with local axes (*TRANSFORM) is printed in them, marked L, as CalculiX does.
+        if (in_local_axes(frames, model, nodes(i))) then
+          write (line, '(i10,3es14.6,a)') model%mesh%node_id(nodes(i)), &
+            matmul(transpose(model%node_frame(:, :, nodes(i))), values(:, nodes(i))), ' L'
+        else
+          write (line, '(i10,3es14.6)') model%mesh%node_id(nodes(i)), values(:, nodes(i))
+        end if
         call file%write(trim(line), err)
       end do
     end if
@@ -108,6 +120,15 @@ contains
       call file%write(trim(line), err)
     end if
   end subroutine node_block
+
+  !> True when `node` has local axes and they are printed (`frames`).
+  logical function in_local_axes(frames, model, node)
+    logical, intent(in) :: frames
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: node
+    in_local_axes = .false.
+    if (frames) in_local_axes = model%transformed(node)
+  end function in_local_axes
 
   !> *EL PRINT: S, E, PEEQ (PE), ENER and/or ELSE at the integration points (ELSE: per element)
   !> of the request's element set; peeq(q, e) is the equivalent plastic strain; element e has

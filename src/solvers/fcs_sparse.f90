@@ -33,6 +33,7 @@ module fcs_sparse
     procedure :: build => sparse_build
     procedure :: zero => sparse_zero
     procedure :: add_matrix => sparse_add_matrix
+    procedure :: add_value => sparse_add_value
     procedure :: has_block => sparse_has_block
     procedure :: multiply => sparse_multiply
     procedure :: apply_dirichlet => sparse_apply_dirichlet
@@ -201,6 +202,22 @@ contains
       end do
     end do
   end subroutine sparse_add_matrix
+
+  !> a_ij = a_ij + value (row i, column j: degrees of freedom). `missing` is true, and
+  !> nothing is added, if nodes of i and j are not coupled in the pattern.
+  subroutine sparse_add_value(this, i, j, value, missing)
+    class(sparse_matrix_t), intent(inout) :: this
+    integer, intent(in) :: i, j
+    real(dp), intent(in) :: value
+    logical, intent(out) :: missing
+    integer :: offset
+    integer(i8) :: pos
+    offset = block_offset(this, (i - 1) / DOFS_PER_NODE + 1, (j - 1) / DOFS_PER_NODE + 1)
+    missing = offset < 0
+    if (missing) return
+    pos = this%row_ptr(i) + DOFS_PER_NODE * offset + (j - 1 - DOFS_PER_NODE * ((j - 1) / DOFS_PER_NODE))
+    this%val(pos) = this%val(pos) + value
+  end subroutine sparse_add_value
 
   !> y = A x.
   subroutine sparse_multiply(this, x, y)

@@ -247,6 +247,9 @@ contains
       end if
       call distribute_work(run, model, err)
       if (allocated(err)) return
+      call a%links%init(model%equations, model%mesh%n_nodes, model%mesh%node_id, err, &
+                        model%node_frame, model%transformed)
+      if (allocated(err)) return
       call build_pattern(a, model)
       call create_linear_solver(model%solver_name, a%solver, err)
       if (allocated(err)) return

@@ -29,6 +29,7 @@ module fcs_static_explicit
   use fcs_contact_system, only: contact_system_t
   use fcs_comm, only: comm_t
   use fcs_strings, only: str
+  use fcs_linear_constraints, only: constraint_map_t
   implicit none
   private
   public :: analysis_t, take_increment, increment_record_t, build_pattern, contact_positions
@@ -92,7 +93,12 @@ module fcs_static_explicit
     !> Equilibrium iterations: external forces at the end of the increment, nodal force
     !> flux (the force scale, per node), the correction of one iteration.
     real(dp), allocatable :: f_ext_end(:), flux(:), correction(:)
+    !> Degrees of freedom held in the solve: prescribed ones, those of nodes in no element,
+    !> and the dependent ones of the linear constraints (`links`).
     logical, allocatable :: constrained(:)
+    !> The linear constraints (*EQUATION) resolved into u_D = T u_I, eliminated from every
+    !> solve (fcs_linear_constraints, (L1)-(L2); doc/theory.md 6.2).
+    type(constraint_map_t) :: links
     type(rmin_collector_t) :: collector
     type(phase_timer_t) :: timers
     !> Node-to-point contact pairs, and their nodal forces (3*n_nodes).
@@ -252,8 +258,11 @@ contains
       call assemble_system(a, model, step, t0, dt, err)
       call a%timers%stop('assembly')
       if (allocated(err)) return
-      a%rhs_residual = merge(0.0_dp, a%f_ext0 + a%f_contact - a%f_int, a%constrained)
-      call impose_constraints(a)
+      a%rhs_residual = a%f_ext0 + a%f_contact - a%f_int
+      call a%links%reduce_vector(a%rhs_residual)
+      where (a%constrained) a%rhs_residual = 0.0_dp
+      call impose_constraints(a, err)
+      if (allocated(err)) return
       call solve_system(a, model%mesh%node_id, err)
       call a%comm%agree_error(err)
       if (allocated(err)) return
@@ -473,7 +482,9 @@ contains
     a%f_contact = 0.0_dp
     if (a%contact%n_slaves() > 0) call a%contact%forces(a%x_contact, a%state%contact, a%f_contact)
     call external_force_at(a, model, step%nlgeom, a%state%step_time, a%f_ext_end)
-    a%rhs_residual = merge(0.0_dp, a%f_ext_end + a%f_contact - a%f_int, a%constrained)
+    a%rhs_residual = a%f_ext_end + a%f_contact - a%f_int
+    call a%links%reduce_vector(a%rhs_residual)
+    where (a%constrained) a%rhs_residual = 0.0_dp
     worst = 0.0_dp
     record%residual_node = 0
     do node = 1, model%mesh%n_nodes
@@ -515,10 +526,12 @@ contains
     call a%timers%stop('assembly')
     if (allocated(err)) return
     a%correction = 0.0_dp
-    call constrain_system(a, a%correction)
+    call constrain_system(a, a%correction, err)
+    if (allocated(err)) return
     a%rhs = merge(0.0_dp, residual, a%constrained)
     call a%reuse%prepare(a%solver, a%matrix, a%timers, err)
     if (.not. allocated(err)) call a%reuse%solve(a%solver, a%matrix, a%rhs, a%correction, a%timers, err)
+    if (.not. allocated(err)) call a%links%expand_vector(a%correction)
     if (.not. allocated(err)) call check_finite(a%correction, model%mesh%node_id, err)
     call a%comm%agree_error(err)
   end subroutine correction
@@ -645,7 +658,61 @@ contains
     if (allocated(a%loading%bc_dof)) call external_force_at(a, model, nlgeom, a%state%step_time, a%f_ext_end)
     where (.not. supported_dofs(a, model)) a%f_ext_end = 0.0_dp
     reaction = reshape(a%f_int - a%f_contact - a%f_ext_end, shape(reaction))
+    call local_axes_reactions(a, model, reaction)
+    call transmitted_reactions(a, model, reaction)
   end subroutine current_reactions
+
+  !> At a node with local axes (*TRANSFORM) the prescribed degrees of freedom are local
+  !> components: the load taken off is that of the prescribed local directions,
+  !> R (f_int - f_c - P R^T f_ext) with P the projection on them.
+  subroutine local_axes_reactions(a, model, reaction)
+    type(analysis_t), intent(inout) :: a
+    type(model_t), intent(in) :: model
+    real(dp), intent(inout) :: reaction(:, :)
+    real(dp) :: local(3), load(3)
+    logical, allocatable :: prescribed(:)
+    integer :: node, i
+    if (.not. any(model%transformed)) return
+    call external_force_at(a, model, model%steps(min(a%state%step, size(model%steps)))%nlgeom, &
+                           a%state%step_time, a%f_ext_end)
+    allocate (prescribed(3 * model%mesh%n_nodes))
+    prescribed = .false.
+    if (allocated(a%loading%bc_dof)) prescribed(a%loading%bc_dof) = .true.
+    do node = 1, model%mesh%n_nodes
+      if (.not. model%transformed(node)) cycle
+      associate (frame => model%node_frame(:, :, node))
+        local = matmul(transpose(frame), a%f_int(3 * node - 2:3 * node) - a%f_contact(3 * node - 2:3 * node))
+        load = matmul(transpose(frame), a%f_ext_end(3 * node - 2:3 * node))
+        do i = 1, 3
+          if (prescribed(3 * node - 3 + i)) local(i) = local(i) - load(i)
+        end do
+        reaction(:, node) = matmul(frame, local)
+      end associate
+    end do
+  end subroutine local_axes_reactions
+
+  !> At the nodes outside the structure that constraints transmit force to (the reference and
+  !> rotation nodes of a *RIGID BODY), RF is the force (moment) the constraint transmits:
+  !> T^T (f_int - f_c) there (L2), less the load applied there at a prescribed degree of
+  !> freedom, as CalculiX prints RF at the nodes of its RIGID MPCs (resultsforc: their
+  !> constraint forces are left on those nodes).
+  subroutine transmitted_reactions(a, model, reaction)
+    type(analysis_t), intent(in) :: a
+    type(model_t), intent(in) :: model
+    real(dp), intent(inout) :: reaction(:, :)
+    real(dp), allocatable :: transmitted(:)
+    integer :: k, j, node
+    if (.not. any(model%equations(:)%transmits)) return
+    transmitted = a%f_int - a%f_contact
+    call a%links%reduce_vector(transmitted)
+    do k = 1, size(model%equations)
+      if (.not. model%equations(k)%transmits) cycle
+      do j = 2, size(model%equations(k)%terms)
+        node = model%equations(k)%terms(j)%node
+        reaction(:, node) = transmitted(3 * node - 2:3 * node) - a%f_ext_end(3 * node - 2:3 * node)
+      end do
+    end do
+  end subroutine transmitted_reactions
 
   !> The degrees of freedom the current step prescribes (and those of nodes in no element).
   function supported_dofs(a, model) result(supported)
@@ -699,20 +766,34 @@ contains
   !> from its own entries (their right-hand-side parts are summed), rank 0 puts `scale` on
   !> the constrained diagonals, scale being the mean absolute diagonal of the free rows of
   !> the summed matrix (approximated by the sum of the processes' diagonals).
-  subroutine impose_constraints(a)
+  subroutine impose_constraints(a, err)
     type(analysis_t), intent(inout) :: a
-    call constrain_system(a, a%prescribed)
-    where (.not. a%constrained) a%rhs = a%rhs + a%f_ext1 - a%f_ext0
+    type(error_t), allocatable, intent(out) :: err
+    real(dp), allocatable :: load(:)
+    call constrain_system(a, a%prescribed, err)
+    if (allocated(err)) return
+    load = a%f_ext1 - a%f_ext0
+    call a%links%reduce_vector(load)
+    where (.not. a%constrained) a%rhs = a%rhs + load
   end subroutine impose_constraints
 
-  !> Eliminate the prescribed degrees of freedom (values `values`) from the matrix: a%rhs gets
-  !> the eliminated columns' contribution on the free rows and scale * value on the
-  !> constrained ones, whose diagonals become `scale`.
-  subroutine constrain_system(a, values)
+  !> Eliminate the dependent degrees of freedom of the linear constraints (K <- T^T K T,
+  !> fcs_linear_constraints (L2); each process its own share), then the prescribed ones
+  !> (values `values`) from the matrix: a%rhs gets the eliminated columns' contribution on
+  !> the free rows and scale * value on the constrained ones, whose diagonals become `scale`.
+  subroutine constrain_system(a, values, err)
     type(analysis_t), intent(inout) :: a
     real(dp), intent(in) :: values(:)
+    type(error_t), allocatable, intent(out) :: err
     real(dp) :: total(2), scale
     integer :: n_free
+    logical :: missing
+    call a%links%reduce_matrix(a%matrix, missing)
+    if (missing) then
+      call fatal_error(err, 'eliminating the linear constraints: the sparse pattern lacks ' // &
+                       'an entry of T^T K T (internal error: cliques not expanded)')
+      return
+    end if
     call a%matrix%free_diagonal_sum(a%constrained, total(1), n_free)
     total(2) = real(n_free, dp)
     call a%comm%sum_real(total)
@@ -770,6 +851,7 @@ contains
       clique_ptr = [clique_ptr, [(last + node, node = 1, n_nodes)], &
                     last + n_nodes + a%pressure_ptr(2:) - 1]
     end if
+    call a%links%expand_cliques(clique_ptr, clique_nodes)
     call a%matrix%build(model%mesh%n_nodes, clique_ptr, clique_nodes)
     a%ordering_due = a%comm%size > 1
   end subroutine build_pattern
@@ -793,6 +875,7 @@ contains
     call a%elements%cliques([(e, e = 1, model%mesh%n_elements)], clique_ptr, clique_nodes)
     if (a%contact%n_slaves() > 0) call a%contact%cliques(a%state%contact, clique_ptr, &
                                                          clique_nodes, keep_centres=.true.)
+    call a%links%expand_cliques(clique_ptr, clique_nodes)
     call whole%build(model%mesh%n_nodes, clique_ptr, clique_nodes)
     call metis_equation_order(whole, position, err)
     call whole%free()
@@ -819,6 +902,9 @@ contains
     a%f_ext1 = 0.0_dp
     call a%loading%force_at(model%amplitudes, t0, a%f_ext0)
     call a%loading%force_at(model%amplitudes, t1, a%f_ext1)
+    ! Concentrated loads on nodes with local axes (*TRANSFORM) are given in those axes.
+    call a%links%to_global(a%f_ext0)
+    call a%links%to_global(a%f_ext1)
     call assemble_pressures(a%elements, a%loading, model, t0, a%state%x, nlgeom, a%f_ext0)
     call assemble_pressures(a%elements, a%loading, model, t1, a%state%x, nlgeom, a%f_ext1)
     if (size(a%loading%body_element) > 0) then
@@ -881,6 +967,7 @@ contains
     real(dp), intent(out) :: f_ext(:)
     f_ext = 0.0_dp
     call a%loading%force_at(model%amplitudes, t, f_ext)
+    call a%links%to_global(f_ext)
     call assemble_pressures(a%elements, a%loading, model, t, a%state%x, nlgeom, f_ext)
     if (size(a%loading%body_element) > 0) &
       call assemble_body_loads(a%elements, a%loading, model, t, a%state%x, nlgeom, f_ext)
@@ -898,13 +985,17 @@ contains
     do node = 1, model%mesh%n_nodes
       if (model%free_node(node)) a%constrained(3 * node - 2:3 * node) = .true.
     end do
+    if (a%links%active()) a%constrained = a%constrained .or. a%links%dependent
     do i = 1, size(a%loading%bc_dof)
       dof = a%loading%bc_dof(i)
       node = (dof - 1) / 3 + 1
       direction = dof - 3 * (node - 1)
       a%constrained(dof) = .true.
+      ! At a node with local axes (*TRANSFORM) the unknowns, and so the prescribed values,
+      ! are the local components.
       a%prescribed(dof) = a%loading%prescribed_target(model%amplitudes, i, t0, t1, &
-        a%state%u(direction, node), a%state%step_start_u(direction, node))
+        a%links%to_local(a%state%u(:, node), node, direction), &
+        a%links%to_local(a%state%step_start_u(:, node), node, direction))
     end do
   end subroutine prescribed_increments
 
@@ -923,6 +1014,8 @@ contains
       call a%reuse%solve(a%solver, a%matrix, a%rhs_residual, a%du_residual, a%timers, err, &
                          reference_norm=norm2(a%rhs))
     if (allocated(err)) return
+    call a%links%expand_vector(a%du_load)
+    call a%links%expand_vector(a%du_residual)
     call check_finite(a%du_load, node_id, err)
     if (.not. allocated(err)) call check_finite(a%du_residual, node_id, err)
   end subroutine solve_system
