@@ -316,7 +316,8 @@ contains
   !> kinds.geo's box [0,2] x [0,1] x [0,1] (shape 3): hexahedra (kind `hexahedra`) for x < 1,
   !> prisms (kind `prisms`) for x > 1; `kinds` as read_gmsh's choice of kinds, indices into the
   !> catalogue. Volume 2; the physical surfaces XMIN, XMAX (quadrilaterals), YMIN, ZMIN
-  !> (quadrilaterals and triangles) on their planes, outward, with their areas.
+  !> (quadrilaterals and triangles) on their planes, outward, with their areas; the internal
+  !> surface MID on the elements its normal points out of.
   subroutine test_mixed(suite, name, hexahedra, prisms, kinds)
     type(test_suite_t), intent(inout) :: suite
     character(len=*), intent(in) :: name, hexahedra, prisms
@@ -324,7 +325,7 @@ contains
     type(mesh_t) :: mesh
     type(error_t), allocatable :: err
     character(len=:), allocatable :: what
-    integer :: n_hex, n_prism
+    integer :: n_hex, n_prism, s
     what = name // ' (' // hexahedra // ', ' // prisms // ')'
     call mesh%init(catalogue_kinds())
     call read_gmsh(data_dir // name, mesh, err, kinds=kinds)
@@ -343,6 +344,12 @@ contains
     call check_faces(suite, mesh, what, 'XMAX', 1, 2.0_dp, 1.0_dp, 1.0_dp)
     call check_faces(suite, mesh, what, 'YMIN', 2, 0.0_dp, -1.0_dp, 2.0_dp)
     call check_faces(suite, mesh, what, 'ZMIN', 3, 0.0_dp, -1.0_dp, 2.0_dp)
+    ! MID, the internal surface x = 1, has elements with normal +x (kinds.geo): each is the
+    ! face of the hexahedron (x < 1) out of which that normal points, not the prism's.
+    call check_faces(suite, mesh, what, 'MID', 1, 1.0_dp, 1.0_dp, 1.0_dp)
+    s = mesh%find_surface('MID')
+    if (s > 0) call suite%check(all(mesh%element_kind(mesh%surfaces(s)%element) == &
+      mesh%find_kind(hexahedra)), what // ': MID faces are the hexahedra''s')
     call suite%equal_int(set_size(mesh, 'BLOCK', .false.), 36, what // ': element set BLOCK')
     call suite%equal_int(set_size(mesh, 'BLOCK', .true.), mesh%n_nodes, what // ': node set BLOCK')
   end subroutine test_mixed
@@ -443,7 +450,7 @@ contains
     call expect_error(suite, 'bad_v22.msh', 'version 2.2 is not supported', 'gmsh -format msh41')
     call expect_error(suite, 'bad_partitioned.msh', 'partitioned .msh files are not supported', '-part 0')
     call expect_error(suite, 'bad_no_hexahedra.msh', 'no 3D elements to read', 'Physical Volume')
-    call expect_error(suite, 'bad_quad9.msh', 'bad_quad9.msh:560: 9-node quadrangle (second order) &
+    call expect_error(suite, 'bad_quad9.msh', 'bad_quad9.msh:561: 9-node quadrangle (second order) &
       &elements (gmsh element type 10) in physical surface 5 "ZMIN"', 'Mesh.SecondOrderIncomplete = 1')
     call expect_error(suite, 'bad_hex27.msh', '27-node hexahedron (second order) elements (gmsh &
       &element type 12) in volume 1', 'Mesh.SecondOrderIncomplete = 1')

@@ -4,7 +4,8 @@
 // the line x = 1). Order 1 or 2 from the command line (-order 2 with
 // Mesh.SecondOrderIncomplete = 1 for the 10-, 15- and 20-node kinds).
 // Physical groups: volume BLOCK; surfaces XMIN, XMAX, YMIN, ZMIN (the faces x = 0, x = 2,
-// y = 0, z = 0).
+// y = 0, z = 0) and MID, the internal surface x = 1 between the two extruded parts (its
+// elements' normal is +x: line 7 from (1, 0) to (1, 1) swept along +z).
 If (!Exists(shape))
   shape = 2;
 EndIf
@@ -47,3 +48,4 @@ Physical Surface("XMIN") = Surface In BoundingBox{-e, -e, -e, e, 1 + e, 1 + e};
 Physical Surface("XMAX") = Surface In BoundingBox{2 - e, -e, -e, 2 + e, 1 + e, 1 + e};
 Physical Surface("YMIN") = Surface In BoundingBox{-e, -e, -e, 2 + e, e, 1 + e};
 Physical Surface("ZMIN") = Surface In BoundingBox{-e, -e, -e, 2 + e, 1 + e, e};
+Physical Surface("MID") = Surface In BoundingBox{1 - e, -e, -e, 1 + e, 1 + e, 1 + e};
