@@ -57,7 +57,7 @@ module fcs_gmsh_reader
   use fcs_error, only: error_t, input_error
   use fcs_strings, only: str, to_upper
   use fcs_int_map, only: int_map_t
-  use fcs_mesh, only: mesh_t
+  use fcs_mesh, only: mesh_t, MESH_MAX_FACE_NODES
   use fcs_face_match, only: match_faces, face_corner_count
   use fcs_gmsh_stream, only: msh_stream_t, is_finite_bits
   implicit none
@@ -1385,7 +1385,7 @@ contains
     type(error_t), allocatable, intent(out) :: err
     integer, allocatable :: members(:), elements(:), faces(:), nodes(:)
     logical, allocatable :: used(:)
-    integer :: g, h, k
+    integer :: g, h, k, n
     logical :: kind_clash
     allocate (used(content%n_nodes))
     do g = 1, content%n_groups
@@ -1417,11 +1417,15 @@ contains
               &has a node-based surface ' // group%name)
             return
           end if
-          allocate (nodes(0))
+          allocate (nodes(MESH_MAX_FACE_NODES * size(elements)))
+          n = 0
           do k = 1, size(elements)
-            nodes = [nodes, mesh%face_nodes(elements(k), faces(k))]
+            associate (face_nodes => mesh%face_nodes(elements(k), faces(k)))
+              nodes(n + 1:n + size(face_nodes)) = face_nodes
+              n = n + size(face_nodes)
+            end associate
           end do
-          call mesh%add_to_node_set(group%name, nodes)
+          call mesh%add_to_node_set(group%name, nodes(1:n))
           deallocate (nodes)
         case default
           members = group_members(content, content%loose_nodes, g, used)
