@@ -125,6 +125,9 @@ def compare_grid(block, grid, heavy, where, problems):
 #: quadratic types too): a tetrahedron is itself; a wedge three; a hexahedron the six of
 #: Kuhn's subdivision along the diagonal 0-6.
 CORNER_TETRAHEDRA = {}
+#: VTK cell types of surface grids (not checked): vertex, poly-vertex, line, triangle, polygon,
+#: quadrilateral, quadratic triangle and quadrilateral.
+SURFACE_CELL_TYPES = [1, 2, 3, 5, 7, 9, 22, 23]
 
 
 def _corner_tetrahedra():
@@ -148,8 +151,8 @@ def check_solids(block, where, problems):
     offsets = vtk_to_numpy(cells.GetOffsetsArray())
     connectivity = vtk_to_numpy(cells.GetConnectivityArray())
     types = vtk_to_numpy(block.GetCellTypesArray())
-    if block.GetNumberOfCells() > 0 and types.max() in (1, 9) and types.min() in (1, 9):
-        return  # a surface grid (points or quadrilaterals)
+    if np.isin(types, SURFACE_CELL_TYPES).all():
+        return  # a surface grid (points, lines, triangles, quadrilaterals)
     inverted = 0
     for kind in np.unique(types):
         if kind not in CORNER_TETRAHEDRA:

@@ -6,7 +6,7 @@ module fcs_build_contact
   use fcs_deck_fields, only: param_upper, param_value, line_real, line_optional_real
   use fcs_diagnostics, only: diagnostics_t, source_loc_t
   use fcs_builder_state, only: builder_t
-  use fcs_mesh, only: SURFACE_FACES
+  use fcs_mesh, only: SURFACE_FACES, SURFACE_NODES
   use fcs_model, only: model_t, interaction_def_t, contact_pair_def_t, friction_change_t
   use fcs_strings, only: to_upper, str, parse_real, string_t
   use fcs_error, only: error_t
@@ -408,8 +408,10 @@ contains
         call diag%report(line%loc, '*' // card%keyword // ': expected slave surface, master surface')
         return
       end if
-      pair%slave_surface = model%mesh%find_surface(to_upper(line%fields(1)%s))
-      pair%master_surface = model%mesh%find_surface(to_upper(line%fields(2)%s))
+      ! A name defined both ways (CalculiX's metalforming deck): the slave its nodes, the
+      ! master its faces, as CalculiX takes them.
+      pair%slave_surface = model%mesh%find_surface(to_upper(line%fields(1)%s), SURFACE_NODES)
+      pair%master_surface = model%mesh%find_surface(to_upper(line%fields(2)%s), SURFACE_FACES)
       if (pair%slave_surface == 0) then
         call diag%report(line%loc, '*' // card%keyword // ': slave surface "' // line%fields(1)%s // &
                          '" is not defined')

@@ -331,10 +331,8 @@ contains
     character(len=:), allocatable :: name, label
     integer, allocatable :: found(:)
     integer :: i, face
-    logical :: clash
     real(dp) :: weight
     name = param_upper(card, 'NAME')
-    clash = .false.
     do i = 1, card%n_lines
       associate (line => card%lines(i))
         if (param_upper(card, 'TYPE') == 'NODE') then
@@ -349,7 +347,7 @@ contains
             cycle
           end if
           call resolve_nodes(model%mesh, line%fields(1)%s, line, 'SURFACE', diag, found)
-          call model%mesh%add_nodes_to_surface(name, found, clash)
+          call model%mesh%add_nodes_to_surface(name, found)
         else
           if (size(line%fields) /= 2) then
             call diag%report(line%loc, '*SURFACE: expected element or element set, face ' // &
@@ -363,17 +361,37 @@ contains
           end if
           if (face == 0) then
             call diag%report(line%loc, '*SURFACE: face label "' // line%fields(2)%s // &
-                             '" is not one of S1, S2, S3, S4, S5, S6 (hexahedron faces)')
+                             '" is not one of S1 ... S6 (S1-S4 on tetrahedra, S1-S5 on wedges, ' // &
+                             'S1-S6 on hexahedra)')
             cycle
           end if
           call resolve_elements(model%mesh, line%fields(1)%s, line, 'SURFACE', diag, found)
-          call model%mesh%add_faces_to_surface(name, found, spread(face, 1, size(found)), clash)
+          if (.not. faces_exist(model, found, face, line, diag)) cycle
+          call model%mesh%add_faces_to_surface(name, found, spread(face, 1, size(found)))
         end if
-        if (clash) call diag%report(line%loc, '*SURFACE: surface ' // name // ' mixes element ' // &
-                                    'faces and nodes (TYPE=ELEMENT and TYPE=NODE)')
       end associate
     end do
   end subroutine handle_surface
+
+  !> Every element of `elements` has a face `face` (a tetrahedron has S1-S4, a wedge S1-S5);
+  !> otherwise an error naming the first that has not.
+  logical function faces_exist(model, elements, face, line, diag) result(ok)
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: elements(:), face
+    type(data_line_t), intent(in) :: line
+    type(diagnostics_t), intent(inout) :: diag
+    integer :: i
+    ok = .true.
+    do i = 1, size(elements)
+      if (face <= model%mesh%n_faces(elements(i))) cycle
+      ok = .false.
+      associate (kind => model%mesh%kinds(model%mesh%element_kind(elements(i))))
+        call diag%report(line%loc, '*SURFACE: element ' // str(model%mesh%element_id(elements(i))) // &
+          ' (' // kind%name // ') has faces S1-S' // str(kind%n_faces) // ', not S' // str(face))
+      end associate
+      return
+    end do
+  end function faces_exist
 
   !> *MESH, FILE=x.msh[, HEX8=kind][, HEX20=kind]: read a gmsh mesh into the model, its 8- and
   !> 20-node hexahedra as the kinds named (default C3D8 and C3D20: the first catalogue kind of

@@ -12,6 +12,7 @@ module fcs_build_output
                        OUTPUT_NODE_FILE, OUTPUT_EL_FILE, OUTPUT_CONTACT_PRINT, OUTPUT_CONTACT_FILE, &
                        TOTALS_NO, TOTALS_YES, TOTALS_ONLY
   use fcs_strings, only: string_t, to_upper, parse_int, parse_real, join_strings
+  use fcs_material_factory, only: PLASTICITY_NONE
   implicit none
   private
   public :: handle_output_request, handle_history, handle_event_catalog
@@ -36,7 +37,8 @@ contains
                                              param_value(card, 'NSET') // '" is not defined')
     case ('EL PRINT')
       request%kind = OUTPUT_EL_PRINT
-      allowed = [string_t('S'), string_t('E'), string_t('PEEQ'), string_t('PE')]
+      allowed = [string_t('S'), string_t('E'), string_t('PEEQ'), string_t('PE'), &
+                 string_t('ENER'), string_t('ELSE')]
       request%set = model%mesh%find_element_set(param_upper(card, 'ELSET'))
       if (request%set == 0) call diag%report(card%loc, '*EL PRINT: element set "' // &
                                              param_value(card, 'ELSET') // '" is not defined')
@@ -51,6 +53,7 @@ contains
       allowed = [string_t('S'), string_t('E'), string_t('PEEQ'), string_t('PE')]
     end select
     call read_variables(card, allowed, diag, request%variables)
+    call check_energy_request(card, model, request, diag)
     call parse_int(param_value(card, 'FREQUENCY'), request%frequency, ok)
     if (request%frequency < 0) call diag%report(card%loc, '*' // card%keyword // &
                                                 ': FREQUENCY must not be negative')
@@ -104,6 +107,28 @@ contains
   end subroutine warn_output_params
 
   !> The variable names on the data lines, each checked against `allowed`.
+  !> ENER and ELSE print the elastic energy 1/2 S:E (fcs_dat_output): with a plastic material
+  !> that is not the internal energy CalculiX prints, so they are refused there.
+  subroutine check_energy_request(card, model, request, diag)
+    type(card_t), intent(in) :: card
+    type(model_t), intent(in) :: model
+    type(output_request_t), intent(in) :: request
+    type(diagnostics_t), intent(inout) :: diag
+    integer :: v, k
+    do v = 1, size(request%variables)
+      if (request%variables(v)%s /= 'ENER' .and. request%variables(v)%s /= 'ELSE') cycle
+      if (.not. allocated(model%materials)) return
+      do k = 1, size(model%materials)
+        if (model%materials(k)%plastic%model /= PLASTICITY_NONE) then
+          call diag%report(card%loc, '*' // card%keyword // ': ' // request%variables(v)%s // &
+            ' (internal energy) is available for elastic materials only (fcs3d prints 1/2 S:E); ' // &
+            'material ' // model%materials(k)%name // ' is plastic')
+          return
+        end if
+      end do
+    end do
+  end subroutine check_energy_request
+
   subroutine read_variables(card, allowed, diag, variables)
     type(card_t), intent(in) :: card
     type(string_t), intent(in) :: allowed(:)

@@ -16,7 +16,7 @@ module fcs_build_step
   use fcs_builder_state, only: builder_t
   use fcs_mesh, only: SURFACE_FACES
   use fcs_model, only: model_t, step_t, dof_condition_t, face_load_t, amplitude_t, &
-                       time_points_t, BC_DISPLACEMENT, BC_VELOCITY
+                       time_points_t, BC_DISPLACEMENT, BC_VELOCITY, BC_FIXED
   use fcs_strings, only: to_upper, str, parse_int, parse_real
   implicit none
   private
@@ -226,7 +226,7 @@ contains
   !> *BOUNDARY: node or set, first dof, last dof, value.
   subroutine handle_boundary(card, model, state, diag)
     type(card_t), intent(in) :: card
-    type(model_t), intent(in) :: model
+    type(model_t), intent(inout) :: model
     type(builder_t), intent(inout) :: state
     type(diagnostics_t), intent(inout) :: diag
     type(dof_condition_t) :: c
@@ -234,6 +234,11 @@ contains
     integer :: i, j, first, last, dof, amplitude, origin, clash, n_clashes
     real(dp) :: value
     if (.not. amplitude_param(card, model, diag, amplitude)) return
+    if (has_flag(card, 'FIXED') .and. .not. state%in_step) then
+      call diag%report(card%loc, '*BOUNDARY, FIXED keeps the displacement at the start of a ' // &
+                       'step: it belongs in a step (between *STEP and *END STEP)')
+      return
+    end if
     n_clashes = 0
     if (param_upper(card, 'OP') == 'NEW' .and. .not. (state%in_step .and. state%boundary_renewed)) then
       call state%boundary%clear()
@@ -257,6 +262,12 @@ contains
         if (.not. line_optional_real(line, 4, value, 0.0_dp, 'value', 'BOUNDARY', diag)) cycle
         call resolve_nodes(model%mesh, line%fields(1)%s, line, 'BOUNDARY', diag, nodes)
         c%kind = merge(BC_VELOCITY, BC_DISPLACEMENT, param_upper(card, 'TYPE') == 'VELOCITY')
+        if (has_flag(card, 'FIXED')) then
+          c%kind = BC_FIXED
+          if (size(line%fields) >= 4) call diag%warn(line%loc, '*BOUNDARY, FIXED: the value ' // &
+            'is ignored (the displacement at the start of the step is kept, as in CalculiX)')
+          value = 0.0_dp
+        end if
         c%value = value
         c%amplitude = amplitude
         origin = record_line(state, line%loc)
@@ -343,7 +354,7 @@ contains
   !> *CLOAD: node or set, dof, magnitude (applied to every node of a set).
   subroutine handle_cload(card, model, state, diag)
     type(card_t), intent(in) :: card
-    type(model_t), intent(in) :: model
+    type(model_t), intent(inout) :: model
     type(builder_t), intent(inout) :: state
     type(diagnostics_t), intent(inout) :: diag
     type(dof_condition_t) :: c
@@ -389,7 +400,7 @@ contains
   !> pressures, as in CalculiX, so OP=NEW of either removes the pressures of both.
   subroutine handle_dsload(card, model, state, diag)
     type(card_t), intent(in) :: card
-    type(model_t), intent(in) :: model
+    type(model_t), intent(inout) :: model
     type(builder_t), intent(inout) :: state
     type(diagnostics_t), intent(inout) :: diag
     type(face_load_t) :: f
@@ -436,7 +447,7 @@ contains
     type(face_load_t), intent(inout) :: f
     type(diagnostics_t), intent(inout) :: diag
     integer :: j, k
-    k = model%mesh%find_surface(to_upper(line%fields(1)%s))
+    k = model%mesh%find_surface(to_upper(line%fields(1)%s), SURFACE_FACES)
     if (k == 0) then
       call diag%report(line%loc, '*' // card%keyword // ': surface "' // line%fields(1)%s // &
                        '" is not defined')
@@ -513,20 +524,53 @@ contains
   end function load_label_message
 
   !> The AMPLITUDE= parameter resolved to an index (0 if absent). False if undefined.
+  !> The amplitude of a load card (0: none). With TIME DELAY=d, a copy of the amplitude
+  !> shifted by d (its times + d: a(t - d), constant beyond the ends as every amplitude) is
+  !> added to the model once, named "<name> (TIME DELAY=d)", and is the card's amplitude.
   logical function amplitude_param(card, model, diag, amplitude) result(ok)
     type(card_t), intent(in) :: card
-    type(model_t), intent(in) :: model
+    type(model_t), intent(inout) :: model
     type(diagnostics_t), intent(inout) :: diag
     integer, intent(out) :: amplitude
+    real(dp) :: delay
     amplitude = 0
     ok = .true.
-    if (card%find_param('AMPLITUDE') == 0) return
+    if (card%find_param('AMPLITUDE') == 0) then
+      if (card%find_param('TIME DELAY') > 0) call diag%report(card%loc, '*' // card%keyword // &
+        ': TIME DELAY shifts an amplitude: give AMPLITUDE= too')
+      ok = card%find_param('TIME DELAY') == 0
+      return
+    end if
     amplitude = find_amplitude(model, param_upper(card, 'AMPLITUDE'))
     ok = amplitude > 0
-    if (.not. ok) call diag%report(card%loc, '*' // card%keyword // ': amplitude "' // &
-                                   param_value(card, 'AMPLITUDE') // '" is not defined ' // &
-                                   '(define it with *AMPLITUDE before it is used)')
+    if (.not. ok) then
+      call diag%report(card%loc, '*' // card%keyword // ': amplitude "' // &
+                       param_value(card, 'AMPLITUDE') // '" is not defined ' // &
+                       '(define it with *AMPLITUDE before it is used)')
+      return
+    end if
+    if (card%find_param('TIME DELAY') == 0) return
+    call parse_real(param_value(card, 'TIME DELAY'), delay, ok)
+    if (.not. ok) return ! the keyword table has reported the value
+    if (delay /= 0.0_dp) amplitude = delayed_amplitude(model, amplitude, delay)
   end function amplitude_param
+
+  !> Index of amplitude k shifted by `delay` (added to the model the first time).
+  integer function delayed_amplitude(model, k, delay) result(index)
+    type(model_t), intent(inout) :: model
+    integer, intent(in) :: k
+    real(dp), intent(in) :: delay
+    type(amplitude_t) :: shifted
+    character(len=32) :: text
+    write (text, '(g0)') delay
+    shifted = model%amplitudes(k)
+    shifted%name = model%amplitudes(k)%name // ' (TIME DELAY=' // trim(text) // ')'
+    shifted%time = model%amplitudes(k)%time + delay
+    index = find_amplitude(model, shifted%name)
+    if (index > 0) return
+    model%amplitudes = [model%amplitudes, shifted]
+    index = size(model%amplitudes)
+  end function delayed_amplitude
 
   pure integer function find_amplitude(model, name) result(k)
     type(model_t), intent(in) :: model

@@ -424,17 +424,25 @@ contains
          [p('OP', PARAM_CHOICE, default='MOD', choices=[s('MOD'), s('NEW')], &
             description='MOD keeps earlier conditions; NEW removes all earlier ones first.'), &
           p('AMPLITUDE', PARAM_NAME, description='Scale the value by this amplitude.'), &
+          p('TIME DELAY', PARAM_REAL, unit='time', description='Shift the amplitude by this ' // &
+            'time: the value at time t is the amplitude''s at t - delay (CalculiX; needs ' // &
+            'AMPLITUDE).'), &
           p('TYPE', PARAM_CHOICE, default='DISPLACEMENT', &
             choices=[s('DISPLACEMENT'), s('VELOCITY')], &
             description='DISPLACEMENT: the value is the displacement reached at the end of ' // &
             'the step (ramped over the step, or value x amplitude). VELOCITY: the value is a ' // &
-            'velocity [length/time] held through the step (x amplitude) (fcs3d extension).')], &
+            'velocity [length/time] held through the step (x amplitude) (fcs3d extension).'), &
+          p('FIXED', PARAM_FLAG, description='Keep the displacement the nodes have at the ' // &
+            'start of the step (CalculiX; in a step only; a value on the data line is ignored).')], &
          data_required=.true.), &
       kw('CLOAD', CONTEXT_STEP, 'CalculiX', 'Concentrated nodal forces.', &
          'node or node set, dof, magnitude [force].', &
          [p('OP', PARAM_CHOICE, default='MOD', choices=[s('MOD'), s('NEW')], &
             description='MOD keeps earlier loads; NEW removes all earlier ones first.'), &
-          p('AMPLITUDE', PARAM_NAME, description='Scale the value by this amplitude.')], &
+          p('AMPLITUDE', PARAM_NAME, description='Scale the value by this amplitude.'), &
+          p('TIME DELAY', PARAM_REAL, unit='time', description='Shift the amplitude by this ' // &
+            'time: the value at time t is the amplitude''s at t - delay (CalculiX; needs ' // &
+            'AMPLITUDE).')], &
          data_required=.true.), &
       kw('DSLOAD', CONTEXT_STEP, 'CalculiX', 'Pressure on an element-face surface ' // &
          '(positive pressure pushes into the surface). Under NLGEOM it follows the current ' // &
@@ -442,7 +450,10 @@ contains
          'surface name, P, magnitude [stress].', &
          [p('OP', PARAM_CHOICE, default='MOD', choices=[s('MOD'), s('NEW')], &
             description='MOD keeps earlier loads; NEW removes all earlier ones first.'), &
-          p('AMPLITUDE', PARAM_NAME, description='Scale the value by this amplitude.')], &
+          p('AMPLITUDE', PARAM_NAME, description='Scale the value by this amplitude.'), &
+          p('TIME DELAY', PARAM_REAL, unit='time', description='Shift the amplitude by this ' // &
+            'time: the value at time t is the amplitude''s at t - delay (CalculiX; needs ' // &
+            'AMPLITUDE).')], &
          data_required=.true.), &
       kw('DLOAD', CONTEXT_STEP, 'CalculiX', 'Distributed load: pressure on element faces, ' // &
          'as *DSLOAD (the same list of face pressures: OP=NEW of either removes both). The ' // &
@@ -451,7 +462,10 @@ contains
          '*SURFACE), magnitude [stress].', &
          [p('OP', PARAM_CHOICE, default='MOD', choices=[s('MOD'), s('NEW')], &
             description='MOD keeps earlier loads; NEW removes all earlier ones first.'), &
-          p('AMPLITUDE', PARAM_NAME, description='Scale the value by this amplitude.')], &
+          p('AMPLITUDE', PARAM_NAME, description='Scale the value by this amplitude.'), &
+          p('TIME DELAY', PARAM_REAL, unit='time', description='Shift the amplitude by this ' // &
+            'time: the value at time t is the amplitude''s at t - delay (CalculiX; needs ' // &
+            'AMPLITUDE).')], &
          data_required=.true.) &
       ]
   end function step_keywords

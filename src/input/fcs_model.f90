@@ -17,13 +17,15 @@ module fcs_model
   public :: friction_def_t, friction_change_t, interaction_def_t, contact_pair_def_t, checkpoint_settings_t
   public :: history_item_t, history_request_t, HISTORY_NSET_U, HISTORY_NSET_RF
   public :: HISTORY_CONTACT, HISTORY_ENERGY, HISTORY_RESIDUAL
-  public :: BC_DISPLACEMENT, BC_VELOCITY, FORMULATION_FULL, FORMULATION_BBAR
+  public :: BC_DISPLACEMENT, BC_VELOCITY, BC_FIXED, FORMULATION_FULL, FORMULATION_BBAR
   public :: OUTPUT_NODE_PRINT, OUTPUT_EL_PRINT, OUTPUT_NODE_FILE, OUTPUT_EL_FILE
   public :: OUTPUT_CONTACT_PRINT, OUTPUT_CONTACT_FILE
   public :: TOTALS_NO, TOTALS_YES, TOTALS_ONLY
 
   !> Kinds of prescribed degree-of-freedom conditions.
-  integer, parameter :: BC_DISPLACEMENT = 1, BC_VELOCITY = 2
+  !> BC_FIXED: the displacement the node has at the start of the step is kept (CalculiX's
+  !> *BOUNDARY, FIXED).
+  integer, parameter :: BC_DISPLACEMENT = 1, BC_VELOCITY = 2, BC_FIXED = 3
   !> Element formulations (see *SOLID SECTION, FORMULATION=).
   integer, parameter :: FORMULATION_FULL = 1, FORMULATION_BBAR = 2
   !> Output request kinds.

@@ -9,6 +9,11 @@
 !> the modes left are the null space of the 6 x 6 sum of those rows' outer products. This
 !> cannot see a pair that is open at the start or frictionless (tangential modes): such a
 !> model passes here and stops at its first increment with a singular-matrix message.
+!> The check uses the reference configuration. After a step with NLGEOM the body may have
+!> moved far enough (a beam turned by 90 degrees: CalculiX's beamp2rotate) that conditions
+!> which leave a mode free in the reference configuration hold it in the current one; there a
+!> free mode is a warning, and a model that really is free stops at the step's first increment
+!> with the singular-matrix message.
 module fcs_model_supports
   use fcs_kinds, only: dp
   use fcs_diagnostics, only: diagnostics_t
@@ -54,7 +59,8 @@ contains
     slot(roots) = [(j, j = 1, size(roots))]
     call assembly_frames(model%mesh, assembly, slot, size(roots), centre, size_l)
     do k = 1, size(model%steps)
-      call check_step(model, model%steps(k), assembly, roots, slot, centre, size_l, diag)
+      call check_step(model, model%steps(k), assembly, roots, slot, centre, size_l, &
+                      any(model%steps(1:k - 1)%nlgeom), diag)
     end do
   end subroutine check_supports
 
@@ -137,11 +143,13 @@ contains
   end subroutine unite
 
   !> Report every assembly that the conditions of `step` leave free to move rigidly.
-  subroutine check_step(model, step, assembly, roots, slot, centre, size_l, diag)
+  subroutine check_step(model, step, assembly, roots, slot, centre, size_l, moved, diag)
     type(model_t), intent(in) :: model
     type(step_t), intent(in) :: step
     integer, intent(in) :: assembly(:), roots(:), slot(:)
     real(dp), intent(in) :: centre(:, :), size_l(:)
+    !> An earlier step had NLGEOM: the body may no longer be in its reference configuration.
+    logical, intent(in) :: moved
     type(diagnostics_t), intent(inout) :: diag
     real(dp), allocatable :: gram(:, :, :)
     real(dp) :: row(6), axis(3)
@@ -159,16 +167,17 @@ contains
       gram(:, :, a) = gram(:, :, a) + spread(row, 2, 6) * spread(row, 1, 6)
     end do
     do a = 1, size(roots)
-      call report_free_modes(model, step, assembly, roots(a), gram(:, :, a), diag)
+      call report_free_modes(model, step, assembly, roots(a), gram(:, :, a), moved, diag)
     end do
   end subroutine check_step
 
   !> The null space of `gram` (6 x 6, scaled rigid motions) as an error, if not empty.
-  subroutine report_free_modes(model, step, assembly, id, gram, diag)
+  subroutine report_free_modes(model, step, assembly, id, gram, moved, diag)
     type(model_t), intent(in) :: model
     type(step_t), intent(in) :: step
     integer, intent(in) :: assembly(:), id
     real(dp), intent(in) :: gram(6, 6)
+    logical, intent(in) :: moved
     type(diagnostics_t), intent(inout) :: diag
     real(dp) :: vectors(6, 6), eigenvalues(6), work(64)
     integer :: info, n_free, m
@@ -187,6 +196,14 @@ contains
       if (m > 1) modes = modes // '; '
       modes = modes // describe_mode(vectors(:, m))
     end do
+    if (moved) then
+      call diag%warn(step%loc, 'step "' // step%name // '": ' // body_name(model, assembly, id) // &
+        ' is not held in its reference configuration: ' // str(n_free) // ' rigid-body ' // &
+        'mode(s) free there (' // modes // '); an earlier step with NLGEOM may have moved it ' // &
+        'to where its conditions hold it, so the step is run (a free body stops at its first ' // &
+        'increment with a singular matrix)')
+      return
+    end if
     call diag%report(step%loc, 'step "' // step%name // '": ' // body_name(model, assembly, id) // &
       ' is not held: ' // str(n_free) // ' rigid-body mode(s) free (' // modes // '); add ' // &
       '*BOUNDARY conditions, or join it to a held body by *CONTACT PAIR or *TIE')

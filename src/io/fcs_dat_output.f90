@@ -99,13 +99,18 @@ contains
     end if
   end subroutine node_block
 
-  !> *EL PRINT: S, E and/or PEEQ (PE) at the integration points of the request's element set;
-  !> peeq(q, e) is the equivalent plastic strain; element e has n_points(e) integration points.
-  subroutine dat_el_print(this, model, request, time, stress, strain, peeq, n_points, err)
+  !> *EL PRINT: S, E, PEEQ (PE), ENER and/or ELSE at the integration points (ELSE: per element)
+  !> of the request's element set; peeq(q, e) is the equivalent plastic strain; element e has
+  !> n_points(e) integration points of volume volume(q, e). ENER is the energy density 1/2 S:E
+  !> (engineering shears), which for an elastic material is CalculiX's internal energy density
+  !> (its integral of S:dE over the load path; exact for linear elasticity at small strain),
+  !> ELSE its integral over the element (sum of ENER x point volume), as CalculiX's "internal
+  !> energy (element, energy)"; the input refuses both with plasticity (fcs_build_output).
+  subroutine dat_el_print(this, model, request, time, stress, strain, peeq, n_points, volume, err)
     class(dat_file_t), intent(inout) :: this
     type(model_t), intent(in) :: model
     type(output_request_t), intent(in) :: request
-    real(dp), intent(in) :: time, stress(:, :, :), strain(:, :, :), peeq(:, :)
+    real(dp), intent(in) :: time, stress(:, :, :), strain(:, :, :), peeq(:, :), volume(:, :)
     integer, intent(in) :: n_points(:)
     type(error_t), allocatable, intent(out) :: err
     character(len=32) :: stamp
@@ -130,7 +135,16 @@ contains
           if (.not. allocated(err)) call this%file%write(' equivalent plastic strain (elem, ' // &
             'integ.pnt.,pe)for set ' // set%name // ' and time ' // trim(stamp), err)
           if (.not. allocated(err)) call this%file%write('', err)
-          if (.not. allocated(err)) call peeq_rows(this%file, model, elements, n_points, peeq, err)
+          if (.not. allocated(err)) call point_rows(this%file, model, elements, n_points, peeq, err)
+        case ('ENER')
+          call header(this%file, 'internal energy density (elem, integ.pnt.,energy)', &
+                      set%name, time, err)
+          if (.not. allocated(err)) call point_rows(this%file, model, elements, n_points, &
+            energy_density(stress, strain), err)
+        case ('ELSE')
+          call header(this%file, 'internal energy (element, energy)', set%name, time, err)
+          if (.not. allocated(err)) call element_energy_rows(this%file, model, elements, &
+            n_points, energy_density(stress, strain) * volume, err)
         end select
         if (allocated(err)) return
       end do
@@ -138,8 +152,33 @@ contains
     call this%file%commit(err)
   end subroutine dat_el_print
 
-  !> One row per integration point of `elements`: the equivalent plastic strain.
-  subroutine peeq_rows(file, model, elements, n_points, peeq, err)
+  !> 1/2 S:E at every integration point (strain with engineering shears).
+  pure function energy_density(stress, strain) result(density)
+    real(dp), intent(in) :: stress(:, :, :), strain(:, :, :)
+    real(dp) :: density(size(stress, 2), size(stress, 3))
+    density = 0.5_dp * sum(stress * strain, dim=1)
+  end function energy_density
+
+  !> One row per element of `elements`: the sum of its points' energies.
+  subroutine element_energy_rows(file, model, elements, n_points, energy, err)
+    type(text_file_t), intent(inout) :: file
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: elements(:), n_points(:)
+    real(dp), intent(in) :: energy(:, :)
+    type(error_t), allocatable, intent(out) :: err
+    character(len=64) :: line
+    integer :: i, e
+    do i = 1, size(elements)
+      e = elements(i)
+      write (line, '(i10,es14.6)') model%mesh%element_id(e), sum(energy(1:n_points(e), e))
+      call file%write(trim(line), err)
+      if (allocated(err)) return
+    end do
+  end subroutine element_energy_rows
+
+  !> One row per integration point of `elements`: a scalar (the equivalent plastic strain, the
+  !> energy density).
+  subroutine point_rows(file, model, elements, n_points, peeq, err)
     type(text_file_t), intent(inout) :: file
     type(model_t), intent(in) :: model
     integer, intent(in) :: elements(:), n_points(:)
@@ -155,7 +194,7 @@ contains
         if (allocated(err)) return
       end do
     end do
-  end subroutine peeq_rows
+  end subroutine point_rows
 
   !> One row per integration point of `elements`; `tensor_shear` halves the shear components
   !> (engineering to tensor strains).

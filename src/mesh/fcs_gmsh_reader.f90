@@ -1386,7 +1386,6 @@ contains
     integer, allocatable :: members(:), elements(:), faces(:), nodes(:)
     logical, allocatable :: used(:)
     integer :: g, h, k, n
-    logical :: kind_clash
     allocate (used(content%n_nodes))
     do g = 1, content%n_groups
       do h = 1, g - 1
@@ -1411,12 +1410,7 @@ contains
           if (size(members) == 0) cycle
           elements = matches%element(members)
           faces = matches%face(members)
-          call mesh%add_faces_to_surface(group%name, elements, faces, kind_clash)
-          if (kind_clash) then
-            call input_error(err, path // ': physical ' // group_label(group) // ': the mesh already &
-              &has a node-based surface ' // group%name)
-            return
-          end if
+          call mesh%add_faces_to_surface(group%name, elements, faces)
           allocate (nodes(MESH_MAX_FACE_NODES * size(elements)))
           n = 0
           do k = 1, size(elements)

@@ -257,13 +257,23 @@ contains
     k = 0
   end function mesh_find_element_set
 
-  pure integer function mesh_find_surface(this, name) result(k)
+  !> Index of surface `name`, 0 if none. A name may be both a node-based and an element-face
+  !> surface (CalculiX keeps the two apart: *SURFACE, TYPE=NODE and TYPE=ELEMENT of the same
+  !> name); `prefer` (SURFACE_NODES or SURFACE_FACES) picks that one when both exist, else the
+  !> first defined is returned.
+  pure integer function mesh_find_surface(this, name, prefer) result(k)
     class(mesh_t), intent(in) :: this
     character(len=*), intent(in) :: name
+    integer, intent(in), optional :: prefer
+    integer :: first
+    first = 0
     do k = 1, size(this%surfaces)
-      if (this%surfaces(k)%name == name) return
+      if (this%surfaces(k)%name /= name) cycle
+      if (.not. present(prefer)) return
+      if (this%surfaces(k)%kind == prefer) return
+      if (first == 0) first = k
     end do
-    k = 0
+    k = first
   end function mesh_find_surface
 
   !> Add node indices to set `name`, creating it if needed (repeated definitions accumulate).
@@ -301,31 +311,26 @@ contains
     call move_alloc(grown, sets)
   end subroutine add_to_sets
 
-  !> Add element faces to surface `name` (element-face kind). `kind_clash` if the surface
-  !> exists and is node based.
-  subroutine mesh_add_faces_to_surface(this, name, elements, faces, kind_clash)
+  !> Add element faces to the element-face surface `name` (created if needed; a node-based
+  !> surface of the same name is another surface).
+  subroutine mesh_add_faces_to_surface(this, name, elements, faces)
     class(mesh_t), intent(inout) :: this
     character(len=*), intent(in) :: name
     integer, intent(in) :: elements(:), faces(:)
-    logical, intent(out) :: kind_clash
     integer :: k
     k = surface_slot(this, name, SURFACE_FACES)
-    kind_clash = this%surfaces(k)%kind /= SURFACE_FACES
-    if (kind_clash) return
     this%surfaces(k)%element = [this%surfaces(k)%element, elements]
     this%surfaces(k)%face = [this%surfaces(k)%face, faces]
   end subroutine mesh_add_faces_to_surface
 
-  !> Add nodes to a node-based surface `name`.
-  subroutine mesh_add_nodes_to_surface(this, name, nodes, kind_clash)
+  !> Add nodes to the node-based surface `name` (created if needed; an element-face surface of
+  !> the same name is another surface).
+  subroutine mesh_add_nodes_to_surface(this, name, nodes)
     class(mesh_t), intent(inout) :: this
     character(len=*), intent(in) :: name
     integer, intent(in) :: nodes(:)
-    logical, intent(out) :: kind_clash
     integer :: k
     k = surface_slot(this, name, SURFACE_NODES)
-    kind_clash = this%surfaces(k)%kind /= SURFACE_NODES
-    if (kind_clash) return
     this%surfaces(k)%nodes = merge_sorted_unique(this%surfaces(k)%nodes, nodes)
   end subroutine mesh_add_nodes_to_surface
 
@@ -334,8 +339,10 @@ contains
     character(len=*), intent(in) :: name
     integer, intent(in) :: kind
     type(surface_t), allocatable :: grown(:)
-    k = this%find_surface(name)
-    if (k > 0) return
+    k = this%find_surface(name, kind)
+    if (k > 0) then
+      if (this%surfaces(k)%kind == kind) return
+    end if
     allocate (grown(size(this%surfaces) + 1))
     grown(1:size(this%surfaces)) = this%surfaces
     k = size(grown)

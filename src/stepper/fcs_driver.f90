@@ -195,13 +195,28 @@ contains
       call log%info('fcs3d: ' // options%deck_path)
     end if
     call log%info('model: ' // str(model%mesh%n_nodes) // ' nodes, ' // &
-                  str(model%mesh%n_elements) // ' hexahedra, ' // str(3 * model%mesh%n_nodes) // &
+                  str(model%mesh%n_elements) // ' elements (' // kind_counts(model) // '), ' // &
+                  str(3 * model%mesh%n_nodes) // &
                   ' degrees of freedom, ' // str(size(model%steps)) // ' step(s); solver ' // &
                   model%solver_name)
     if (count(model%free_node) > 0) call log%info('note: ' // str(count(model%free_node)) // &
       ' node(s) belong to no element (node ' // str(model%mesh%node_id(findloc(model%free_node, &
       .true., 1))) // ' first); they are held fixed')
   end subroutine describe_model
+
+  !> "C3D20R 32" or "C3D8 12, C3D6 8": the element count of each kind the mesh has.
+  function kind_counts(model) result(text)
+    type(model_t), intent(in) :: model
+    character(len=:), allocatable :: text
+    integer :: k, n
+    text = ''
+    do k = 1, size(model%mesh%kinds)
+      n = count(model%mesh%element_kind(1:model%mesh%n_elements) == k)
+      if (n == 0) cycle
+      if (len(text) > 0) text = text // ', '
+      text = text // model%mesh%kinds(k)%name // ' ' // str(n)
+    end do
+  end function kind_counts
 
   !> State, materials, contact, sparse pattern, solver.
   subroutine setup(run, model, err)

@@ -6,7 +6,7 @@
 !> every load is linear in time and the R-minimum scaling of the increment is exact.
 module fcs_loading
   use fcs_kinds, only: dp
-  use fcs_model, only: model_t, step_t, amplitude_t, time_points_t, BC_DISPLACEMENT, BC_VELOCITY, &
+  use fcs_model, only: model_t, step_t, amplitude_t, time_points_t, BC_VELOCITY, BC_FIXED, &
                        OUTPUT_NODE_FILE, OUTPUT_EL_FILE
   use fcs_sort, only: argsort_reals
   implicit none
@@ -256,7 +256,9 @@ contains
     integer, intent(in) :: i
     real(dp), intent(in) :: t0, t1, current, step_start
     real(dp) :: target
-    if (this%bc_kind(i) == BC_VELOCITY) then
+    if (this%bc_kind(i) == BC_FIXED) then
+      du = 0.0_dp
+    else if (this%bc_kind(i) == BC_VELOCITY) then
       if (this%bc_amplitude(i) > 0) then
         du = this%bc_value(i) * (amplitude_integral(amplitudes(this%bc_amplitude(i)), t1, &
              this%start_time) - amplitude_integral(amplitudes(this%bc_amplitude(i)), t0, this%start_time))

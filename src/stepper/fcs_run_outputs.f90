@@ -161,7 +161,8 @@ contains
       case (OUTPUT_EL_PRINT)
         call a%elements%plastic_fields(state%elements, peeq, plastic_strain, back_stress)
         call this%dat%el_print(model, request, state%time, state%elements%stress, &
-                               state%elements%strain, peeq, a%elements%point_counts(), err)
+                               state%elements%strain, peeq, a%elements%point_counts(), &
+                               a%elements%point_volumes(), err)
       case (OUTPUT_CONTACT_PRINT)
         call a%contact%print_values(a%x_contact, state%contact, node, closed, displacement, stress)
         call this%dat%contact_print(model, request, state%time, node, closed, displacement, stress, err)

@@ -1,5 +1,5 @@
 #!/bin/sh
-# CalculiX comparison (foundation issue): the classic linear-elastic C3D8 decks of
+# CalculiX comparison (foundation issue; element kinds, issue 16): the classic linear-elastic decks of
 # tests/decks/classic (cantilever with *CLOAD, block under a *DSLOAD pressure, plate with
 # prescribed displacements, two-material bar with *INCLUDE and GENERATE sets) run unchanged
 # through CalculiX (Debian's calculix-ccx: `ccx job` reads job.inp, writes job.dat) and

@@ -166,15 +166,20 @@ def mid_side_nodes(elements, n_corners):
 
 
 def element_cards(elements, elset, first_id=1):
-    """*ELEMENT cards (one per kind, in order of first appearance), ids from first_id, each
+    """*ELEMENT cards (one per kind, in order of first appearance), ids from first_id in card
+    order (CalculiX prints an element set in the order it was defined, fcs3d by id: the same
+    when ids increase through the cards), each
     record at most 16 entries per line (CalculiX's and Abaqus's limit), continued after a
     trailing comma. Returns the lines and [(element id, kind)] in the order of the cards (the
     order of the elements in fcs3d's results)."""
     lines, ids = [], []
     by_kind = {}
-    for number, (kind, nodes) in enumerate(elements):
-        by_kind.setdefault(kind, []).append((first_id + number, nodes))
+    for kind, nodes in elements:
+        by_kind.setdefault(kind, []).append(nodes)
+    number = first_id
     for kind, members in by_kind.items():
+        members = [(number + i, nodes) for i, nodes in enumerate(members)]
+        number += len(members)
         lines.append(f"*ELEMENT, TYPE={kind}, ELSET={elset}")
         for element, nodes in members:
             entries = [str(element)] + [str(n) for n in nodes]
