@@ -7,6 +7,8 @@
 !> keywords marked "fcs3d" are our extensions in the same syntax.
 module fcs_keywords
   use fcs_strings, only: string_t, to_upper
+  use fcs_solver_factory, only: LINEAR_SOLVER_NAMES, DEFAULT_LINEAR_SOLVER
+  use fcs_element_catalogue, only: ELEMENT_KIND_NAMES
   use fcs_friction_factory, only: friction_parameter_t, friction_parameters, friction_laws
   implicit none
   private
@@ -88,8 +90,7 @@ contains
       kw('ELEMENT', CONTEXT_MODEL, 'CalculiX', 'Define elements.', &
          'element id, then its node ids in CalculiX order (a record continues on the next ' // &
          'line after a trailing comma).', &
-         [p('TYPE', PARAM_CHOICE, required=.true., choices=[s('C3D4'), s('C3D6'), s('C3D8'), &
-            s('C3D8R'), s('C3D8I'), s('C3D10'), s('C3D15'), s('C3D20'), s('C3D20R')], &
+         [p('TYPE', PARAM_CHOICE, required=.true., choices=names(ELEMENT_KIND_NAMES), &
             description='Element type, CalculiX''s 3D solids: C3D4 (linear tetrahedron, 1 point), ' // &
             'C3D6 (linear wedge, 2 points), C3D8 (8-node hexahedron, 2x2x2 points; *SOLID ' // &
             'SECTION, FORMULATION=BBAR against volumetric locking), C3D8R (1 point, hourglass ' // &
@@ -147,8 +148,8 @@ contains
           p('GENERATIONS', PARAM_INTEGER, default='2', description='How many checkpoints are ' // &
             'kept: <job>.rst.h5 (newest), <job>.rst.1.h5, ... (fcs3d extension).')]), &
       kw('SOLVER', CONTEXT_MODEL, 'fcs3d', 'Choose the linear solver.', '', &
-         [p('TYPE', PARAM_CHOICE, default='UMFPACK', &
-            choices=[s('UMFPACK'), s('SKYLINE'), s('MUMPS')], &
+         [p('TYPE', PARAM_CHOICE, default=DEFAULT_LINEAR_SOLVER, &
+            choices=names(LINEAR_SOLVER_NAMES), &
             description='UMFPACK (SuiteSparse, default), SKYLINE (profile LU with reverse ' // &
             'Cuthill-McKee numbering) or MUMPS. The command line option --solver overrides it.'), &
           p('REUSE TOLERANCE', PARAM_REAL, default='0', unit='-', description='Relative ' // &
@@ -638,6 +639,16 @@ contains
     type(string_t) :: out
     out%s = text
   end function s
+
+  !> A list of blank-padded names as strings (trimmed): the choices a catalogue offers.
+  pure function names(padded) result(out)
+    character(len=*), intent(in) :: padded(:)
+    type(string_t) :: out(size(padded))
+    integer :: i
+    do i = 1, size(padded)
+      out(i)%s = trim(padded(i))
+    end do
+  end function names
 
   !> Index of keyword `name` in `table`, 0 if unknown (compared as `same_name`).
   pure integer function find_keyword(table, name) result(k)

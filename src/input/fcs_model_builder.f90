@@ -8,6 +8,7 @@
 !> the model after steps ran on it, a *BOUNDARY there belongs to no step. Nothing may follow the
 !> last *END STEP: such a card would be read and never used.
 module fcs_model_builder
+  use fcs_solver_factory, only: DEFAULT_LINEAR_SOLVER
   use fcs_kinds, only: dp
   use fcs_error, only: error_t
   use fcs_deck_lexer, only: deck_t, card_t, param_t, read_deck
@@ -162,7 +163,7 @@ contains
     type(error_t), allocatable, intent(out) :: err
     model%title = ''
     model%deck_path = path
-    model%solver_name = 'UMFPACK'
+    model%solver_name = DEFAULT_LINEAR_SOLVER
     call model%element_kinds%init(err)
     if (allocated(err)) return
     call model%mesh%init(mesh_kinds(model%element_kinds))

@@ -5,10 +5,17 @@
 !> only when `matrix%pattern_version` differs from the one analysed last. `solve` may then be
 !> called any number of times. Matrices are general (unsymmetric): frictional contact makes
 !> the tangent unsymmetric.
+!>
+!> Capabilities beyond that protocol are type-bound hooks with defaults here, so that callers
+!> never ask which solver they hold: `set_comm` (run on a communicator's processes; the default
+!> accepts one process only), `runs_in_parallel` (false by default), `takes_ordering` and
+!> `set_ordering` (a fill-reducing ordering computed by the caller; ignored by default).
+!> MUMPS overrides all four.
 module fcs_linear_solver
   use fcs_kinds, only: dp
   use fcs_error, only: error_t
   use fcs_sparse, only: sparse_matrix_t
+  use fcs_comm, only: comm_t
   implicit none
   private
   public :: linear_solver_t, solver_stats_t, NEAR_SINGULAR_PIVOT_RATIO
@@ -50,6 +57,10 @@ module fcs_linear_solver
     procedure(solve_interface), deferred :: solve
     procedure(free_interface), deferred :: free
     procedure(name_interface), deferred :: name
+    procedure :: set_comm => default_set_comm
+    procedure :: runs_in_parallel => default_runs_in_parallel
+    procedure :: takes_ordering => default_takes_ordering
+    procedure :: set_ordering => default_set_ordering
   end type linear_solver_t
 
   abstract interface
@@ -83,5 +94,32 @@ module fcs_linear_solver
       character(len=:), allocatable :: name
     end function name_interface
   end interface
+
+contains
+
+  !> A solver without a parallel mode runs on the calling process whatever `comm` is (the
+  !> caller checks `runs_in_parallel` before giving it several processes).
+  subroutine default_set_comm(this, comm)
+    class(linear_solver_t), intent(inout) :: this
+    type(comm_t), intent(in) :: comm
+  end subroutine default_set_comm
+
+  !> Whether the solver can share one system over several processes.
+  pure logical function default_runs_in_parallel(this) result(parallel)
+    class(linear_solver_t), intent(in) :: this
+    parallel = .false.
+  end function default_runs_in_parallel
+
+  !> Whether the solver uses an ordering given by `set_ordering` (else it orders by itself).
+  pure logical function default_takes_ordering(this) result(takes)
+    class(linear_solver_t), intent(in) :: this
+    takes = .false.
+  end function default_takes_ordering
+
+  !> The fill-reducing ordering of the next analysis (position(i): the place of equation i).
+  subroutine default_set_ordering(this, position)
+    class(linear_solver_t), intent(inout) :: this
+    integer, intent(in) :: position(:)
+  end subroutine default_set_ordering
 
 end module fcs_linear_solver

@@ -117,6 +117,8 @@ module fcs_mumps
     procedure :: free => mumps_free
     procedure :: name => mumps_name
     procedure :: set_comm => mumps_set_comm
+    procedure :: runs_in_parallel => mumps_runs_in_parallel
+    procedure :: takes_ordering => mumps_takes_ordering
   end type mumps_solver_t
 
 contains
@@ -183,6 +185,18 @@ contains
     ! duplicates it); the sequential one keeps its stub handle.
     if (COMM_VARIANT == 'mpi') this%communicator = comm%fortran_handle()
   end subroutine mumps_set_comm
+
+  !> MUMPS shares a system over the processes of its communicator.
+  pure logical function mumps_runs_in_parallel(this) result(parallel)
+    class(mumps_solver_t), intent(in) :: this
+    parallel = .true.
+  end function mumps_runs_in_parallel
+
+  !> MUMPS takes the caller's ordering (fcs3d's METIS ordering of the whole model).
+  pure logical function mumps_takes_ordering(this) result(takes)
+    class(mumps_solver_t), intent(in) :: this
+    takes = .true.
+  end function mumps_takes_ordering
 
   !> True when `matrix` is not the pattern analysed last.
   pure logical function needs_analysis(this, matrix)

@@ -15,7 +15,6 @@ module fcs_driver
                                  contact_positions, current_reactions, gather_element_fields
   use fcs_comm, only: comm_t
   use fcs_partition, only: partition_elements
-  use fcs_mumps, only: mumps_solver_t
   use fcs_solver_factory, only: create_linear_solver
   use fcs_linear_solver, only: solver_stats_t
   use fcs_factor_reuse, only: reuse_settings_t
@@ -251,16 +250,12 @@ contains
       if (allocated(err)) return
       a%solver%node_id = model%mesh%node_id(1:model%mesh%n_nodes)
       call a%reuse%init(reuse_settings_t(tolerance=model%reuse_tolerance), a%comm)
-      select type (solver => a%solver)
-      type is (mumps_solver_t)
-        call solver%set_comm(a%comm)
-      class default
-        if (a%comm%size > 1) then
-          call input_error(err, 'a parallel run needs the MUMPS solver (*SOLVER, TYPE=MUMPS or ' // &
-                           '--solver MUMPS); ' // model%solver_name // ' runs on one process only')
-          return
-        end if
-      end select
+      if (a%comm%size > 1 .and. .not. a%solver%runs_in_parallel()) then
+        call input_error(err, 'a parallel run needs the MUMPS solver (*SOLVER, TYPE=MUMPS or ' // &
+                         '--solver MUMPS); ' // model%solver_name // ' runs on one process only')
+        return
+      end if
+      call a%solver%set_comm(a%comm)
       n = 3 * model%mesh%n_nodes
       allocate (a%f_int(n), a%f_ext0(n), a%f_ext1(n), a%rhs(n), a%du(n), a%prescribed(n), &
                 a%constrained(n), a%f_contact(n), a%du_load(n), a%du_residual(n), a%rhs_residual(n), &

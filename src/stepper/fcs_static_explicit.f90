@@ -17,7 +17,6 @@ module fcs_static_explicit
   use fcs_sparse, only: sparse_matrix_t
   use fcs_linear_solver, only: linear_solver_t
   use fcs_factor_reuse, only: factor_reuse_t
-  use fcs_mumps, only: mumps_solver_t
   use fcs_metis_order, only: metis_equation_order
   use fcs_loading, only: step_loading_t
   use fcs_assembly, only: assemble_pressures
@@ -755,18 +754,15 @@ contains
     type(sparse_matrix_t) :: whole
     integer :: e
     a%ordering_due = .false.
-    if (.not. a%comm%is_root()) return
-    select type (solver => a%solver)
-    type is (mumps_solver_t)
-      call a%elements%cliques([(e, e = 1, model%mesh%n_elements)], clique_ptr, clique_nodes)
-      if (a%contact%n_slaves() > 0) call a%contact%cliques(a%state%contact, clique_ptr, &
-                                                           clique_nodes, keep_centres=.true.)
-      call whole%build(model%mesh%n_nodes, clique_ptr, clique_nodes)
-      call metis_equation_order(whole, position, err)
-      call whole%free()
-      if (allocated(err)) return
-      call solver%set_ordering(position)
-    end select
+    if (.not. a%comm%is_root() .or. .not. a%solver%takes_ordering()) return
+    call a%elements%cliques([(e, e = 1, model%mesh%n_elements)], clique_ptr, clique_nodes)
+    if (a%contact%n_slaves() > 0) call a%contact%cliques(a%state%contact, clique_ptr, &
+                                                         clique_nodes, keep_centres=.true.)
+    call whole%build(model%mesh%n_nodes, clique_ptr, clique_nodes)
+    call metis_equation_order(whole, position, err)
+    call whole%free()
+    if (allocated(err)) return
+    call a%solver%set_ordering(position)
   end subroutine give_global_ordering
 
   !> Current positions X + u for the contact search and elements (also without NLGEOM:
