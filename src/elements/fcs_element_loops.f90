@@ -122,7 +122,7 @@ module fcs_element_loops
 contains
 
   !> What the mesh is to know of the catalogue's kinds (fcs_mesh): names, node counts, gmsh
-  !> types and the local nodes of their faces, in catalogue order (mesh kind k is catalogue
+  !> types and node orders and the local nodes of their faces, in catalogue order (mesh kind k is catalogue
   !> kind k).
   function mesh_kinds(catalogue) result(kinds)
     type(element_catalogue_t), intent(in) :: catalogue
@@ -135,6 +135,7 @@ contains
         kinds(k)%name = kind%name
         kinds(k)%n_nodes = kind%n_nodes
         kinds(k)%gmsh_type = kind%gmsh_type
+        if (allocated(kind%gmsh_order)) kinds(k)%gmsh_order = kind%gmsh_order
         kinds(k)%n_faces = min(kind%n_faces, MESH_MAX_FACES)
         do f = 1, kinds(k)%n_faces
           local = element_face_nodes(kind, f)

@@ -366,20 +366,53 @@ contains
     end do
   end function faces_exist
 
-  !> *MESH, FILE=x.msh: read a gmsh mesh into the model.
+  !> *MESH, FILE=x.msh[, HEX8=kind][, HEX20=kind]: read a gmsh mesh into the model, its 8- and
+  !> 20-node hexahedra as the kinds named (default C3D8 and C3D20: the first catalogue kind of
+  !> their gmsh type; the other gmsh types have one kind each).
   subroutine handle_mesh(card, model, diag)
     type(card_t), intent(in) :: card
     type(model_t), intent(inout) :: model
     type(diagnostics_t), intent(inout) :: diag
     type(error_t), allocatable :: err
     character(len=:), allocatable :: path
-    integer, allocatable :: lines(:)
+    integer, allocatable :: lines(:), kinds(:)
     integer :: first
+    call chosen_kinds(card, model, diag, kinds)
+    if (.not. allocated(kinds)) return
     path = join_path(dirname(card%loc%file), param_value(card, 'FILE'))
     first = model%mesh%n_elements + 1
-    call read_gmsh(path, model%mesh, err, lines)
+    call read_gmsh(path, model%mesh, err, lines, kinds)
     if (.not. allocated(err)) call check_mesh_file_orientation(path, model, first, lines, err)
     if (allocated(err)) call diag%report(card%loc, '*MESH: ' // err%message)
   end subroutine handle_mesh
+
+  !> The mesh kinds *MESH's HEX8= and HEX20= name (unallocated, with an error reported, if a
+  !> kind's formulation is not available yet).
+  subroutine chosen_kinds(card, model, diag, kinds)
+    type(card_t), intent(in) :: card
+    type(model_t), intent(in) :: model
+    type(diagnostics_t), intent(inout) :: diag
+    integer, allocatable, intent(out) :: kinds(:)
+    character(len=*), parameter :: NAMES(2) = ['HEX8 ', 'HEX20']
+    character(len=:), allocatable :: type_name
+    integer :: i, kind
+    integer :: found(size(NAMES)), n
+    n = 0
+    do i = 1, size(NAMES)
+      if (card%find_param(trim(NAMES(i))) == 0) cycle
+      type_name = param_upper(card, trim(NAMES(i)))
+      kind = model%mesh%find_kind(type_name)
+      if (kind == 0) return ! the keyword table has refused the value already
+      if (.not. formulation_available(type_name)) then
+        call diag%report(card%loc, '*MESH: ' // trim(NAMES(i)) // '=' // type_name // &
+                         ' is not available yet (its formulation - ' // &
+                         trim(formulation_missing(type_name)) // ' - is not implemented)')
+        return
+      end if
+      n = n + 1
+      found(n) = kind
+    end do
+    kinds = found(1:n)
+  end subroutine chosen_kinds
 
 end module fcs_build_mesh

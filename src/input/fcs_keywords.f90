@@ -118,11 +118,24 @@ contains
           p('TYPE', PARAM_CHOICE, default='ELEMENT', choices=[s('ELEMENT'), s('NODE')], &
             description='Element-face surface or node-based surface.')], &
          data_required=.true.), &
-      kw('MESH', CONTEXT_MODEL, 'fcs3d', 'Read nodes, hexahedra and physical groups from a ' // &
-         'gmsh mesh file (MSH 4.1, ASCII or binary).', '', &
+      kw('MESH', CONTEXT_MODEL, 'fcs3d', 'Read nodes, 3D elements (tetrahedra, prisms, ' // &
+         'hexahedra; first or second order; mixed) and physical groups from a gmsh mesh file ' // &
+         '(MSH 4.1, ASCII or binary).', '', &
          [p('FILE', PARAM_FILE, required=.true., &
-            description='The .msh file, relative to the deck holding *MESH. Physical groups ' // &
-            'become node sets, element sets and element-face surfaces named by the physical name.')]), &
+            description='The .msh file, relative to the deck holding *MESH. Read: 4- and ' // &
+            '10-node tetrahedra (C3D4, C3D10), 6- and 15-node prisms (C3D6, C3D15), 8- and ' // &
+            '20-node hexahedra (see HEX8, HEX20), their nodes renumbered from gmsh''s order to ' // &
+            'CalculiX''s; for second order mesh with Mesh.ElementOrder = 2 and ' // &
+            'Mesh.SecondOrderIncomplete = 1 (27-node hexahedra, 18-node prisms, 9-node ' // &
+            'quadrangles and pyramids are refused). Physical volumes ' // &
+            'become element and node sets; physical surfaces (3-, 6-node triangles, 4-, 8-node ' // &
+            'quadrangles on element faces) become element-face surfaces and node sets; ' // &
+            'physical curves and points become node sets; each named by the physical name ' // &
+            '(upper case) or SURFACE_<tag> etc.'), &
+          p('HEX8', PARAM_CHOICE, default='C3D8', choices=[s('C3D8'), s('C3D8R'), s('C3D8I')], &
+            description='Element type of the 8-node hexahedra (gmsh type 5).'), &
+          p('HEX20', PARAM_CHOICE, default='C3D20', choices=[s('C3D20'), s('C3D20R')], &
+            description='Element type of the 20-node hexahedra (gmsh type 17).')]), &
       kw('RESTART', CONTEXT_ANY, 'CalculiX', 'Write checkpoints to continue the run later ' // &
          '(fcs3d job.inp --restart job.rst.h5). Whatever is set here, a checkpoint is also ' // &
          'written at the end of every step and when SIGTERM or SIGINT stops the run.', '', &

@@ -421,10 +421,11 @@ contains
     if (n_bad == 0) return
     if (n_bad > MAX_INVERTED_NAMED) text = text // new_line('a') // path // ': ' // &
       str(n_bad - MAX_INVERTED_NAMED) // ' more inverted or degenerate element(s)'
-    call input_error(err, text // new_line('a') // 'gmsh numbering of a hexahedron: nodes 0-3 ' // &
-      'counter-clockwise on one face seen from the opposite face, 4-7 above them; a volume ' // &
-      'meshed with the reverse orientation gives inverted elements (reverse the surface loop ' // &
-      'of the volume in the .geo file)')
+    call input_error(err, text // new_line('a') // 'gmsh numbers the corners of tetrahedra, ' // &
+      'prisms and hexahedra as CalculiX does (a tetrahedron''s nodes 1-2-3 counter-clockwise ' // &
+      'seen from node 4; a hexahedron''s nodes 1-4 counter-clockwise seen from the opposite ' // &
+      'face 5-8); a volume meshed with the reverse orientation gives inverted elements ' // &
+      '(reverse the surface loop of the volume in the .geo file)')
   end subroutine check_mesh_file_orientation
 
 end module fcs_model_checks

@@ -8,35 +8,46 @@
 !> Binary files must be little-endian with 8-byte `size_t` (what gmsh writes on x86 and ARM).
 !>
 !> What becomes what:
-!> - 8-node hexahedra (gmsh type 5) become mesh elements with their gmsh tag as id. The gmsh
-!>   node ordering of the hexahedron (manual, section "Node ordering",
-!>   https://gmsh.info/doc/texinfo/gmsh.html#Node-ordering : nodes 0-3 counter-clockwise
-!>   on the face w = -1 seen from w > 0, nodes 4-7 above them on w = +1) is the Abaqus/CalculiX
-!>   C3D8 ordering, so the connectivity is taken as it is. Node tags become node ids; only nodes
-!>   used by what is read (hexahedra, faces and node groups below) are added.
-!> - If the file has physical volumes, only the hexahedra of physical volumes are used (gmsh
-!>   convention); otherwise every hexahedron in the file is used. What gmsh saves (checked with
+!> - The 3D elements of the kinds fcs3d has become mesh elements with their gmsh tag as id:
+!>   4-node tetrahedra (gmsh type 4), 8-node hexahedra (5), 6-node prisms (6), 10-node
+!>   tetrahedra (11), 20-node hexahedra (17) and 15-node prisms (18), mixed in any way. Each
+!>   becomes the mesh kind read from its gmsh type (`find_gmsh_kind`: the first catalogue kind
+!>   of that type, C3D4, C3D8, C3D6, C3D10, C3D20, C3D15) unless the caller names another kind
+!>   of the same gmsh type (`kinds`: C3D20R for type 17, say). The connectivity is permuted from
+!>   gmsh's node order to CalculiX's with the kind's `gmsh_order` (gmsh manual, section "Node
+!>   ordering", https://gmsh.info/doc/texinfo/gmsh.html#Node-ordering : the corners of all
+!>   three shapes are in CalculiX's order, the mid-side nodes follow gmsh's edge lists; see
+!>   fcs_tetrahedra, fcs_wedges, fcs_hexahedra). Node tags become node ids; only nodes used by
+!>   what is read (elements, faces and node groups below) are added.
+!> - If the file has physical volumes, only the elements of physical volumes are used (gmsh
+!>   convention); otherwise every 3D element in the file is used. What gmsh saves (checked with
 !>   gmsh 4.8.4): without any physical group, all elements; with physical groups, only the
 !>   elements of physical groups, unless Mesh.SaveAll = 1 (gmsh -save_all). So once a .geo file
 !>   defines physical surfaces, its meshed volumes must be in a physical volume too (or the
-!>   mesh saved with Mesh.SaveAll = 1), else the file holds no hexahedra.
+!>   mesh saved with Mesh.SaveAll = 1), else the file holds no elements to read.
 !> - Physical groups become named sets. The name is the upper-cased physical name (blanks kept),
 !>   or, for an unnamed group, <POINT|CURVE|SURFACE|VOLUME>_<tag>, e.g. "SURFACE_3".
-!>   A volume group gives an element set of its hexahedra and a node set of their nodes; a
-!>   surface group gives an element-face surface and a node set of its nodes; a curve or point
-!>   group gives a node set. Groups without elements give no set. Sets that already exist in
-!>   the mesh under the same name are extended (the mesh convention for repeated definitions).
-!> - 4-node quadrangles (type 3) of surface groups are not elements: each is matched to the
-!>   hexahedron face with the same four nodes, giving (element, face S1..S6 as the mesh's kind
-!>   for gmsh type 5 numbers them, fcs_mesh). A quad on a face shared by two hexahedra takes the face of the
-!>   hexahedron out of which the quad's own normal (right-hand rule) points.
-!> - Points (15) and 2-node lines (1) outside physical groups are ignored, and so is any other
-!>   element type outside physical groups unless it is three-dimensional. Any other element type
-!>   in a physical group, and any 3D element other than the 8-node hexahedron, is an error.
+!>   A volume group gives an element set of its elements and a node set of their nodes; a
+!>   surface group gives an element-face surface and a node set of the nodes of its faces; a
+!>   curve or point group gives a node set. Groups without elements give no set. Sets that
+!>   already exist in the mesh under the same name are extended (the mesh convention for
+!>   repeated definitions).
+!> - 3-node triangles (type 2), 6-node triangles (9), 4-node quadrangles (3) and 8-node
+!>   quadrangles (16) of surface groups are not elements: each is matched by its corner nodes
+!>   to the element face S1..Sn with the same corners (fcs_face_match), giving (element, face);
+!>   the mid-side nodes of a second-order face must be those of the element face. A face
+!>   shared by two elements takes the face of the element out of which the surface element's
+!>   own normal (right-hand rule) points.
+!> - Points (15) and lines (1, and 3-node lines, 8) outside physical groups are ignored, and so
+!>   is any other element type outside physical groups unless it is three-dimensional.
+!>   Complete second-order elements (9-node quadrangles 10, 27-node hexahedra 12, 18-node
+!>   prisms 13) are an error advising Mesh.SecondOrderIncomplete = 1 (gmsh then writes the
+!>   8-, 20- and 15-node serendipity elements CalculiX has); pyramids, higher orders and any
+!>   other type in a physical group, or three-dimensional, are an error.
 !>
-!> The hexahedra become elements of the mesh's kind for gmsh type 5 (`find_gmsh_kind`: C3D8).
-!> Their Jacobians are the caller's to check (fcs_model_checks, `check_mesh_file_orientation`),
-!> with the line of each element in the file that `read_gmsh` returns.
+!> The Jacobians of the elements read are the caller's to check (fcs_model_checks,
+!> `check_mesh_file_orientation`), with the line of each element in the file that `read_gmsh`
+!> returns.
 !>
 !> Errors are input errors: "path:line: message" for text files, "path: $Section (byte N):
 !> message" for binary ones, "path: message" for what concerns the whole file.
@@ -46,22 +57,30 @@ module fcs_gmsh_reader
   use fcs_error, only: error_t, input_error
   use fcs_strings, only: str, to_upper
   use fcs_int_map, only: int_map_t
-  use fcs_mesh, only: mesh_t
-  use fcs_hex_face_match, only: match_quads_to_hex_faces
+  use fcs_mesh, only: mesh_t, MESH_MAX_FACE_NODES
+  use fcs_face_match, only: match_faces, face_corner_count
   use fcs_gmsh_stream, only: msh_stream_t, is_finite_bits
   implicit none
   private
   public :: read_gmsh
 
   !> gmsh element types handled by name (manual, "MSH file format", elementType).
-  integer, parameter :: GMSH_LINE = 1, GMSH_QUAD = 3, GMSH_HEXAHEDRON = 5, GMSH_POINT = 15
+  integer, parameter :: GMSH_LINE = 1, GMSH_TRIANGLE = 2, GMSH_QUAD = 3, GMSH_LINE3 = 8, &
+    GMSH_TRIANGLE6 = 9, GMSH_QUAD9 = 10, GMSH_HEXAHEDRON27 = 12, GMSH_PRISM18 = 13, &
+    GMSH_POINT = 15, GMSH_QUAD8 = 16
+  !> The 3D types read as elements (tetrahedra, hexahedra, prisms of first and second order)
+  !> and the 2D types read as their faces.
+  integer, parameter :: SOLID_TYPES(6) = [4, 5, 6, 11, 17, 18]
+  integer, parameter :: FACE_TYPES(4) = [GMSH_TRIANGLE, GMSH_QUAD, GMSH_TRIANGLE6, GMSH_QUAD8]
+  !> Most nodes of a solid and of a face read.
+  integer, parameter :: MAX_SOLID_NODES = 20, MAX_FACE_NODES = 8
   !> Nodes and dimension of gmsh element types 1..31 (same source).
   integer, parameter :: TYPE_NODES(31) = [2, 3, 4, 4, 8, 6, 5, 3, 6, 9, 10, 27, 18, 14, 1, 8, &
     20, 15, 13, 9, 10, 12, 15, 15, 21, 4, 5, 6, 20, 35, 56]
   integer, parameter :: TYPE_DIMENSION(31) = [1, 2, 2, 3, 3, 3, 3, 1, 2, 2, 3, 3, 3, 3, 0, 2, &
     3, 3, 3, 2, 2, 2, 2, 2, 2, 1, 1, 1, 3, 3, 3]
   !> What is done with an element block.
-  integer, parameter :: BLOCK_SKIP = 0, BLOCK_HEXAHEDRA = 1, BLOCK_QUADS = 2, BLOCK_NODES = 3
+  integer, parameter :: BLOCK_SKIP = 0, BLOCK_SOLIDS = 1, BLOCK_FACES = 2, BLOCK_NODES = 3
   !> Largest tag that fits a mesh id.
   integer(i8), parameter :: MAX_TAG = int(huge(1), i8)
   !> Elements per read in a binary element block (bounds the temporary buffer).
@@ -72,10 +91,13 @@ module fcs_gmsh_reader
   integer, parameter :: TEXT_RECORD_BYTES = 8, BINARY_BLOCK_BYTES = 20, BINARY_ENTITY_BYTES = 36
   character(len=7), parameter :: DIMENSION_NAME(0:3) = [character(len=7) :: 'POINT', 'CURVE', &
     'SURFACE', 'VOLUME']
-  character(len=*), parameter :: HEX_ADVICE = 'To mesh with hexahedra in gmsh use structured &
-    &meshing (Transfinite Curve/Surface/Volume with Recombine Surface), Extrude with Layers and &
-    &Recombine, or Mesh.SubdivisionAlgorithm = 2 (all-hex subdivision), and first-order elements &
-    &(Mesh.ElementOrder = 1).'
+  character(len=*), parameter :: KINDS_READ = 'fcs3d reads 4- and 10-node tetrahedra, 6- and &
+    &15-node prisms and 8- and 20-node hexahedra (C3D4, C3D10, C3D6, C3D15, C3D8, C3D20), with &
+    &3-, 6-node triangles and 4-, 8-node quadrangles as their faces'
+  character(len=*), parameter :: ORDER_ADVICE = 'For second order, mesh with &
+    &Mesh.ElementOrder = 2 and Mesh.SecondOrderIncomplete = 1 (gmsh -order 2 -setnumber &
+    &Mesh.SecondOrderIncomplete 1): gmsh then writes the 8-node quadrangles, 20-node hexahedra &
+    &and 15-node prisms CalculiX has.'
 
   !> A physical group: dimension, tag and the name of the sets it gives.
   type :: physical_group_t
@@ -92,13 +114,15 @@ module fcs_gmsh_reader
     integer, allocatable :: groups(:)
   end type entity_t
 
-  !> Elements kept from the file: tags, nodes (file node numbers 1..n_nodes), the line each
-  !> was read from (0 in binary files), and the blocks (entity, first, last) they came in.
-  !> Nodes of points and lines are kept one per record (width 1).
+  !> Elements kept from the file: tags, gmsh types, nodes (file node numbers 1..n_nodes, gmsh
+  !> order, padded with 0 to `width`), the line each was read from (0 in binary files), and the
+  !> blocks (entity, first, last) they came in. Nodes of points and lines are kept one per
+  !> record (width 1).
   type :: element_store_t
     integer :: width = 0
     integer :: n = 0
     integer, allocatable :: tag(:)
+    integer, allocatable :: gmsh_type(:)
     integer, allocatable :: nodes(:, :)
     integer, allocatable :: line(:)
     integer :: n_blocks = 0
@@ -128,29 +152,32 @@ module fcs_gmsh_reader
     integer, allocatable :: node_tag(:)
     real(dp), allocatable :: node_x(:, :)
     type(node_lookup_t) :: lookup
-    type(element_store_t) :: hexahedra
-    type(element_store_t) :: quads
+    type(element_store_t) :: solids
+    type(element_store_t) :: faces
     type(element_store_t) :: loose_nodes
   end type msh_content_t
 
-  !> Where each quad of a surface group lies: hexahedron (number in the file's list) and face.
-  type :: quad_faces_t
-    integer, allocatable :: hexahedron(:)
+  !> Where each face of a surface group lies: element (mesh index) and face S1..Sn.
+  type :: face_matches_t
+    integer, allocatable :: element(:)
     integer, allocatable :: face(:)
-  end type quad_faces_t
+  end type face_matches_t
 
 contains
 
   !> Read the gmsh MSH 4.1 file `path` (text or binary) into `mesh`, which must be initialised
   !> and may already hold nodes, elements and sets (ids must not clash with the file's tags).
   !> The whole file is read and checked before the mesh is touched, except for id clashes and
-  !> quads on no hexahedron face: after such an error the mesh holds part of the file.
-  subroutine read_gmsh(path, mesh, err, element_lines)
+  !> faces on no element face: after such an error the mesh holds part of the file.
+  subroutine read_gmsh(path, mesh, err, element_lines, kinds)
     character(len=*), intent(in) :: path
     type(mesh_t), intent(inout) :: mesh
     type(error_t), allocatable, intent(out) :: err
     !> For each element added (in mesh order), its line in the file (0 in a binary file).
     integer, allocatable, intent(out), optional :: element_lines(:)
+    !> Mesh kinds (indices into mesh%kinds) that the elements of their gmsh types become,
+    !> instead of the first kind of that type (C3D20R for 20-node hexahedra, say).
+    integer, intent(in), optional :: kinds(:)
     type(msh_stream_t) :: stream
     type(msh_content_t) :: content
     call stream%open(path, err)
@@ -158,8 +185,12 @@ contains
     call read_content(stream, content, err)
     call stream%close()
     if (allocated(err)) return
-    call build_mesh(path, content, mesh, err)
-    if (present(element_lines)) element_lines = content%hexahedra%line(1:content%hexahedra%n)
+    if (present(kinds)) then
+      call build_mesh(path, content, kinds, mesh, err)
+    else
+      call build_mesh(path, content, [integer ::], mesh, err)
+    end if
+    if (present(element_lines)) element_lines = content%solids%line(1:content%solids%n)
   end subroutine read_gmsh
 
   ! ------------------------------------------------------------------------------------------
@@ -174,8 +205,8 @@ contains
     logical :: found
     character(len=:), allocatable :: name
     allocate (content%groups(8), content%entities(64))
-    call init_store(content%hexahedra, 8)
-    call init_store(content%quads, 4)
+    call init_store(content%solids, MAX_SOLID_NODES)
+    call init_store(content%faces, MAX_FACE_NODES)
     call init_store(content%loose_nodes, 1)
     call read_mesh_format(stream, err)
     if (allocated(err)) return
@@ -854,7 +885,7 @@ contains
       end if
       call check_count(stream, block(4), merge(8, 2, stream%binary) * (1 + n_per), 'elements', err)
       if (allocated(err)) return
-      call read_element_block(stream, content, kind, entity, n_per, int(block(4)), err)
+      call read_element_block(stream, content, kind, entity, int(block(3)), n_per, int(block(4)), err)
       if (allocated(err)) return
       total = total + block(4)
     end do
@@ -867,7 +898,7 @@ contains
   end subroutine read_elements
 
   !> Decide what to do with an element block (dimension, entity tag, type, count): keep its
-  !> hexahedra, quads or nodes, skip it, or reject an unsupported element type.
+  !> solids, faces or nodes, skip it, or reject an unsupported element type.
   subroutine classify_block(stream, content, block, entity, volume_groups, kind, err)
     type(msh_stream_t), intent(in) :: stream
     type(msh_content_t), intent(in) :: content
@@ -878,29 +909,37 @@ contains
     type(error_t), allocatable, intent(out) :: err
     logical :: grouped
     integer :: element_dimension
-    character(len=:), allocatable :: where
+    character(len=:), allocatable :: where, advice
     grouped = .false.
     if (entity > 0) grouped = size(content%entities(entity)%groups) > 0
     kind = BLOCK_SKIP
-    select case (block(3))
-    case (GMSH_HEXAHEDRON)
-      if (grouped .or. .not. volume_groups) kind = BLOCK_HEXAHEDRA
-    case (GMSH_QUAD)
-      if (grouped) kind = BLOCK_QUADS
-    case (GMSH_LINE, GMSH_POINT)
+    if (any(SOLID_TYPES == block(3))) then
+      if (grouped .or. .not. volume_groups) kind = BLOCK_SOLIDS
+      return
+    else if (any(FACE_TYPES == block(3))) then
+      if (grouped) kind = BLOCK_FACES
+      return
+    else if (block(3) == GMSH_LINE .or. block(3) == GMSH_LINE3 .or. block(3) == GMSH_POINT) then
       if (grouped) kind = BLOCK_NODES
+      return
+    end if
+    element_dimension = int(block(1))
+    if (block(3) >= 1 .and. block(3) <= size(TYPE_DIMENSION)) element_dimension = TYPE_DIMENSION(block(3))
+    if (block(3) == 92 .or. block(3) == 93) element_dimension = 3
+    if (.not. (grouped .or. element_dimension == 3 .or. block(1) == 3)) return
+    where = trim(to_lower_word(int(max(0_i8, min(3_i8, block(1)))))) // ' ' // str(block(2))
+    if (grouped) where = 'physical ' // group_label(content%groups(content%entities(entity)%groups(1)))
+    select case (block(3))
+    case (GMSH_QUAD9, GMSH_HEXAHEDRON27, GMSH_PRISM18)
+      advice = 'complete second-order elements are not supported (CalculiX has none). ' // ORDER_ADVICE
+    case (7, 14, 19)
+      advice = 'fcs3d has no pyramid element (CalculiX has none); mesh the volume with &
+        &tetrahedra only, or with hexahedra and prisms (Extrude, Transfinite, Recombine).'
     case default
-      element_dimension = int(block(1))
-      if (block(3) >= 1 .and. block(3) <= size(TYPE_DIMENSION)) element_dimension = TYPE_DIMENSION(block(3))
-      if (block(3) == 92 .or. block(3) == 93) element_dimension = 3
-      if (grouped .or. element_dimension == 3 .or. block(1) == 3) then
-        where = trim(to_lower_word(int(max(0_i8, min(3_i8, block(1)))))) // ' ' // str(block(2))
-        if (grouped) where = 'physical ' // group_label(content%groups(content%entities(entity)%groups(1)))
-        call stream%fail(err, type_name(block(3)) // ' elements (gmsh element type ' // str(block(3)) // &
-          ') in ' // where // ': fcs3d supports only 8-node hexahedra (C3D8) and 4-node &
-          &quadrangles as their faces. ' // HEX_ADVICE)
-      end if
+      advice = KINDS_READ // '. ' // ORDER_ADVICE
     end select
+    call stream%fail(err, type_name(block(3)) // ' elements (gmsh element type ' // str(block(3)) // &
+      ') in ' // where // ': ' // advice)
   end subroutine classify_block
 
   !> Name of a gmsh element type, for messages.
@@ -947,21 +986,22 @@ contains
     end select
   end function type_name
 
-  !> Read (or skip) the `n` elements of a block of `n_per`-node elements.
-  subroutine read_element_block(stream, content, kind, entity, n_per, n, err)
+  !> Read (or skip) the `n` elements of a block of `n_per`-node elements of gmsh type
+  !> `element_type`.
+  subroutine read_element_block(stream, content, kind, entity, element_type, n_per, n, err)
     type(msh_stream_t), intent(inout) :: stream
     type(msh_content_t), intent(inout) :: content
-    integer, intent(in) :: kind, entity, n_per, n
+    integer, intent(in) :: kind, entity, element_type, n_per, n
     type(error_t), allocatable, intent(out) :: err
     integer :: i
     logical :: found
     select case (kind)
-    case (BLOCK_HEXAHEDRA)
-      call read_block_into(stream, content%lookup, content%hexahedra, entity, n_per, n, err)
-    case (BLOCK_QUADS)
-      call read_block_into(stream, content%lookup, content%quads, entity, n_per, n, err)
+    case (BLOCK_SOLIDS)
+      call read_block_into(stream, content%lookup, content%solids, entity, element_type, n_per, n, err)
+    case (BLOCK_FACES)
+      call read_block_into(stream, content%lookup, content%faces, entity, element_type, n_per, n, err)
     case (BLOCK_NODES)
-      call read_block_into(stream, content%lookup, content%loose_nodes, entity, n_per, n, err)
+      call read_block_into(stream, content%lookup, content%loose_nodes, entity, element_type, n_per, n, err)
     case default
       if (stream%binary) then
         call stream%skip_bytes(8_i8 * n * (1 + n_per), found)
@@ -978,17 +1018,18 @@ contains
     end select
   end subroutine read_element_block
 
-  !> Read `n` elements of `n_per` nodes into `store` (as one block of `entity`).
-  subroutine read_block_into(stream, lookup, store, entity, n_per, n, err)
+  !> Read `n` elements of `n_per` nodes and gmsh type `element_type` into `store` (as one
+  !> block of `entity`).
+  subroutine read_block_into(stream, lookup, store, entity, element_type, n_per, n, err)
     type(msh_stream_t), intent(inout) :: stream
     type(node_lookup_t), intent(in) :: lookup
     type(element_store_t), intent(inout) :: store
-    integer, intent(in) :: entity, n_per, n
+    integer, intent(in) :: entity, element_type, n_per, n
     type(error_t), allocatable, intent(out) :: err
     integer(i8), allocatable :: records(:, :)
     integer :: done, m, e, j
     logical :: ok, found
-    call store_begin_block(store, entity, n * (n_per / store%width))
+    call store_begin_block(store, entity, n * merge(n_per, 1, store%width == 1))
     allocate (records(1 + n_per, min(n, merge(BINARY_BATCH, 1, stream%binary))))
     done = 0
     do while (done < n)
@@ -1011,7 +1052,7 @@ contains
         end if
       end if
       do e = 1, m
-        call store_element(stream, lookup, store, records(:, e), err)
+        call store_element(stream, lookup, store, element_type, records(:, e), err)
         if (allocated(err)) return
       end do
       done = done + m
@@ -1019,11 +1060,13 @@ contains
     store%block_last(store%n_blocks) = store%n
   end subroutine read_block_into
 
-  !> Append one element (tag, node tags) to `store`, translating node tags to file node numbers.
-  subroutine store_element(stream, lookup, store, record, err)
+  !> Append one element (tag, node tags) of gmsh type `element_type` to `store`, translating
+  !> node tags to file node numbers: one record, or one per node in a store of width 1.
+  subroutine store_element(stream, lookup, store, element_type, record, err)
     type(msh_stream_t), intent(in) :: stream
     type(node_lookup_t), intent(in) :: lookup
     type(element_store_t), intent(inout) :: store
+    integer, intent(in) :: element_type
     integer(i8), intent(in) :: record(:)
     type(error_t), allocatable, intent(out) :: err
     integer :: nodes(size(record) - 1), j, line
@@ -1039,20 +1082,33 @@ contains
     end do
     line = 0
     if (.not. stream%binary) line = stream%line_number
-    do j = 1, size(nodes), store%width
-      store%n = store%n + 1
-      store%tag(store%n) = int(record(1))
-      store%nodes(:, store%n) = nodes(j:j + store%width - 1)
-      store%line(store%n) = line
-    end do
+    if (store%width == 1) then
+      do j = 1, size(nodes)
+        call append_record(store, int(record(1)), element_type, nodes(j:j), line)
+      end do
+    else
+      call append_record(store, int(record(1)), element_type, nodes, line)
+    end if
   end subroutine store_element
+
+  !> Append one record to `store` (room made by store_begin_block).
+  subroutine append_record(store, tag, element_type, nodes, line)
+    type(element_store_t), intent(inout) :: store
+    integer, intent(in) :: tag, element_type, nodes(:), line
+    store%n = store%n + 1
+    store%tag(store%n) = tag
+    store%gmsh_type(store%n) = element_type
+    store%nodes(:, store%n) = 0
+    store%nodes(1:size(nodes), store%n) = nodes
+    store%line(store%n) = line
+  end subroutine append_record
 
   !> Empty store of records of `width` nodes.
   subroutine init_store(store, width)
     type(element_store_t), intent(out) :: store
     integer, intent(in) :: width
     store%width = width
-    allocate (store%tag(0), store%nodes(width, 0), store%line(0))
+    allocate (store%tag(0), store%gmsh_type(0), store%nodes(width, 0), store%line(0))
     allocate (store%block_entity(8), store%block_first(8), store%block_last(8))
   end subroutine init_store
 
@@ -1067,6 +1123,9 @@ contains
       allocate (grown(capacity))
       grown(1:store%n) = store%tag(1:store%n)
       call move_alloc(grown, store%tag)
+      allocate (grown(capacity))
+      grown(1:store%n) = store%gmsh_type(1:store%n)
+      call move_alloc(grown, store%gmsh_type)
       allocate (grown(capacity))
       grown(1:store%n) = store%line(1:store%n)
       call move_alloc(grown, store%line)
@@ -1089,35 +1148,63 @@ contains
   ! Into the mesh
   ! ------------------------------------------------------------------------------------------
 
-  !> Add the nodes, hexahedra and physical groups read from `path` to `mesh`.
-  subroutine build_mesh(path, content, mesh, err)
+  !> Add the nodes, elements and physical groups read from `path` to `mesh`; `kinds` are the
+  !> mesh kinds chosen for their gmsh types (see read_gmsh).
+  subroutine build_mesh(path, content, kinds, mesh, err)
     character(len=*), intent(in) :: path
     type(msh_content_t), intent(in) :: content
+    integer, intent(in) :: kinds(:)
     type(mesh_t), intent(inout) :: mesh
     type(error_t), allocatable, intent(out) :: err
-    integer, allocatable :: node_index(:), element_index(:)
-    type(quad_faces_t) :: quad_faces
-    integer :: kind
-    kind = mesh%find_gmsh_kind(GMSH_HEXAHEDRON)
-    if (kind == 0) then
-      call input_error(err, path // ': the mesh has no element kind for gmsh hexahedra (type 5)')
+    integer, allocatable :: node_index(:), element_index(:), kind_of_type(:)
+    type(face_matches_t) :: matches
+    if (content%solids%n == 0) then
+      call input_error(err, path // ': no 3D elements to read (' // KINDS_READ // '). gmsh saves &
+        &only the elements of physical groups when there are any: put the meshed volumes in a &
+        &Physical Volume, or save all elements (Mesh.SaveAll = 1, gmsh -save_all).')
       return
     end if
-    if (content%hexahedra%n == 0) then
-      call input_error(err, path // ': no 8-node hexahedra (gmsh element type 5) to read. gmsh saves &
-        &only the elements of physical groups when there are any: put the meshed volumes in a Physical &
-        &Volume, or save all elements (Mesh.SaveAll = 1, gmsh -save_all). ' // HEX_ADVICE)
-      return
-    end if
+    call choose_kinds(path, content, kinds, mesh, kind_of_type, err)
+    if (allocated(err)) return
     call add_nodes(path, content, mesh, node_index, err)
     if (allocated(err)) return
-    call add_hexahedra(path, content, mesh, kind, node_index, element_index, err)
+    call add_solids(path, content, mesh, kind_of_type, node_index, element_index, err)
     if (allocated(err)) return
-    call match_quads(path, content, mesh%kinds(kind)%face_local(1:4, 1:mesh%kinds(kind)%n_faces), &
-                     quad_faces, err)
+    call match_surface_faces(path, content, mesh, node_index, element_index, matches, err)
     if (allocated(err)) return
-    call add_groups(path, content, mesh, node_index, element_index, quad_faces, err)
+    call add_groups(path, content, mesh, node_index, element_index, matches, err)
   end subroutine build_mesh
+
+  !> The mesh kind of each gmsh type of the solids read (kind_of_type(type), 0 for types not
+  !> read): the kind of `kinds` with that gmsh type, else the mesh's first kind of the type.
+  subroutine choose_kinds(path, content, kinds, mesh, kind_of_type, err)
+    character(len=*), intent(in) :: path
+    type(msh_content_t), intent(in) :: content
+    integer, intent(in) :: kinds(:)
+    type(mesh_t), intent(in) :: mesh
+    integer, allocatable, intent(out) :: kind_of_type(:)
+    type(error_t), allocatable, intent(out) :: err
+    integer :: t, k
+    allocate (kind_of_type(maxval(SOLID_TYPES)))
+    kind_of_type = 0
+    do t = 1, size(kind_of_type)
+      if (.not. any(content%solids%gmsh_type(1:content%solids%n) == t)) cycle
+      kind_of_type(t) = mesh%find_gmsh_kind(t)
+      do k = 1, size(kinds)
+        if (mesh%kinds(kinds(k))%gmsh_type == t) kind_of_type(t) = kinds(k)
+      end do
+      if (kind_of_type(t) == 0) then
+        call input_error(err, path // ': the mesh has no element kind for ' // &
+          type_name(int(t, i8)) // ' elements (gmsh type ' // str(t) // ')')
+        return
+      end if
+      if (.not. allocated(mesh%kinds(kind_of_type(t))%gmsh_order)) then
+        call input_error(err, path // ': element kind ' // mesh%kinds(kind_of_type(t))%name // &
+          ' has no gmsh node order')
+        return
+      end if
+    end do
+  end subroutine choose_kinds
 
   !> Add the nodes used by the kept elements, in file order; `node_index` maps file node
   !> numbers to mesh indices (0 for nodes not added).
@@ -1133,8 +1220,8 @@ contains
     allocate (used(content%n_nodes), node_index(content%n_nodes))
     used = .false.
     node_index = 0
-    call mark_nodes(content%hexahedra, 1, content%hexahedra%n, used)
-    call mark_nodes(content%quads, 1, content%quads%n, used)
+    call mark_nodes(content%solids, 1, content%solids%n, used)
+    call mark_nodes(content%faces, 1, content%faces%n, used)
     call mark_nodes(content%loose_nodes, 1, content%loose_nodes%n, used)
     do i = 1, content%n_nodes
       if (.not. used(i)) cycle
@@ -1148,108 +1235,157 @@ contains
     end do
   end subroutine add_nodes
 
-  !> Mark the nodes of records first..last of `store`.
+  !> Mark the nodes of records first..last of `store` (padding zeros skipped).
   subroutine mark_nodes(store, first, last, used)
     type(element_store_t), intent(in) :: store
     integer, intent(in) :: first, last
     logical, intent(inout) :: used(:)
-    integer :: k
+    integer :: k, j
     do k = first, last
-      used(store%nodes(:, k)) = .true.
+      do j = 1, store%width
+        if (store%nodes(j, k) > 0) used(store%nodes(j, k)) = .true.
+      end do
     end do
   end subroutine mark_nodes
 
-  !> Add the hexahedra; `element_index` maps their position in the file's list to mesh indices.
-  subroutine add_hexahedra(path, content, mesh, kind, node_index, element_index, err)
+  !> Add the solids, their nodes permuted from gmsh's order to CalculiX's; `element_index` maps
+  !> their position in the file's list to mesh indices.
+  subroutine add_solids(path, content, mesh, kind_of_type, node_index, element_index, err)
     character(len=*), intent(in) :: path
     type(msh_content_t), intent(in) :: content
     type(mesh_t), intent(inout) :: mesh
-    integer, intent(in) :: kind, node_index(:)
+    integer, intent(in) :: kind_of_type(:), node_index(:)
     integer, allocatable, intent(out) :: element_index(:)
     type(error_t), allocatable, intent(out) :: err
-    integer :: k, n_before
+    integer :: k, n_before, kind
     logical :: duplicate
     n_before = mesh%n_elements
-    allocate (element_index(content%hexahedra%n))
-    do k = 1, content%hexahedra%n
-      call mesh%add_element(content%hexahedra%tag(k), node_index(content%hexahedra%nodes(:, k)), &
-                            duplicate, kind)
+    allocate (element_index(content%solids%n))
+    do k = 1, content%solids%n
+      kind = kind_of_type(content%solids%gmsh_type(k))
+      associate (order => mesh%kinds(kind)%gmsh_order)
+        call mesh%add_element(content%solids%tag(k), node_index(content%solids%nodes(order, k)), &
+                              duplicate, kind)
+      end associate
       if (duplicate) then
-        if (mesh%element_index(content%hexahedra%tag(k)) > n_before) then
-          call input_error(err, path // ': element ' // str(content%hexahedra%tag(k)) // &
+        if (mesh%element_index(content%solids%tag(k)) > n_before) then
+          call input_error(err, path // ': element ' // str(content%solids%tag(k)) // &
             ' appears twice in $Elements')
         else
-          call input_error(err, path // ': element ' // str(content%hexahedra%tag(k)) // ' already &
+          call input_error(err, path // ': element ' // str(content%solids%tag(k)) // ' already &
             &exists in the mesh (element ids of a mesh file must differ from those defined before it)')
         end if
         return
       end if
       element_index(k) = mesh%n_elements
     end do
-  end subroutine add_hexahedra
+  end subroutine add_solids
 
-
-  !> Match every kept quad to the hexahedron face with the same four nodes; a quad on no face
-  !> (or, in a non-conforming mesh, on more than two) is an error.
-  subroutine match_quads(path, content, faces, quad_faces, err)
+  !> Match every kept surface element to the element face with the same corners; one on no
+  !> face (or, in a non-conforming mesh, on more than two), or whose mid-side nodes are not
+  !> those of the element face, is an error.
+  subroutine match_surface_faces(path, content, mesh, node_index, element_index, matches, err)
     character(len=*), intent(in) :: path
     type(msh_content_t), intent(in) :: content
-    integer, intent(in) :: faces(:, :)
-    type(quad_faces_t), intent(out) :: quad_faces
+    type(mesh_t), intent(in) :: mesh
+    integer, intent(in) :: node_index(:), element_index(:)
+    type(face_matches_t), intent(out) :: matches
     type(error_t), allocatable, intent(out) :: err
-    integer, allocatable :: matches(:)
-    integer :: q
-    call match_quads_to_hex_faces(faces, content%hexahedra%nodes(:, 1:content%hexahedra%n), &
-      content%quads%nodes(:, 1:content%quads%n), quad_faces%hexahedron, quad_faces%face, matches)
-    do q = 1, content%quads%n
-      if (matches(q) == 1 .or. matches(q) == 2) cycle
-      call quad_error(path, content, q, matches(q), err)
-      return
-    end do
-  end subroutine match_quads
+    integer, allocatable :: corners(:, :), n_corners(:), counts(:), face_nodes(:), own(:)
+    integer :: q, first, last, n_own
+    associate (faces => content%faces)
+      allocate (corners(4, faces%n), n_corners(faces%n))
+      corners = 0
+      do q = 1, faces%n
+        n_corners(q) = face_corner_count(TYPE_NODES(faces%gmsh_type(q)))
+        corners(1:n_corners(q), q) = node_index(faces%nodes(1:n_corners(q), q))
+      end do
+      first = 1
+      last = 0
+      if (size(element_index) > 0) then
+        first = element_index(1)
+        last = element_index(size(element_index))
+      end if
+      call match_faces(mesh, first, last, corners, n_corners, matches%element, matches%face, counts)
+      do q = 1, faces%n
+        if (counts(q) /= 1 .and. counts(q) /= 2) then
+          call face_error(path, content, q, face_error_text(counts(q)), err)
+          return
+        end if
+        n_own = TYPE_NODES(faces%gmsh_type(q))
+        if (n_own == n_corners(q)) cycle
+        face_nodes = mesh%face_nodes(matches%element(q), matches%face(q))
+        own = node_index(faces%nodes(1:n_own, q))
+        if (size(face_nodes) /= n_own .or. .not. same_members(face_nodes, own)) then
+          call face_error(path, content, q, 'has the corners of face S' // str(matches%face(q)) // &
+            ' of element ' // str(mesh%element_id(matches%element(q))) // ' (' // &
+            mesh%kinds(mesh%element_kind(matches%element(q)))%name // ') but not its mid-side &
+            &nodes: the mesh is not conforming (faces and volumes of different order?)', err)
+          return
+        end if
+      end do
+    end associate
+  end subroutine match_surface_faces
 
-  !> Error for quad `q`, which lies on `matches` hexahedron faces (0, or more than 2).
-  subroutine quad_error(path, content, q, matches, err)
+  !> What is wrong with a surface element on `count` element faces (0, or more than 2).
+  function face_error_text(count) result(text)
+    integer, intent(in) :: count
+    character(len=:), allocatable :: text
+    if (count == 0) then
+      text = 'matches no face of an element read from this file (a physical surface must lie &
+        &on element faces; is the adjacent volume in a physical volume?)'
+    else
+      text = 'lies on ' // str(count) // ' element faces: the mesh is not conforming'
+    end if
+  end function face_error_text
+
+  !> True if `a` and `b` hold the same values (each without repetitions).
+  pure logical function same_members(a, b)
+    integer, intent(in) :: a(:), b(:)
+    integer :: j
+    same_members = size(a) == size(b)
+    if (.not. same_members) return
+    do j = 1, size(a)
+      if (.not. any(b == a(j))) same_members = .false.
+    end do
+  end function same_members
+
+  !> Error `text` for surface element `q`, at its line of the file.
+  subroutine face_error(path, content, q, text, err)
     character(len=*), intent(in) :: path
     type(msh_content_t), intent(in) :: content
-    integer, intent(in) :: q, matches
+    integer, intent(in) :: q
+    character(len=*), intent(in) :: text
     type(error_t), allocatable, intent(out) :: err
     character(len=:), allocatable :: where, what
     integer :: b, j, entity
     where = path // ': $Elements'
-    if (content%quads%line(q) > 0) where = path // ':' // str(content%quads%line(q))
-    what = 'quad ' // str(content%quads%tag(q)) // ' (nodes'
-    do j = 1, 4
-      what = what // ' ' // str(content%node_tag(content%quads%nodes(j, q)))
+    if (content%faces%line(q) > 0) where = path // ':' // str(content%faces%line(q))
+    what = type_name(int(content%faces%gmsh_type(q), i8)) // ' ' // str(content%faces%tag(q)) // ' (nodes'
+    do j = 1, TYPE_NODES(content%faces%gmsh_type(q))
+      what = what // ' ' // str(content%node_tag(content%faces%nodes(j, q)))
     end do
     what = what // ')'
-    do b = 1, content%quads%n_blocks
-      if (q < content%quads%block_first(b) .or. q > content%quads%block_last(b)) cycle
-      entity = content%quads%block_entity(b)
+    do b = 1, content%faces%n_blocks
+      if (q < content%faces%block_first(b) .or. q > content%faces%block_last(b)) cycle
+      entity = content%faces%block_entity(b)
       if (entity > 0) what = what // ' of physical ' // &
         group_label(content%groups(content%entities(entity)%groups(1)))
     end do
-    if (matches == 0) then
-      call input_error(err, where // ': ' // what // ' matches no face of a hexahedron read from &
-        &this file (a physical surface must lie on hexahedron faces; is the adjacent volume in a &
-        &physical volume?)')
-    else
-      call input_error(err, where // ': ' // what // ' lies on ' // str(matches) // &
-        ' hexahedron faces: the mesh is not conforming')
-    end if
-  end subroutine quad_error
+    call input_error(err, where // ': ' // what // ' ' // text)
+  end subroutine face_error
 
   !> Turn the physical groups into sets and surfaces (see the module comment).
-  subroutine add_groups(path, content, mesh, node_index, element_index, quad_faces, err)
+  subroutine add_groups(path, content, mesh, node_index, element_index, matches, err)
     character(len=*), intent(in) :: path
     type(msh_content_t), intent(in) :: content
     type(mesh_t), intent(inout) :: mesh
     integer, intent(in) :: node_index(:), element_index(:)
-    type(quad_faces_t), intent(in) :: quad_faces
+    type(face_matches_t), intent(in) :: matches
     type(error_t), allocatable, intent(out) :: err
-    integer, allocatable :: members(:), elements(:), faces(:)
+    integer, allocatable :: members(:), elements(:), faces(:), nodes(:)
     logical, allocatable :: used(:)
-    integer :: g, h
+    integer :: g, h, k, n
     allocate (used(content%n_nodes))
     do g = 1, content%n_groups
       do h = 1, g - 1
@@ -1265,20 +1401,31 @@ contains
         used = .false.
         select case (group%dim)
         case (3)
-          members = group_members(content, content%hexahedra, g, used)
+          members = group_members(content, content%solids, g, used)
           if (size(members) == 0) cycle
           call mesh%add_to_element_set(group%name, element_index(members))
+          call mesh%add_to_node_set(group%name, pack(node_index, used))
         case (2)
-          members = group_members(content, content%quads, g, used)
+          members = group_members(content, content%faces, g, used)
           if (size(members) == 0) cycle
-          elements = element_index(quad_faces%hexahedron(members))
-          faces = quad_faces%face(members)
+          elements = matches%element(members)
+          faces = matches%face(members)
           call mesh%add_faces_to_surface(group%name, elements, faces)
+          allocate (nodes(MESH_MAX_FACE_NODES * size(elements)))
+          n = 0
+          do k = 1, size(elements)
+            associate (face_nodes => mesh%face_nodes(elements(k), faces(k)))
+              nodes(n + 1:n + size(face_nodes)) = face_nodes
+              n = n + size(face_nodes)
+            end associate
+          end do
+          call mesh%add_to_node_set(group%name, nodes(1:n))
+          deallocate (nodes)
         case default
           members = group_members(content, content%loose_nodes, g, used)
           if (size(members) == 0) cycle
+          call mesh%add_to_node_set(group%name, pack(node_index, used))
         end select
-        call mesh%add_to_node_set(group%name, pack(node_index, used))
       end associate
     end do
   end subroutine add_groups

@@ -26,8 +26,10 @@ module fcs_mesh
   type :: mesh_kind_t
     character(len=:), allocatable :: name
     integer :: n_nodes = 0
-    !> gmsh MSH element type read as this kind (0: none).
+    !> gmsh MSH element type read as this kind (0: none), and gmsh_order(a): the position in
+    !> gmsh's node list of the kind's node a (CalculiX order).
     integer :: gmsh_type = 0
+    integer, allocatable :: gmsh_order(:)
     integer :: n_faces = 0
     !> face_size(f) nodes of face f: face_local(1:face_size(f), f), corners first, outward.
     integer :: face_size(MESH_MAX_FACES) = 0

@@ -1,6 +1,8 @@
 !> Unit tests of fcs_gmsh_reader on the meshes of tests/data/gmsh (see make_data.sh there):
 !> a 2 x 1 x 1 box of 2 x 2 x 1 hexahedra saved by gmsh 4.8.4 as text and binary, a hand-written
-!> file with sparse tags, and malformed files that must give a clear message.
+!> file with sparse tags, tetrahedra of first and second order, a box of hexahedra and prisms
+!> of first order (binary) and second order (text, with 6-node triangles and 8-node quadrangles
+!> on its physical surfaces), and malformed files that must give a clear message.
 !> The data directory is $FCS3D_TEST_DATA/gmsh if that variable is set, else tests/data/gmsh
 !> under the current directory (run from the repository root), else the one found from the
 !> test binary's path <root>/build/<variant>/tests/ (tests/run_tests.sh runs each unit test in a
@@ -10,7 +12,7 @@ program test_fcs_gmsh_reader
   use fcs_error, only: error_t, EXIT_INPUT
   use fcs_mesh, only: mesh_t
   use fcs_element_catalogue, only: element_catalogue_t
-  use fcs_element_loops, only: mesh_kinds
+  use fcs_element_loops, only: mesh_kinds, element_volume_of, element_face_area_of
   use fcs_gmsh_reader, only: read_gmsh
   use fcs_strings, only: dirname, file_exists
   use fcs_test_assertions, only: test_suite_t
@@ -21,8 +23,12 @@ program test_fcs_gmsh_reader
   !> Transfinite interpolation leaves about 1e-12 of noise on the interior node coordinates.
   real(dp), parameter :: MESHER_TOLERANCE = 1.0e-10_dp
   type(test_suite_t) :: suite
+  type(element_catalogue_t) :: catalogue
+  type(error_t), allocatable :: catalogue_error
 
   suite%name = 'fcs_gmsh_reader'
+  call catalogue%init(catalogue_error)
+  call suite%check(.not. allocated(catalogue_error), 'element catalogue')
   data_dir = data_directory()
   call suite%check(file_exists(data_dir // 'cube.geo'), 'test data found in "' // data_dir // '"')
   call test_cube(suite, data_dir // 'cube_ascii.msh')
@@ -32,6 +38,10 @@ program test_fcs_gmsh_reader
   call test_no_groups(suite)
   call test_sparse_tags(suite)
   call test_clashing_ids(suite)
+  call test_tetrahedra(suite)
+  call test_mixed(suite, 'mixed8_binary.msh', 'C3D8', 'C3D6', [integer ::])
+  call test_mixed(suite, 'mixed20.msh', 'C3D20', 'C3D15', [integer ::])
+  call test_mixed(suite, 'mixed20.msh', 'C3D20R', 'C3D15', [catalogue%find('C3D20R')])
   call test_bad_files(suite)
   call suite%report()
 
@@ -281,6 +291,139 @@ contains
       'sparse: BOTTOM is face S1 of element 42')
   end subroutine test_sparse_tags
 
+  !> tet.geo's tetrahedron cut into 4 tetrahedra: C3D4 and, second order, C3D10 with the
+  !> mid-side nodes on their edges; volume 1/6.
+  subroutine test_tetrahedra(suite)
+    type(test_suite_t), intent(inout) :: suite
+    type(mesh_t) :: mesh
+    logical :: ok
+    call read_fresh(suite, data_dir // 'tet4.msh', mesh, ok)
+    if (ok) then
+      call suite%check(mesh%n_elements == 4 .and. all(mesh%element_kind(1:4) == mesh%find_kind('C3D4')), &
+        'tet4.msh: 4 C3D4')
+      call suite%equal_int(mesh%n_nodes, 7, 'tet4.msh: nodes')
+      call check_volumes(suite, mesh, 'tet4.msh', 1.0_dp / 6.0_dp)
+    end if
+    call read_fresh(suite, data_dir // 'tet10.msh', mesh, ok)
+    if (.not. ok) return
+    call suite%check(mesh%n_elements == 4 .and. all(mesh%element_kind(1:4) == mesh%find_kind('C3D10')), &
+      'tet10.msh: 4 C3D10')
+    call suite%equal_int(mesh%n_nodes, 22, 'tet10.msh: nodes')
+    call check_volumes(suite, mesh, 'tet10.msh', 1.0_dp / 6.0_dp)
+    call check_mid_side_nodes(suite, mesh, 'tet10.msh')
+  end subroutine test_tetrahedra
+
+  !> kinds.geo's box [0,2] x [0,1] x [0,1] (shape 3): hexahedra (kind `hexahedra`) for x < 1,
+  !> prisms (kind `prisms`) for x > 1; `kinds` as read_gmsh's choice of kinds, indices into the
+  !> catalogue. Volume 2; the physical surfaces XMIN, XMAX (quadrilaterals), YMIN, ZMIN
+  !> (quadrilaterals and triangles) on their planes, outward, with their areas; the internal
+  !> surface MID on the elements its normal points out of.
+  subroutine test_mixed(suite, name, hexahedra, prisms, kinds)
+    type(test_suite_t), intent(inout) :: suite
+    character(len=*), intent(in) :: name, hexahedra, prisms
+    integer, intent(in) :: kinds(:)
+    type(mesh_t) :: mesh
+    type(error_t), allocatable :: err
+    character(len=:), allocatable :: what
+    integer :: n_hex, n_prism, s
+    what = name // ' (' // hexahedra // ', ' // prisms // ')'
+    call mesh%init(catalogue_kinds())
+    call read_gmsh(data_dir // name, mesh, err, kinds=kinds)
+    call suite%check(.not. allocated(err), 'reading ' // what)
+    if (allocated(err)) then
+      call suite%check(.false., err%message)
+      return
+    end if
+    n_hex = count(mesh%element_kind(1:mesh%n_elements) == mesh%find_kind(hexahedra))
+    n_prism = count(mesh%element_kind(1:mesh%n_elements) == mesh%find_kind(prisms))
+    call suite%check(n_hex == 8 .and. n_prism == 28 .and. mesh%n_elements == 36, what // &
+      ': 8 hexahedra and 28 prisms of the kinds named')
+    call check_volumes(suite, mesh, what, 2.0_dp)
+    call check_mid_side_nodes(suite, mesh, what)
+    call check_faces(suite, mesh, what, 'XMIN', 1, 0.0_dp, -1.0_dp, 1.0_dp)
+    call check_faces(suite, mesh, what, 'XMAX', 1, 2.0_dp, 1.0_dp, 1.0_dp)
+    call check_faces(suite, mesh, what, 'YMIN', 2, 0.0_dp, -1.0_dp, 2.0_dp)
+    call check_faces(suite, mesh, what, 'ZMIN', 3, 0.0_dp, -1.0_dp, 2.0_dp)
+    ! MID, the internal surface x = 1, has elements with normal +x (kinds.geo): each is the
+    ! face of the hexahedron (x < 1) out of which that normal points, not the prism's.
+    call check_faces(suite, mesh, what, 'MID', 1, 1.0_dp, 1.0_dp, 1.0_dp)
+    s = mesh%find_surface('MID')
+    if (s > 0) call suite%check(all(mesh%element_kind(mesh%surfaces(s)%element) == &
+      mesh%find_kind(hexahedra)), what // ': MID faces are the hexahedra''s')
+    call suite%equal_int(set_size(mesh, 'BLOCK', .false.), 36, what // ': element set BLOCK')
+    call suite%equal_int(set_size(mesh, 'BLOCK', .true.), mesh%n_nodes, what // ': node set BLOCK')
+  end subroutine test_mixed
+
+  !> Every element has a positive volume; together `total`.
+  subroutine check_volumes(suite, mesh, what, total)
+    type(test_suite_t), intent(inout) :: suite
+    type(mesh_t), intent(in) :: mesh
+    character(len=*), intent(in) :: what
+    real(dp), intent(in) :: total
+    real(dp) :: volume(mesh%n_elements)
+    integer :: e
+    do e = 1, mesh%n_elements
+      volume(e) = element_volume_of(catalogue, mesh, e)
+    end do
+    call suite%check(all(volume > 0.0_dp), what // ': every element has a positive volume')
+    call suite%close_to(sum(volume), total, MESHER_TOLERANCE, what // ': total volume')
+  end subroutine check_volumes
+
+  !> In these straight-edged meshes every mid-side node of an element lies half-way between the
+  !> two corners of its edge in CalculiX's numbering (`edge_corners` of the kind): the gmsh
+  !> node order was permuted right.
+  subroutine check_mid_side_nodes(suite, mesh, what)
+    type(test_suite_t), intent(inout) :: suite
+    type(mesh_t), intent(in) :: mesh
+    character(len=*), intent(in) :: what
+    integer :: e, a, n_bad, n_checked
+    n_bad = 0
+    n_checked = 0
+    do e = 1, mesh%n_elements
+      associate (kind => catalogue%kinds(mesh%element_kind(e)), nodes => mesh%connectivity(:, e))
+        do a = kind%n_corners + 1, kind%n_nodes
+          n_checked = n_checked + 1
+          if (any(abs(mesh%x(:, nodes(a)) - 0.5_dp * (mesh%x(:, nodes(kind%edge_corners(1, a))) + &
+              mesh%x(:, nodes(kind%edge_corners(2, a))))) > MESHER_TOLERANCE)) n_bad = n_bad + 1
+        end do
+      end associate
+    end do
+    call suite%equal_int(n_bad, 0, what // ': mid-side nodes off their edges (of ' // &
+      trim(int_text(n_checked)) // ')')
+  end subroutine check_mid_side_nodes
+
+  !> Surface `name`: every face's nodes on the plane x(axis) = value, its normal (right-hand
+  !> rule on its first three corners) `sense` times that axis, total area `area`.
+  subroutine check_faces(suite, mesh, what, name, axis, value, sense, area)
+    type(test_suite_t), intent(inout) :: suite
+    type(mesh_t), intent(in) :: mesh
+    character(len=*), intent(in) :: what, name
+    integer, intent(in) :: axis
+    real(dp), intent(in) :: value, sense, area
+    integer, allocatable :: nodes(:)
+    integer :: s, f, n_off, n_inward
+    real(dp) :: a(3), b(3), normal(3), total
+    s = mesh%find_surface(name)
+    call suite%check(s > 0, what // ': surface ' // name // ' exists')
+    if (s == 0) return
+    n_off = 0
+    n_inward = 0
+    total = 0.0_dp
+    do f = 1, size(mesh%surfaces(s)%element)
+      nodes = mesh%face_nodes(mesh%surfaces(s)%element(f), mesh%surfaces(s)%face(f))
+      if (any(abs(mesh%x(axis, nodes) - value) > MESHER_TOLERANCE)) n_off = n_off + 1
+      a = mesh%x(:, nodes(2)) - mesh%x(:, nodes(1))
+      b = mesh%x(:, nodes(3)) - mesh%x(:, nodes(1))
+      normal = [a(2) * b(3) - a(3) * b(2), a(3) * b(1) - a(1) * b(3), a(1) * b(2) - a(2) * b(1)]
+      if (sense * normal(axis) <= 0.0_dp) n_inward = n_inward + 1
+      total = total + element_face_area_of(catalogue, mesh, mesh%surfaces(s)%element(f), &
+                                           mesh%surfaces(s)%face(f))
+    end do
+    call suite%equal_int(n_off, 0, what // ': ' // name // ' faces off their plane')
+    call suite%equal_int(n_inward, 0, what // ': ' // name // ' faces not pointing outward')
+    call suite%close_to(total, area, MESHER_TOLERANCE, what // ': area of ' // name)
+  end subroutine check_faces
+
   !> Node and element ids already in the mesh are errors naming the id and the file.
   subroutine test_clashing_ids(suite)
     type(test_suite_t), intent(inout) :: suite
@@ -306,10 +449,15 @@ contains
     call expect_error(suite, 'bad_truncated_binary.msh', '$Nodes (byte', 'truncated')
     call expect_error(suite, 'bad_v22.msh', 'version 2.2 is not supported', 'gmsh -format msh41')
     call expect_error(suite, 'bad_partitioned.msh', 'partitioned .msh files are not supported', '-part 0')
-    call expect_error(suite, 'bad_no_hexahedra.msh', 'no 8-node hexahedra', 'Physical Volume')
-    call expect_error(suite, 'bad_tetrahedra.msh', '4-node tetrahedron', 'supports only 8-node hexahedra')
-    call expect_error(suite, 'bad_tetrahedra.msh', '"SOLID"', 'Mesh.SubdivisionAlgorithm = 2')
-    call expect_error(suite, 'bad_quad.msh', 'bad_quad.msh:115: quad 8 (nodes 1 12 16 6)', 'matches no face')
+    call expect_error(suite, 'bad_no_hexahedra.msh', 'no 3D elements to read', 'Physical Volume')
+    call expect_error(suite, 'bad_quad9.msh', 'bad_quad9.msh:561: 9-node quadrangle (second order) &
+      &elements (gmsh element type 10) in physical surface 5 "ZMIN"', 'Mesh.SecondOrderIncomplete = 1')
+    call expect_error(suite, 'bad_hex27.msh', '27-node hexahedron (second order) elements (gmsh &
+      &element type 12) in volume 1', 'Mesh.SecondOrderIncomplete = 1')
+    call expect_error(suite, 'bad_missing_node_tet10.msh', 'bad_missing_node_tet10.msh:93: element 3 &
+      &refers to node 99', 'not in $Nodes')
+    call expect_error(suite, 'bad_quad.msh', 'bad_quad.msh:115: 4-node quadrangle 8 (nodes 1 12 16 6)', &
+      'matches no face')
     call expect_error(suite, 'bad_number.msh', 'bad_number.msh:73:', '3 coordinates of node 10')
     call expect_error(suite, 'bad_missing_node.msh', 'element 12 refers to node 99', 'not in $Nodes')
     call expect_error(suite, 'bad_not_msh.msh', 'bad_not_msh.msh:1:', 'not a gmsh mesh file')

@@ -1,4 +1,4 @@
-// tet.geo: a box meshed with tetrahedra in a physical volume (an error for fcs3d).
+// tet.geo: a tetrahedron meshed with 4 tetrahedra in a physical volume (tet4.msh, tet10.msh).
 Point(1) = {0, 0, 0, 1};
 Point(2) = {1, 0, 0, 1};
 Point(3) = {0, 1, 0, 1};
