@@ -386,8 +386,8 @@ contains
     if (allocated(err)) call diag%report(card%loc, '*MESH: ' // err%message)
   end subroutine handle_mesh
 
-  !> The mesh kinds *MESH's HEX8= and HEX20= name (unallocated, with an error reported, if a
-  !> kind's formulation is not available yet).
+  !> The mesh kinds *MESH's HEX8= and HEX20= name (unallocated if a name is not a kind: the
+  !> keyword table has reported it).
   subroutine chosen_kinds(card, model, diag, kinds)
     type(card_t), intent(in) :: card
     type(model_t), intent(in) :: model
@@ -403,12 +403,6 @@ contains
       type_name = param_upper(card, trim(NAMES(i)))
       kind = model%mesh%find_kind(type_name)
       if (kind == 0) return ! the keyword table has refused the value already
-      if (.not. formulation_available(type_name)) then
-        call diag%report(card%loc, '*MESH: ' // trim(NAMES(i)) // '=' // type_name // &
-                         ' is not available yet (its formulation - ' // &
-                         trim(formulation_missing(type_name)) // ' - is not implemented)')
-        return
-      end if
       n = n + 1
       found(n) = kind
     end do
