@@ -772,9 +772,15 @@ contains
     real(dp), allocatable :: load(:)
     call constrain_system(a, a%prescribed, err)
     if (allocated(err)) return
-    load = a%f_ext1 - a%f_ext0
-    call a%links%reduce_vector(load)
-    where (.not. a%constrained) a%rhs = a%rhs + load
+    if (a%links%active()) then
+      load = a%f_ext1 - a%f_ext0
+      call a%links%reduce_vector(load)
+      where (.not. a%constrained) a%rhs = a%rhs + load
+    else
+      ! The same operations, in the same order, as before the constraints: a model without
+      ! them gives the results of earlier versions bit for bit.
+      where (.not. a%constrained) a%rhs = a%rhs + a%f_ext1 - a%f_ext0
+    end if
   end subroutine impose_constraints
 
   !> Eliminate the dependent degrees of freedom of the linear constraints (K <- T^T K T,
