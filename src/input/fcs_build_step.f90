@@ -23,7 +23,7 @@ module fcs_build_step
   private
   public :: handle_step, handle_static, handle_end_step, handle_boundary, handle_cload
   public :: handle_dsload, handle_amplitude, handle_time_points, find_amplitude, find_time_points
-  public :: handle_rmin
+  public :: handle_rmin, amplitude_param
 
   !> Clashing conditions named per card; the rest are counted in one message.
   integer, parameter :: MAX_CLASHES_NAMED = 5

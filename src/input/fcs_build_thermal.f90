@@ -17,7 +17,7 @@ module fcs_build_thermal
   use fcs_deck_fields, only: param_upper, param_value, line_real, resolve_nodes
   use fcs_diagnostics, only: diagnostics_t
   use fcs_builder_state, only: builder_t
-  use fcs_build_step, only: find_amplitude
+  use fcs_build_step, only: amplitude_param
   use fcs_model, only: model_t, initial_stress_t
   use fcs_deck_fields, only: resolve_elements, has_flag, line_int
   use fcs_material_factory, only: PLASTICITY_NONE
@@ -266,21 +266,13 @@ contains
   !> *TEMPERATURE, OP=, AMPLITUDE=: node or node set, temperature at the end of the step.
   subroutine handle_temperature(card, model, state, diag)
     type(card_t), intent(in) :: card
-    type(model_t), intent(in) :: model
+    type(model_t), intent(inout) :: model
     type(builder_t), intent(inout) :: state
     type(diagnostics_t), intent(inout) :: diag
     integer, allocatable :: nodes(:)
     real(dp) :: value
     integer :: i, amplitude
-    amplitude = 0
-    if (card%find_param('AMPLITUDE') > 0) then
-      amplitude = find_amplitude(model, param_upper(card, 'AMPLITUDE'))
-      if (amplitude == 0) then
-        call diag%report(card%loc, '*TEMPERATURE: amplitude "' // param_value(card, 'AMPLITUDE') // &
-                         '" is not defined (define it with *AMPLITUDE before it is used)')
-        return
-      end if
-    end if
+    if (.not. amplitude_param(card, model, diag, amplitude)) return
     associate (step => state%step)
       if (.not. allocated(step%temperature_node)) then
         allocate (step%temperature_node(0), step%temperature_value(0), step%temperature_card_amplitude(0))

@@ -525,7 +525,10 @@ contains
          [p('OP', PARAM_CHOICE, default='MOD', choices=[s('MOD'), s('NEW')], &
             description='MOD changes the named nodes; NEW first returns every node to its ' // &
             'initial temperature.'), &
-          p('AMPLITUDE', PARAM_NAME, description='The temperature is value x this amplitude.')], &
+          p('AMPLITUDE', PARAM_NAME, description='The temperature is value x this amplitude.'), &
+          p('TIME DELAY', PARAM_REAL, unit='time', description='Shift the amplitude by this ' // &
+            'time: the value at time t is the amplitude''s at t - delay (CalculiX; needs ' // &
+            'AMPLITUDE).')], &
          data_required=.true.), &
       kw('CLOAD', CONTEXT_STEP, 'CalculiX', 'Concentrated nodal forces.', &
          'node or node set, dof, magnitude [force].', &
