@@ -244,24 +244,56 @@ contains
     type(builder_t), intent(inout) :: state
     type(diagnostics_t), intent(inout) :: diag
     integer, allocatable :: nodes(:)
-    real(dp) :: value
-    integer :: i
+    real(dp), allocatable :: values(:)
     if (.not. allocated(state%initial_temperature_node)) then
       allocate (state%initial_temperature_node(0), state%initial_temperature_value(0))
     end if
+    call nodal_values(card, model, '*INITIAL CONDITIONS', diag, nodes, values)
+    state%initial_temperature_node = [state%initial_temperature_node, nodes]
+    state%initial_temperature_value = [state%initial_temperature_value, values]
+  end subroutine initial_temperatures
+
+  !> The data lines "node or node set, value" of a card, one entry per node (a set gives each
+  !> of its nodes the line's value), in line order. Lines with another number of fields or a
+  !> value that is not a number are reported and skipped. The lists grow by doubling: thermal
+  !> decks give a line per node.
+  subroutine nodal_values(card, model, keyword, diag, nodes, values)
+    type(card_t), intent(in) :: card
+    type(model_t), intent(in) :: model
+    character(len=*), intent(in) :: keyword
+    type(diagnostics_t), intent(inout) :: diag
+    integer, allocatable, intent(out) :: nodes(:)
+    real(dp), allocatable, intent(out) :: values(:)
+    integer, allocatable :: found(:), grown_nodes(:)
+    real(dp), allocatable :: grown_values(:)
+    real(dp) :: value
+    integer :: i, n, m
+    allocate (nodes(max(card%n_lines, 1)), values(max(card%n_lines, 1)))
+    n = 0
     do i = 1, card%n_lines
       associate (line => card%lines(i))
         if (given_fields(line) /= 2) then
-          call diag%report(line%loc, '*INITIAL CONDITIONS: expected node or node set, temperature')
+          call diag%report(line%loc, keyword // ': expected node or node set, temperature')
           cycle
         end if
         if (.not. line_real(line, 2, value, 'temperature', card%keyword, diag)) cycle
-        call resolve_nodes(model%mesh, line%fields(1)%s, line, card%keyword, diag, nodes)
-        state%initial_temperature_node = [state%initial_temperature_node, nodes]
-        state%initial_temperature_value = [state%initial_temperature_value, spread(value, 1, size(nodes))]
+        call resolve_nodes(model%mesh, line%fields(1)%s, line, card%keyword, diag, found)
+        m = size(found)
+        if (n + m > size(nodes)) then
+          allocate (grown_nodes(max(2 * size(nodes), n + m)), grown_values(max(2 * size(nodes), n + m)))
+          grown_nodes(1:n) = nodes(1:n)
+          grown_values(1:n) = values(1:n)
+          call move_alloc(grown_nodes, nodes)
+          call move_alloc(grown_values, values)
+        end if
+        nodes(n + 1:n + m) = found
+        values(n + 1:n + m) = value
+        n = n + m
       end associate
     end do
-  end subroutine initial_temperatures
+    nodes = nodes(1:n)
+    values = values(1:n)
+  end subroutine nodal_values
 
   !> *TEMPERATURE, OP=, AMPLITUDE=: node or node set, temperature at the end of the step.
   subroutine handle_temperature(card, model, state, diag)
@@ -270,8 +302,8 @@ contains
     type(builder_t), intent(inout) :: state
     type(diagnostics_t), intent(inout) :: diag
     integer, allocatable :: nodes(:)
-    real(dp) :: value
-    integer :: i, amplitude
+    real(dp), allocatable :: values(:)
+    integer :: amplitude
     if (.not. amplitude_param(card, model, diag, amplitude)) return
     associate (step => state%step)
       if (.not. allocated(step%temperature_node)) then
@@ -282,20 +314,11 @@ contains
         deallocate (step%temperature_node, step%temperature_value, step%temperature_card_amplitude)
         allocate (step%temperature_node(0), step%temperature_value(0), step%temperature_card_amplitude(0))
       end if
-      do i = 1, card%n_lines
-        associate (line => card%lines(i))
-          if (given_fields(line) /= 2) then
-            call diag%report(line%loc, '*TEMPERATURE: expected node or node set, temperature')
-            cycle
-          end if
-          if (.not. line_real(line, 2, value, 'temperature', card%keyword, diag)) cycle
-          call resolve_nodes(model%mesh, line%fields(1)%s, line, card%keyword, diag, nodes)
-          step%temperature_node = [step%temperature_node, nodes]
-          step%temperature_value = [step%temperature_value, spread(value, 1, size(nodes))]
-          step%temperature_card_amplitude = [step%temperature_card_amplitude, &
-                                             spread(amplitude, 1, size(nodes))]
-        end associate
-      end do
+      call nodal_values(card, model, '*TEMPERATURE', diag, nodes, values)
+      step%temperature_node = [step%temperature_node, nodes]
+      step%temperature_value = [step%temperature_value, values]
+      step%temperature_card_amplitude = [step%temperature_card_amplitude, &
+                                         spread(amplitude, 1, size(nodes))]
     end associate
   end subroutine handle_temperature
 

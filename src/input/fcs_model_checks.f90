@@ -50,8 +50,9 @@ contains
     if (.not. diag%has_errors()) call check_supports(model, diag)
   end subroutine check_model
 
-  !> Thermal strain is not in the incompatible-mode update of C3D8I yet: a section that gives
-  !> C3D8I elements a material with expansion or temperature-dependent constants is refused.
+  !> Thermal strain is not in the incompatible-mode update (C3D8I) yet: a section that gives
+  !> elements with incompatible modes a material with expansion or temperature-dependent
+  !> constants is refused.
   subroutine check_thermal_kinds(model, diag)
     type(model_t), intent(in) :: model
     type(diagnostics_t), intent(inout) :: diag
@@ -63,10 +64,12 @@ contains
         associate (members => model%mesh%element_sets(section%element_set)%members)
           do i = 1, size(members)
             e = members(i)
-            if (model%mesh%kinds(model%mesh%element_kind(e))%name /= 'C3D8I') cycle
+            ! The mesh's kinds are the catalogue's, in its order (mesh_kinds).
+            if (model%element_kinds%kinds(model%mesh%element_kind(e))%n_modes == 0) cycle
             call diag%report(section%loc, '*SOLID SECTION: material ' // &
               model%materials(section%material)%name // ' has thermal expansion or ' // &
-              'temperature-dependent constants, which C3D8I elements (element ' // &
+              'temperature-dependent constants, which ' // &
+              model%mesh%kinds(model%mesh%element_kind(e))%name // ' elements (element ' // &
               str(model%mesh%element_id(e)) // ') do not take yet; use C3D8 or C3D20R')
             exit
           end do

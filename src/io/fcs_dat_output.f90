@@ -132,7 +132,7 @@ contains
 
   !> *EL PRINT: S, E, PEEQ (PE), ENER and/or ELSE at the integration points (ELSE: per element)
   !> of the request's element set; peeq(q, e) is the equivalent plastic strain; element e has
-  !> n_points(e) integration points of volume volume(q, e). ENER is the energy density 1/2 S:E
+  !> n_points(e) integration points of volume volume(q, e) (needed for ELSE only). ENER is the energy density 1/2 S:E
   !> (engineering shears), which for an elastic material is CalculiX's internal energy density
   !> (its integral of S:dE over the load path; exact for linear elasticity at small strain),
   !> ELSE its integral over the element (sum of ENER x point volume), as CalculiX's "internal

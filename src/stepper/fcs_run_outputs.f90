@@ -151,7 +151,8 @@ contains
     integer, intent(in) :: i
     type(error_t), allocatable, intent(out) :: err
     real(dp), allocatable :: peeq(:, :), plastic_strain(:, :, :), back_stress(:, :, :)
-    real(dp), allocatable :: displacement(:, :), stress(:, :)
+    real(dp), allocatable :: displacement(:, :), stress(:, :), volume(:, :)
+    integer :: v
     integer, allocatable :: node(:)
     logical, allocatable :: closed(:)
     associate (request => model%steps(a%state%step)%outputs(i), state => a%state)
@@ -165,9 +166,14 @@ contains
         end if
       case (OUTPUT_EL_PRINT)
         call a%elements%plastic_fields(state%elements, peeq, plastic_strain, back_stress)
+        ! Point volumes only for ELSE (an element loop over the whole mesh).
+        if (any([(request%variables(v)%s == 'ELSE', v = 1, size(request%variables))])) then
+          volume = a%elements%point_volumes()
+        else
+          allocate (volume(0, 0))
+        end if
         call this%dat%el_print(model, request, state%time, state%elements%stress, &
-                               state%elements%strain, peeq, a%elements%point_counts(), &
-                               a%elements%point_volumes(), err)
+                               state%elements%strain, peeq, a%elements%point_counts(), volume, err)
       case (OUTPUT_CONTACT_PRINT)
         call a%contact%print_values(a%x_contact, state%contact, node, closed, displacement, stress)
         call this%dat%contact_print(model, request, state%time, node, closed, displacement, stress, err)
