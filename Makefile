@@ -4,6 +4,7 @@
 #   make validate  long validations (not part of make test), then make ccx-suite
 #   make ccx-suite CalculiX's static test decks through ccx and fcs3d (table of agreement)
 #   make bench     benchmarks that print figures (not part of make test)
+#   make bench-compare BEFORE=/path/to/fcs3d   that build and this one side by side
 #   make figures   figures of the default run into doc/figures/
 #   make DEBUG=1 ... bounds checks and floating-point traps
 #   make MPI=1 ...   the Open MPI variant bin/fcs3d-mpi instead (MUMPS distributed)
@@ -79,13 +80,13 @@ $(BUILD)/fcs_version.f90: FORCE | $(BUILD)
 .PHONY: FORCE
 FORCE:
 
-.PHONY: all build run test validate ccx-suite bench figures doc packages clean help unit-tests
+.PHONY: all build run test validate ccx-suite bench bench-compare figures doc packages clean help unit-tests
 .DEFAULT_GOAL := all
 all: build
 build: $(BIN)
 
 help:
-	@sed -n '2,10p' Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '2,11p' Makefile | sed 's/^# \{0,1\}//'
 
 packages:
 	@sh tools/ensure_packages.sh $(PACKAGES)
@@ -150,6 +151,13 @@ bench: packages
 	@$(MAKE) --no-print-directory MPI=1 BUILD=$(MPI_BUILD) build
 	@FCS3D=$(abspath $(BIN)) FCS3D_MPI=$(abspath $(MPI_BIN)) PYTHON=$(PYTHON) \
 	  OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 sh tests/bench/run_bench.sh
+
+# Two builds side by side (fault-bend run and contact benchmark, alternately; speed and outputs):
+# make bench-compare BEFORE=/path/to/other/fcs3d
+bench-compare: packages
+	@$(MAKE) --no-print-directory build
+	@test -n "$(BEFORE)" || { echo "make bench-compare needs BEFORE=/path/to/fcs3d"; exit 2; }
+	@PYTHON=$(PYTHON) sh tests/bench/compare_builds.sh $(abspath $(BEFORE)) $(abspath $(BIN))
 
 figures:
 	@$(PYTHON) post/make_figures.py --results run/fault_bend/fault_bend.h5 --out doc/figures

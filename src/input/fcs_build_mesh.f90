@@ -71,15 +71,19 @@ contains
 
   !> *ELEMENT, TYPE=kind: id, then the kind's node ids (CalculiX order); a record continues on
   !> the next line after a trailing comma (C3D20: 15 + 5 node ids, as CalculiX writes them).
+  !> Ids beyond the kind's count are ignored with one warning per card, as CalculiX ignores
+  !> them.
   subroutine handle_element(card, model, diag)
     type(card_t), intent(in) :: card
     type(model_t), intent(inout) :: model
     type(diagnostics_t), intent(inout) :: diag
-    integer :: i, a, b, id, node_id, n_added, kind, n
+    integer :: i, a, b, id, node_id, n_added, kind, n, n_long, first_long
     integer, allocatable :: nodes(:), added(:)
     type(data_line_t), allocatable :: records(:)
     character(len=:), allocatable :: type_name, needs
     logical :: ok, duplicate
+    n_long = 0
+    first_long = 0
     type_name = param_upper(card, 'TYPE')
     kind = model%mesh%find_kind(type_name)
     if (kind == 0) return ! the keyword table has refused the TYPE already
@@ -96,9 +100,14 @@ contains
                            ' fields (a record continues on the next line only after a ' // &
                            'trailing comma)')
           cycle
-        else if (size(line%fields) /= n + 1) then
+        else if (size(line%fields) < n + 1) then
           call diag%report(line%loc, needs // 'found ' // str(size(line%fields)) // ' fields')
           cycle
+        else if (size(line%fields) > n + 1) then
+          ! CalculiX reads the first n node ids of a record and ignores the rest (elements.f):
+          ! decks written with its 11-node expansion of C3D8I carry extra ids.
+          n_long = n_long + 1
+          if (n_long == 1) first_long = i
         end if
         if (.not. line_int(line, 1, id, 'element id', 'ELEMENT', diag)) cycle
         if (id <= 0) then
@@ -144,6 +153,10 @@ contains
     end do
     if (card%find_param('ELSET') > 0) &
       call model%mesh%add_to_element_set(param_upper(card, 'ELSET'), added(1:n_added))
+    if (n_long > 0) call diag%warn(records(first_long)%loc, '*ELEMENT: ' // str(n_long) // &
+      ' record(s) of this card have more than the id and ' // str(n) // ' node ids of a ' // &
+      type_name // ' (the first is this one); the ids after the ' // str(n) // &
+      'th are ignored, as CalculiX ignores them')
   end subroutine handle_element
 
   !> *NSET: node ids, node set names, or GENERATE ranges.
