@@ -15,7 +15,11 @@
 !> carries no contact force under a uniform pressure: it is left out of the pair's slave
 !> nodes (slave_node_areas marks it) rather than given a penalty spring of zero area.
 !> A node-based slave surface has no faces of its own: the exterior element faces of the mesh
-!> whose nodes all belong to it are used.
+!> whose nodes all belong to it are used. A node of it on no such face (a single slave node)
+!> gets CalculiX's area instead: each exterior element face that contains the node gives it
+!> its area divided by its number of nodes (gencontelem_n2f.f sums areaslav/nodes over the
+!> faces at the node; measured with ccx 2.20 on a corner node of a block: the three faces'
+!> quarters).
 module fcs_contact_areas
   use fcs_kinds, only: dp
   use fcs_error, only: error_t, input_error
@@ -66,6 +70,8 @@ contains
       on_face(face_nodes(1:n, f)) = .true.
     end do
     areas = nodal(slaves)
+    if (mesh%surfaces(k)%kind /= SURFACE_FACES .and. .not. all(on_face(slaves))) &
+      call add_lonely_node_areas(mesh, slaves, on_face(slaves), areas)
     if (present(carries)) carries = areas > NO_AREA * maxval(areas, mask=areas > 0.0_dp)
     do i = 1, size(slaves)
       if (areas(i) > 0.0_dp) cycle
@@ -76,6 +82,28 @@ contains
       return
     end do
   end subroutine slave_node_areas
+
+  !> Areas of the slave nodes of a node-based surface that lie on no face of it (on_face
+  !> false), as CalculiX gives them (module header): the sum over the exterior element faces
+  !> containing the node of the face's area divided by its number of nodes.
+  subroutine add_lonely_node_areas(mesh, slaves, on_face, areas)
+    type(mesh_t), intent(in) :: mesh
+    integer, intent(in) :: slaves(:)
+    logical, intent(in) :: on_face(:)
+    real(dp), intent(inout) :: areas(:)
+    integer, allocatable :: lonely(:), faces(:, :)
+    integer :: f, i, n
+    real(dp) :: share
+    lonely = pack(slaves, .not. on_face)
+    call exterior_faces_of_nodes(mesh, lonely, faces, touching=.true.)
+    do f = 1, size(faces, 2)
+      n = count(faces(:, f) /= 0)
+      share = sum(face_node_areas(mesh%x(:, faces(1:n, f)))) / n
+      do i = 1, size(slaves)
+        if (.not. on_face(i) .and. any(faces(1:n, f) == slaves(i))) areas(i) = areas(i) + share
+      end do
+    end do
+  end subroutine add_lonely_node_areas
 
   !> The faces of surface k (node indices, outward, corners first; a column as long as the
   !> largest face, a smaller face padded with 0): its element faces, or for a node-based
@@ -176,14 +204,20 @@ contains
   end function quad8_area
 
   !> Exterior element faces (no other element shares all their nodes) whose nodes all lie in
-  !> the sorted node list `nodes`, padded to 8 nodes per column.
-  subroutine exterior_faces_of_nodes(mesh, nodes, face_nodes)
+  !> the node list `nodes` (with `touching`, that contain at least one of them), padded to 8
+  !> nodes per column.
+  subroutine exterior_faces_of_nodes(mesh, nodes, face_nodes, touching)
     type(mesh_t), intent(in) :: mesh
     integer, intent(in) :: nodes(:)
     integer, allocatable, intent(out) :: face_nodes(:, :)
+    logical, intent(in), optional :: touching
     logical, allocatable :: in_set(:)
     integer, allocatable :: node_ptr(:), node_elements(:), fill(:), found(:, :), element(:), face(:)
-    integer :: e, a, f, n, width
+    integer :: e, a, f, n, width, least
+    logical :: any_node
+    any_node = .false.
+    if (present(touching)) any_node = touching
+    least = merge(1, 3, any_node)
     allocate (in_set(mesh%n_nodes), node_ptr(mesh%n_nodes + 1))
     in_set = .false.
     in_set(nodes) = .true.
@@ -210,11 +244,15 @@ contains
     n = 0
     width = 0
     do e = 1, mesh%n_elements
-      if (count(in_set(mesh%element_nodes(e))) < 3) cycle
+      if (count(in_set(mesh%element_nodes(e))) < least) cycle
       do f = 1, mesh%n_faces(e)
         face = mesh%face_nodes(e, f)
         if (all(size(face) /= [3, 4, 6, 8])) cycle
-        if (.not. all(in_set(face))) cycle
+        if (any_node) then
+          if (.not. any(in_set(face))) cycle
+        else if (.not. all(in_set(face))) then
+          cycle
+        end if
         if (shared(face, e)) cycle
         if (n == size(found, 2)) then
           found = reshape([found, found], [8, 2 * size(found, 2)])

@@ -4,6 +4,7 @@
 # prints figures and asserts nothing about time.
 #
 # Usage: sh tests/bench/compare_builds.sh BEFORE_BIN AFTER_BIN
+#        (both builds run this tree's decks: BEFORE must read them)
 #        (make bench-compare BEFORE=/path/to/old/fcs3d compares it with this tree's bin/fcs3d)
 #
 # Runs, alternately BEFORE, AFTER, BEFORE, AFTER, ... (COMPARE_REPEAT times each, default 2, so
@@ -31,11 +32,10 @@ command -v gmsh >/dev/null 2>&1 || { echo "compare_builds.sh: gmsh is not instal
 work=${COMPARE_WORK:-$(mktemp -d "${TMPDIR:-/tmp}/fcs3d-compare.XXXXXX")}
 mkdir -p "$work/inputs" || exit 1
 work=$(cd "$work" && pwd)
+echo "compare_builds in $work ($(date -u '+%Y-%m-%d %H:%M UTC'), $(nproc --all) cores, load $(cut -d' ' -f1-3 /proc/loadavg))"
 OPENBLAS_NUM_THREADS=1
 OMP_NUM_THREADS=1
 export OPENBLAS_NUM_THREADS OMP_NUM_THREADS
-
-echo "compare_builds in $work ($(date -u '+%Y-%m-%d %H:%M UTC'), $(nproc) cores)"
 echo "  before: $before ($("$before" --version | head -1))"
 echo "  after:  $after ($("$after" --version | head -1))"
 
