@@ -953,6 +953,11 @@ contains
     logical, allocatable, intent(out) :: closed(:)
     real(dp), allocatable, intent(out) :: displacement(:, :), stress(:, :)
     integer :: s
+    if (.not. allocated(this%slave_node) .or. .not. allocated(cstate%status)) then
+      ! No contact pair (a deck with *CONTACT PRINT and none, as CalculiX allows): no rows.
+      allocate (node(0), closed(0), displacement(3, 0), stress(3, 0))
+      return
+    end if
     node = this%slave_node
     closed = cstate%status /= CONTACT_OPEN
     allocate (displacement(3, size(node)), stress(3, size(node)))

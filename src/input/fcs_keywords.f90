@@ -315,8 +315,11 @@ contains
             'surface from increment to increment (finite sliding).')], &
          data_required=.true.), &
       kw('TIE', CONTEXT_MODEL, 'CalculiX', 'Tie a slave surface to a master surface: no ' // &
-         'relative motion ever (segment-to-segment penalty tie, penalty E_n = 10 E / h, ' // &
-         'passing the patch test on non-matching meshes; doc/theory.md 4.7). Slave nodes of ' // &
+         'relative motion ever. Between 4-node faces a segment-to-segment penalty tie ' // &
+         '(penalty E_n = 10 E / h, passing the patch test on non-matching meshes); with ' // &
+         'triangular or quadratic faces on either side, CalculiX''s tie: each slave node ' // &
+         'bound to its closest master point by one linear equation per direction ' // &
+         '(doc/theory.md 4.7). Slave nodes of ' // &
          'a contact pair that a tie holds are left to the tie (a note in the log).', &
          'slave surface, master surface.', &
          [p('NAME', PARAM_NAME, required=.true., description='Name of the tie.'), &

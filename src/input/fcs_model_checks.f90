@@ -2,6 +2,7 @@
 !> with an elastic material, no element is inverted, the deck has steps, every body is held
 !> (fcs_model_supports).
 module fcs_model_checks
+  use fcs_tie_equations, only: ties_as_equations
   use fcs_kinds, only: dp
   use fcs_diagnostics, only: diagnostics_t, source_loc_t
   use fcs_deck_lexer, only: deck_t
@@ -42,6 +43,8 @@ contains
     call check_thermal_kinds(model, diag)
     call check_jacobians(model, diag, deck)
     call resolve_contact(model, diag)
+    ! Ties with triangular or quadratic faces become CalculiX's tie equations (T1).
+    if (.not. diag%has_errors()) call ties_as_equations(model, diag)
     if (size(model%steps) == 0) then
       call diag%report(deck_end(deck), 'the deck ends here and defines no step (*STEP ... ' // &
                        '*END STEP): nothing to compute')
