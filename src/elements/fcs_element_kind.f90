@@ -107,6 +107,9 @@ module fcs_element_kind
     !> faces(f): face Sf.
     type(face_definition_t), allocatable :: faces(:)
     integer :: extrapolation = EXTRAPOLATE_FROM_CORNERS
+    !> Temperatures at the integration points from the linear (corner) basis fitted to the
+    !> element's interpolation, as CalculiX takes them for C3D20 (build_temperature_table).
+    logical :: linear_temperature = .false.
     integer :: formulation = FORMULATION_STANDARD
     !> gmsh MSH element type (0: none); gmsh_order(a): position in gmsh's node list of
     !> CalculiX node a.
@@ -161,6 +164,9 @@ module fcs_element_kind
     real(dp), allocatable :: point_derivatives(:, :, :)
     !> Nodal values = matmul(point values, transpose(extrapolation)): extrapolation(a, q).
     real(dp), allocatable :: extrapolation(:, :)
+    !> Temperature at point q from nodal temperatures T_a: sum_a temperature_values(a, q) T_a
+    !> (point_values, or for a kind with linear_temperature the projected table).
+    real(dp), allocatable :: temperature_values(:, :)
     !> Natural points where det J must be positive: the integration points, then the nodes.
     integer :: n_check = 0
     real(dp), allocatable :: check_xi(:, :)
@@ -250,6 +256,7 @@ contains
     call find_edge_corners(this, err)
     if (.not. allocated(err)) call build_faces(this, def, err)
     if (.not. allocated(err)) call build_extrapolation(this, def, err)
+    if (.not. allocated(err)) call build_temperature_table(this, def, err)
     if (.not. allocated(err)) call build_formulation_tables(this, err)
     if (allocated(err)) then
       call add_context(err, 'element kind ' // def%name)
@@ -617,6 +624,48 @@ contains
                                            inverse(this%edge_corners(2, a), :))
     end do
   end subroutine build_extrapolation
+
+  !> The point temperatures' table. A kind with linear_temperature takes at its points the
+  !> L2 projection (over its own integration rule) of the interpolated nodal temperatures onto
+  !> the linear basis on its corners:
+  !>
+  !>     T_q = sum_c L_c(xi_q) tc_c,   tc = M^-1 B T,   M_cd = sum_p w_p L_c L_d,
+  !>     B_ca = sum_p w_p L_c N_a                                                        (TT1)
+  !>
+  !> (L: corner basis, N: the kind's shape functions, at the points p). A quadratic
+  !> temperature field would give a quadratic thermal strain, which the element's linear
+  !> strain field cannot follow (spurious stresses); CalculiX's lintemp.f makes the same
+  !> "trilinear approximation to the quadratic interpolation" for C3D20 (its 20 x 27 table
+  !> equals (TT1) to its 9 printed digits). Other kinds interpolate with their shape functions.
+  subroutine build_temperature_table(this, def, err)
+    type(element_kind_t), intent(inout) :: this
+    type(kind_definition_t), intent(in) :: def
+    type(error_t), allocatable, intent(out) :: err
+    type(polynomial_basis_t) :: corner_basis
+    real(dp), allocatable :: corner(:, :), mass(:, :), rhs(:, :)
+    integer :: q, c
+    logical :: ok
+    this%temperature_values = this%point_values
+    if (.not. def%linear_temperature) return
+    call corner_basis%init(def%node_xi(:, 1:def%n_corners), def%corner_terms, err)
+    if (allocated(err)) return
+    allocate (corner(this%n_corners, this%n_points))
+    do q = 1, this%n_points
+      call corner_basis%values(this%point_xi(:, q), corner(:, q))
+    end do
+    mass = matmul(corner, transpose(corner) * spread(this%weight, 2, this%n_corners))
+    rhs = matmul(corner, transpose(this%point_values) * spread(this%weight, 2, this%n_nodes))
+    call solve_linear_system(mass, rhs, ok)
+    if (.not. ok) then
+      call fatal_error(err, 'the corner basis is singular on the integration rule')
+      return
+    end if
+    do q = 1, this%n_points
+      do c = 1, this%n_nodes
+        this%temperature_values(c, q) = dot_product(corner(:, q), rhs(:, c))
+      end do
+    end do
+  end subroutine build_temperature_table
 
   !> Moore-Penrose inverse X (c x r) of a full-rank m (r x c): (m^T m)^-1 m^T when r >= c
   !> (least squares), m^T (m m^T)^-1 when r < c (minimum norm).

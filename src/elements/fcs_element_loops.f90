@@ -329,7 +329,8 @@ contains
   end subroutine loops_body_force
 
   !> Temperatures at the integration points of element e from the nodal temperatures
-  !> `nodal` (n_nodes of the model): T_q = sum_a N_a(xi_q) T_a.
+  !> `nodal` (n_nodes of the model): T_q = sum_a N_a(xi_q) T_a, or the kind's projected table
+  !> (C3D20: fcs_element_kind, build_temperature_table).
   pure subroutine point_temperatures(this, e, nodal, t)
     type(element_loops_t), intent(in) :: this
     integer, intent(in) :: e
@@ -339,7 +340,7 @@ contains
     associate (kind => this%catalogue%kinds(this%kind(e)))
       n = kind%n_nodes
       do q = 1, kind%n_points
-        t(q) = dot_product(kind%point_values(1:n, q), nodal(this%nodes(1:n, e)))
+        t(q) = dot_product(kind%temperature_values(1:n, q), nodal(this%nodes(1:n, e)))
       end do
     end associate
   end subroutine point_temperatures

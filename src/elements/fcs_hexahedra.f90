@@ -91,6 +91,7 @@ contains
     type(kind_definition_t) :: def
     def = hex20('C3D20', '20-node hexahedron, full integration (3x3x3 points)', gauss_cube(3), &
                 gauss_square(3), EXTRAPOLATE_FROM_ALL_NODES)
+    def%linear_temperature = .true.
   end function c3d20_definition
 
   !> C3D20R: 20-node hexahedron, 2x2x2 points.

@@ -6,7 +6,9 @@
 # C3D6, C3D10, C3D15, C3D20, C3D20R meshes, regular C3D8R and C3D8I ones, C3D8 + C3D6 and
 # C3D20 + C3D15; S, E, ENER, ELSE, U, RF; written by tests/tools/kind_decks.py, which says
 # why), and two blocks tied by *TIE on non-matching meshes of 8-node quadrilateral and 6-node
-# triangular faces (tie_*.inp, written by tests/tools/tie_decks.py) run unchanged through CalculiX
+# triangular faces (tie_*.inp, written by tests/tools/tie_decks.py), and C3D20 thermal stresses
+# under a quadratic temperature field (thermal_c3d20.inp: both codes project C3D20
+# temperatures onto the trilinear basis, doc/theory.md 2.5) run unchanged through CalculiX
 # (Debian's calculix-ccx: `ccx job` reads job.inp, writes job.dat) and fcs3d; tests/tools/compare_dat.py then requires every block of the two job.dat files
 # (displacements, forces, totals, stresses, strains) to agree within 1e-6 of the block's
 # largest value: the print precision of both programs (7 significant digits; the
