@@ -13,9 +13,11 @@
 #               once by gmsh (serial, UMFPACK, one BLAS thread, as `make run`);
 #   contact     the contact benchmark deck (tests/bench/contact_deck.py) at N = COMPARE_N
 #               (default 13: 19,257 degrees of freedom), UMFPACK, one thread.
-# Prints the wall time of every run (fcs3d alone, from the shell's clock; the mesh and deck are
-# written before timing starts), the median per build, the ratio AFTER/BEFORE, and whether each
-# run's .dat (and the fault-bend CSVs) are byte-identical between the two builds.
+# Prints the wall and CPU (user + system) time of every run (fcs3d alone, GNU time; the mesh and
+# deck are written before timing starts), the medians per build, the ratios AFTER/BEFORE, and
+# whether each run's .dat (and the fault-bend CSVs) are byte-identical between the two builds.
+# On a machine shared with other work the wall times follow its load; the CPU times much less
+# (one thread each), so the CPU ratio is the figure to read there.
 # Environment: COMPARE_REPEAT, COMPARE_N, COMPARE_WORK (scratch directory, default a new one
 # under $TMPDIR, kept), PYTHON.
 set -u
@@ -29,6 +31,7 @@ for bin in "$before" "$after"; do
   [ -x "$bin" ] || { echo "compare_builds.sh: $bin is not an executable" >&2; exit 2; }
 done
 command -v gmsh >/dev/null 2>&1 || { echo "compare_builds.sh: gmsh is not installed" >&2; exit 2; }
+[ -x /usr/bin/time ] || { echo "compare_builds.sh: GNU time (Debian package time) is not installed" >&2; exit 2; }
 work=${COMPARE_WORK:-$(mktemp -d "${TMPDIR:-/tmp}/fcs3d-compare.XXXXXX")}
 mkdir -p "$work/inputs" || exit 1
 work=$(cd "$work" && pwd)
@@ -64,14 +67,13 @@ run() {
     deck=$dir/contact.inp
     options="--solver UMFPACK"
   fi
-  start=$(date +%s.%N)
   # shellcheck disable=SC2086
-  (cd "$dir" && "$bin" -q $options "$deck" > stdout.txt 2>&1)
+  (cd "$dir" && /usr/bin/time -f '%e %U %S' -o times.txt "$bin" -q $options "$deck" > stdout.txt 2>&1)
   status=$?
-  end=$(date +%s.%N)
-  "$py" -c "print(f'{$end - $start:.2f}')" > "$dir/wall.txt"
   [ $status -eq 0 ] || echo "  $case_name $build run $k: fcs3d exited with $status (see $dir)" >&2
-  echo "  $case_name $build run $k: $(cat "$dir/wall.txt") s"
+  read -r wall user system < "$dir/times.txt"
+  "$py" -c "print(f'{$wall:.2f} {$user + $system:.2f}')" > "$dir/wall.txt"
+  echo "  $case_name $build run $k: wall, CPU $(cat "$dir/wall.txt") s"
 }
 
 for case_name in fault_bend contact; do
@@ -89,19 +91,22 @@ done
 import filecmp, glob, os, statistics, sys
 work, repeat = sys.argv[1], int(sys.argv[2])
 print()
-print(f"{'case':<12}{'before [s]':>12}{'after [s]':>12}{'after/before':>14}  outputs")
+print(f"{'case':<12}{'wall before':>12}{'wall after':>12}{'ratio':>8}{'CPU before':>12}{'CPU after':>12}{'ratio':>8}  outputs")
 for case in ("fault_bend", "contact"):
-    walls = {}
+    times = {}
     for build in ("before", "after"):
-        walls[build] = [float(open(os.path.join(work, f"{case}.{build}.{k}", "wall.txt")).read())
+        times[build] = [[float(v) for v in open(os.path.join(work, f"{case}.{build}.{k}", "wall.txt")).read().split()]
                         for k in range(1, repeat + 1)]
-    b, a = statistics.median(walls["before"]), statistics.median(walls["after"])
+    wb = statistics.median(t[0] for t in times["before"])
+    wa = statistics.median(t[0] for t in times["after"])
+    cb = statistics.median(t[1] for t in times["before"])
+    ca = statistics.median(t[1] for t in times["after"])
     names = [os.path.basename(p) for p in glob.glob(os.path.join(work, f"{case}.before.1", "*"))
              if p.endswith((".dat", ".csv"))]
     same = all(filecmp.cmp(os.path.join(work, f"{case}.before.{k}", n),
                            os.path.join(work, f"{case}.after.{k}", n), shallow=False)
                for n in names for k in range(1, repeat + 1))
     label = ("identical" if same else "DIFFER") + f" ({', '.join(sorted(names)) or 'none'})"
-    print(f"{case:<12}{b:>12.2f}{a:>12.2f}{a / b:>14.3f}  {label}")
+    print(f"{case:<12}{wb:>12.2f}{wa:>12.2f}{wa / wb:>8.3f}{cb:>12.2f}{ca:>12.2f}{ca / cb:>8.3f}  {label}")
 print("(medians of", repeat, "runs each, run alternately)")
 EOF
