@@ -9,7 +9,7 @@ module fcs_build_plasticity
   use fcs_deck_fields, only: param_upper, line_real
   use fcs_diagnostics, only: diagnostics_t, source_loc_t
   use fcs_builder_state, only: builder_t
-  use fcs_model, only: model_t, material_def_t
+  use fcs_model, only: model_t, material_def_t, initial_plastic_strain_t
   use fcs_material_factory, only: PLASTICITY_NONE, PLASTICITY_MISES, PLASTICITY_DRUCKER_PRAGER, &
                                   max_friction_angle
   use fcs_hardening_table, only: hardening_table_t
@@ -17,7 +17,11 @@ module fcs_build_plasticity
   implicit none
   private
   public :: handle_plastic, handle_cyclic_hardening, handle_drucker_prager
-  public :: handle_drucker_prager_hardening, check_plasticity
+  public :: handle_drucker_prager_hardening, check_plasticity, check_initial_plastic_strains
+
+  !> A von Mises initial plastic strain counts as deviatoric when its trace is below this
+  !> fraction of its largest component (the round-off of the decimal values of a deck).
+  real(dp), parameter :: TRACE_TOLERANCE = 1.0e-9_dp
 
 contains
 
@@ -174,6 +178,54 @@ contains
       end if
     end associate
   end subroutine check_plasticity
+
+  !> *INITIAL CONDITIONS, TYPE=PLASTIC STRAIN, once the sections are assigned: the element's
+  !> material is elastic (the strain is an eigenstrain, as in CalculiX) or von Mises with a
+  !> deviatoric tensor (J2 flow keeps the volume, so a plastic strain with a trace is no state
+  !> the material can reach); a Drucker-Prager material, or elastic constants that depend on
+  !> temperature (the stress -C : eps_0 would need C at the initial temperature), are
+  !> refused. One message per data line.
+  subroutine check_initial_plastic_strains(model, diag)
+    type(model_t), intent(in) :: model
+    type(diagnostics_t), intent(inout) :: diag
+    integer :: i, last_line
+    character(len=:), allocatable :: problem
+    if (.not. allocated(model%initial_plastic_strains)) return
+    last_line = 0
+    do i = 1, size(model%initial_plastic_strains)
+      associate (item => model%initial_plastic_strains(i))
+        if (model%element_section(item%element) < 1) cycle
+        problem = plastic_strain_problem(item, &
+          model%materials(model%sections(model%element_section(item%element))%material))
+        if (len(problem) == 0 .or. item%loc%line == last_line) cycle
+        last_line = item%loc%line
+        call diag%report(item%loc, '*INITIAL CONDITIONS: TYPE=PLASTIC STRAIN at element ' // &
+                         str(model%mesh%element_id(item%element)) // ': ' // problem)
+      end associate
+    end do
+  end subroutine check_initial_plastic_strains
+
+  !> Why material m cannot start from the plastic strain of `item` ('' if it can).
+  function plastic_strain_problem(item, m) result(problem)
+    type(initial_plastic_strain_t), intent(in) :: item
+    type(material_def_t), intent(in) :: m
+    character(len=:), allocatable :: problem
+    real(dp) :: trace
+    problem = ''
+    if (m%plastic%model == PLASTICITY_DRUCKER_PRAGER) then
+      problem = 'material ' // m%name // ' is Drucker-Prager; initial plastic strains are ' // &
+                'available for elastic and von Mises materials'
+    else if (m%thermal%elastic_varies()) then
+      problem = 'the elastic constants of material ' // m%name // ' depend on temperature; ' // &
+                'the initial stress -C : eps_0 is computed with constant ones'
+    else if (m%plastic%model == PLASTICITY_MISES) then
+      trace = sum(item%strain(1:3))
+      if (abs(trace) > TRACE_TOLERANCE * maxval(abs(item%strain))) &
+        problem = 'material ' // m%name // ' is von Mises, whose plastic strain is deviatoric ' // &
+                  '(plastic flow keeps the volume), but exx + eyy + ezz = ' // str(trace) // &
+                  '; give a traceless tensor, or an elastic material for an eigenstrain'
+    end if
+  end function plastic_strain_problem
 
   logical function current_material(card, state, diag) result(ok)
     type(card_t), intent(in) :: card

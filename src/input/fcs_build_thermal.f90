@@ -1,7 +1,7 @@
 !> Model builder, thermal keywords and initial states: *EXPANSION, temperature-dependent
 !> *ELASTIC tables, *INITIAL CONDITIONS (TYPE=TEMPERATURE, TYPE=STRESS with its GEOSTATIC
-!> form), *TEMPERATURE; after the last card, the nodal temperatures of every step
-!> (`resolve_temperatures`) and the density check of the body loads (`check_body_loads`).
+!> form, TYPE=PLASTIC STRAIN), *TEMPERATURE; after the last card, the nodal temperatures of
+!> every step (`resolve_temperatures`) and the density check of the body loads (`check_body_loads`).
 !>
 !> Conventions of CalculiX 2.20 (ccx manual, sections 6.2.8 *ELASTIC, 6.2.9 *EXPANSION,
 !> 6.2.17 *INITIAL CONDITIONS, 6.2.56 *TEMPERATURE; its tempload.f for the ramp):
@@ -18,7 +18,7 @@ module fcs_build_thermal
   use fcs_diagnostics, only: diagnostics_t
   use fcs_builder_state, only: builder_t
   use fcs_build_step, only: amplitude_param
-  use fcs_model, only: model_t, initial_stress_t
+  use fcs_model, only: model_t, initial_stress_t, initial_plastic_strain_t
   use fcs_deck_fields, only: resolve_elements, has_flag, line_int
   use fcs_material_factory, only: PLASTICITY_NONE
   use fcs_strings, only: parse_real, str
@@ -153,8 +153,8 @@ contains
     end associate
   end subroutine handle_elastic_table
 
-  !> *INITIAL CONDITIONS: TYPE=TEMPERATURE (initial_temperatures) or TYPE=STRESS
-  !> (initial_stresses).
+  !> *INITIAL CONDITIONS: TYPE=TEMPERATURE (initial_temperatures), TYPE=STRESS
+  !> (initial_stresses) or TYPE=PLASTIC STRAIN (initial_plastic_strains).
   subroutine handle_initial_conditions(card, model, state, diag)
     type(card_t), intent(in) :: card
     type(model_t), intent(inout) :: model
@@ -162,6 +162,12 @@ contains
     type(diagnostics_t), intent(inout) :: diag
     if (param_upper(card, 'TYPE') == 'STRESS') then
       call initial_stresses(card, model, diag)
+    else if (param_upper(card, 'TYPE') == 'PLASTIC STRAIN') then
+      if (has_flag(card, 'GEOSTATIC')) then
+        call diag%report(card%loc, '*INITIAL CONDITIONS: GEOSTATIC goes with TYPE=STRESS')
+        return
+      end if
+      call initial_plastic_strains(card, model, diag)
     else
       if (has_flag(card, 'GEOSTATIC')) then
         call diag%report(card%loc, '*INITIAL CONDITIONS: GEOSTATIC goes with TYPE=STRESS')
@@ -236,6 +242,53 @@ contains
       end associate
     end do
   end subroutine initial_stresses
+
+  !> *INITIAL CONDITIONS, TYPE=PLASTIC STRAIN: element (or element set), integration point,
+  !> exx, eyy, ezz, exy, exz, eyz, as CalculiX (ccx 2.20 `initialconditionss.f`; the shears are
+  !> tensor components, as CalculiX subtracts them from its tensor strain), stored with
+  !> engineering shears (fcs_model, initial_plastic_strain_t). Whether the element's material
+  !> takes it is checked once the deck is read (fcs_build_plasticity,
+  !> check_initial_plastic_strains).
+  subroutine initial_plastic_strains(card, model, diag)
+    type(card_t), intent(in) :: card
+    type(model_t), intent(inout) :: model
+    type(diagnostics_t), intent(inout) :: diag
+    type(initial_plastic_strain_t) :: item
+    integer, allocatable :: elements(:)
+    integer :: i, j, n_points
+    logical :: ok
+    if (.not. allocated(model%initial_plastic_strains)) allocate (model%initial_plastic_strains(0))
+    do i = 1, card%n_lines
+      associate (line => card%lines(i))
+        if (given_fields(line) /= 8) then
+          call diag%report(line%loc, '*INITIAL CONDITIONS: expected element, integration point, ' // &
+                           'exx, eyy, ezz, exy, exz, eyz (TYPE=PLASTIC STRAIN; tensor shears, as CalculiX)')
+          cycle
+        end if
+        item = initial_plastic_strain_t()
+        item%loc = line%loc
+        if (.not. line_int(line, 2, item%point, 'integration point', card%keyword, diag)) cycle
+        ok = .true.
+        do j = 1, 6
+          if (ok) ok = line_real(line, j + 2, item%strain(j), 'plastic strain component', &
+                                 card%keyword, diag)
+        end do
+        if (.not. ok) cycle
+        item%strain(4:6) = 2.0_dp * item%strain(4:6)
+        call resolve_elements(model%mesh, line%fields(1)%s, line, card%keyword, diag, elements)
+        do j = 1, size(elements)
+          item%element = elements(j)
+          n_points = model%element_kinds%kinds(model%mesh%element_kind(elements(j)))%n_points
+          if (item%point < 1 .or. item%point > n_points) then
+            call diag%report(line%loc, '*INITIAL CONDITIONS: element ' // line%fields(1)%s // &
+              ' has integration points 1 to ' // str(n_points) // ', not ' // str(item%point))
+            exit
+          end if
+          model%initial_plastic_strains = [model%initial_plastic_strains, item]
+        end do
+      end associate
+    end do
+  end subroutine initial_plastic_strains
 
   !> *INITIAL CONDITIONS, TYPE=TEMPERATURE: node or node set, temperature.
   subroutine initial_temperatures(card, model, state, diag)

@@ -240,13 +240,20 @@ contains
          'temperatures (TYPE=TEMPERATURE; a node not named starts at temperature 0, as in ' // &
          'CalculiX) or stresses at the integration points (TYPE=STRESS: the stress the ' // &
          'analysis starts from; what it does not balance is the out-of-balance force of the ' // &
-         'first increment).', 'TEMPERATURE: node or node set, temperature. STRESS: element ' // &
+         'first increment) or plastic strains at the integration points (TYPE=PLASTIC ' // &
+         'STRAIN: as CalculiX, a strain eps_0 the material does not resist, for elastic and ' // &
+         'von Mises materials: the stress starts at -C : eps_0, a von Mises point''s plastic ' // &
+         'strain at eps_0 and its equivalent plastic strain at 0; doc/theory.md 2.7).', &
+         'TEMPERATURE: node or node set, temperature. STRESS: element ' // &
          '(or element set), integration point, sxx, syy, szz, sxy, sxz, syz [stress], as ' // &
          'CalculiX. STRESS with GEOSTATIC: element or element set, s1, z1, s2, z2, k_x[, k_y]: ' // &
          'szz linear in the height z (third coordinate) through (z1, s1) and (z2, s2), ' // &
          'sxx = k_x szz, syy = k_y szz (k_y = k_x when empty), no shear: a lithostatic ' // &
-         'pre-stress (Abaqus syntax).', &
-         [p('TYPE', PARAM_CHOICE, required=.true., choices=[s('TEMPERATURE'), s('STRESS')], &
+         'pre-stress (Abaqus syntax). PLASTIC STRAIN: element (or element set), integration ' // &
+         'point, exx, eyy, ezz, exy, exz, eyz [-], tensor shears, as CalculiX; with a von ' // &
+         'Mises material the tensor is deviatoric (plastic flow keeps the volume).', &
+         [p('TYPE', PARAM_CHOICE, required=.true., choices=[s('TEMPERATURE'), s('STRESS'), &
+            s('PLASTIC STRAIN')], &
             description='What is given.'), &
           p('GEOSTATIC', PARAM_FLAG, description='TYPE=STRESS: the stress varies linearly ' // &
             'with height, given by two points and the lateral coefficients (Abaqus).')], &

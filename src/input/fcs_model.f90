@@ -16,6 +16,7 @@ module fcs_model
   private
   public :: model_t, material_def_t, section_t, amplitude_t, time_points_t, dof_condition_t
   public :: face_load_t, output_request_t, step_t, rmin_settings_t, initial_stress_t
+  public :: initial_plastic_strain_t
   public :: body_load_t, BODY_GRAV, BODY_CENTRIF, transform_def_t
   public :: friction_def_t, friction_change_t, interaction_def_t, contact_pair_def_t, checkpoint_settings_t
   public :: history_item_t, history_request_t, HISTORY_NSET_U, HISTORY_NSET_RF
@@ -144,6 +145,18 @@ module fcs_model
     logical :: is_geostatic = .false.
     real(dp) :: geostatic(6) = 0.0_dp
   end type initial_stress_t
+
+  !> *INITIAL CONDITIONS, TYPE=PLASTIC STRAIN: the plastic strain eps_0 (Voigt, engineering
+  !> shear; CalculiX's data lines give tensor shears) at integration point `point` of element
+  !> `element`, read at `loc`. CalculiX subtracts it from the mechanical strain of every
+  !> material (an eigenstrain); fcs3d starts the point's stress at -C : eps_0 and a von Mises
+  !> point's plastic strain at eps_0 (doc/theory.md, section 2.4).
+  type :: initial_plastic_strain_t
+    integer :: element = 0
+    integer :: point = 0
+    real(dp) :: strain(6) = 0.0_dp
+    type(source_loc_t) :: loc
+  end type initial_plastic_strain_t
 
   !> An output request (*NODE PRINT, *EL PRINT, *NODE FILE, *EL FILE).
   type :: output_request_t
@@ -343,6 +356,8 @@ module fcs_model
     real(dp), allocatable :: initial_temperature(:)
     !> *INITIAL CONDITIONS, TYPE=STRESS, in deck order (a later line wins).
     type(initial_stress_t), allocatable :: initial_stresses(:)
+    !> *INITIAL CONDITIONS, TYPE=PLASTIC STRAIN, in deck order (a later line wins).
+    type(initial_plastic_strain_t), allocatable :: initial_plastic_strains(:)
   end type model_t
 
 end module fcs_model

@@ -11,7 +11,7 @@ module fcs_model_checks
   use fcs_model, only: model_t
   use fcs_mesh, only: SURFACE_FACES
   use fcs_model_supports, only: check_supports
-  use fcs_build_plasticity, only: check_plasticity
+  use fcs_build_plasticity, only: check_plasticity, check_initial_plastic_strains
   use fcs_linear_constraints, only: constraint_map_t
   use fcs_strings, only: str, parse_int
   implicit none
@@ -247,6 +247,7 @@ contains
     do k = 1, size(model%materials)
       call check_plasticity(model%materials(k), diag)
     end do
+    call check_initial_plastic_strains(model, diag)
   end subroutine check_materials
 
   !> Penalty defaults of every contact pair: E_n = DEFAULT_PENALTY_FACTOR E / h, with E the

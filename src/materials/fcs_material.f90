@@ -63,6 +63,7 @@ module fcs_material
     procedure :: rotate_state => material_rotate_state
     procedure :: equivalent_plastic_strain => material_equivalent_plastic_strain
     procedure :: plastic_strain => material_plastic_strain
+    procedure :: add_plastic_strain => material_add_plastic_strain
     procedure :: back_stress => material_back_stress
     procedure :: is_plastic => material_is_plastic
     procedure :: plastic_strain_fraction => material_plastic_strain_fraction
@@ -169,6 +170,15 @@ contains
     real(dp) :: strain(6)
     strain = 0.0_dp
   end function material_plastic_strain
+
+  !> Add eps_0 (Voigt, engineering shear) to the plastic strain of a state: the initial plastic
+  !> strain of *INITIAL CONDITIONS, TYPE=PLASTIC STRAIN. A material without a plastic strain
+  !> keeps the default (nothing): for it eps_0 lives in the initial stress -C : eps_0 alone.
+  pure subroutine material_add_plastic_strain(this, state, strain)
+    class(material_t), intent(in) :: this
+    real(dp), intent(inout) :: state(:)
+    real(dp), intent(in) :: strain(6)
+  end subroutine material_add_plastic_strain
 
   !> Back stress (centre of the yield surface, Voigt) of a state; 0 without kinematic
   !> hardening.

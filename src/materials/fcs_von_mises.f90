@@ -47,6 +47,7 @@ module fcs_von_mises
     procedure :: rotate_state => von_mises_rotate_state
     procedure :: equivalent_plastic_strain => von_mises_peeq
     procedure :: plastic_strain => von_mises_plastic_strain
+    procedure :: add_plastic_strain => von_mises_add_plastic_strain
     procedure :: back_stress => von_mises_back_stress
     procedure :: is_plastic => von_mises_is_plastic
     procedure :: unloads => von_mises_unloads
@@ -190,6 +191,15 @@ contains
     real(dp) :: strain(6)
     strain = state(PLASTIC_STRAIN:PLASTIC_STRAIN + 5)
   end function von_mises_plastic_strain
+
+  !> Add eps_0 to the plastic strain (the initial plastic strain; alpha and beta unchanged:
+  !> CalculiX's initial plastic strain does not harden).
+  pure subroutine von_mises_add_plastic_strain(this, state, strain)
+    class(von_mises_t), intent(in) :: this
+    real(dp), intent(inout) :: state(:)
+    real(dp), intent(in) :: strain(6)
+    state(PLASTIC_STRAIN:PLASTIC_STRAIN + 5) = state(PLASTIC_STRAIN:PLASTIC_STRAIN + 5) + strain
+  end subroutine von_mises_add_plastic_strain
 
   pure function von_mises_back_stress(this, state) result(alpha)
     class(von_mises_t), intent(in) :: this

@@ -43,6 +43,7 @@ contains
     real(dp), allocatable :: x(:, :)
     real(dp) :: szz
     integer :: i, q, e
+    call apply_initial_plastic_strains(elements, model, fields)
     if (.not. allocated(model%initial_stresses)) return
     do i = 1, size(model%initial_stresses)
       associate (item => model%initial_stresses(i))
@@ -61,6 +62,35 @@ contains
       end associate
     end do
   end subroutine apply_initial_stresses
+
+  !> *INITIAL CONDITIONS, TYPE=PLASTIC STRAIN (doc/theory.md 2.7): a point given eps_0 starts
+  !> with the stress -C : eps_0 added to its initial stress (the elastic strain -eps_0 at zero
+  !> displacement: CalculiX's sigma = C : (eps - eps_0) for small strains) and, if its
+  !> material keeps a plastic strain (von Mises), with that plastic strain eps_0. A point
+  !> given twice takes its last line, as in CalculiX.
+  subroutine apply_initial_plastic_strains(elements, model, fields)
+    type(element_loops_t), intent(in) :: elements
+    type(model_t), intent(in) :: model
+    type(element_state_t), intent(inout) :: fields
+    logical, allocatable :: done(:, :)
+    integer :: i, q, e
+    if (.not. allocated(model%initial_plastic_strains)) return
+    allocate (done(size(fields%stress, 2), size(fields%stress, 3)), source=.false.)
+    do i = size(model%initial_plastic_strains), 1, -1
+      associate (item => model%initial_plastic_strains(i))
+        e = item%element
+        q = item%point
+        if (done(q, e)) cycle
+        done(q, e) = .true.
+        associate (material => elements%materials(elements%material(e))%m)
+          fields%stress(:, q, e) = fields%stress(:, q, e) - &
+                                   matmul(material%elastic_matrix(), item%strain)
+          call material%add_plastic_strain(fields%material_state(1:material%n_state(), q, e), &
+                                           item%strain)
+        end associate
+      end associate
+    end do
+  end subroutine apply_initial_plastic_strains
 
   !> Body-load forces (*DLOAD GRAV, CENTRIF) at step time t added to f_ext: consistent nodal
   !> forces of rho times the acceleration over each loaded element (fcs_element_loops,

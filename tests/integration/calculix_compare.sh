@@ -1,7 +1,8 @@
 #!/bin/sh
 # CalculiX comparison (foundation issue; element kinds, issue 16): the classic linear-elastic decks of
 # tests/decks/classic (cantilever with *CLOAD, block under a *DSLOAD pressure, plate with
-# prescribed displacements, two-material bar with *INCLUDE and GENERATE sets), and a
+# prescribed displacements, two-material bar with *INCLUDE and GENERATE sets, block with an
+# initial plastic strain varying from point to point, issue 18), and a
 # cantilever of every other element kind and two mixed meshes (kind_*.inp: distorted C3D4,
 # C3D6, C3D10, C3D15, C3D20, C3D20R meshes, regular C3D8R and C3D8I ones, C3D8 + C3D6 and
 # C3D20 + C3D15; S, E, ENER, ELSE, U, RF; written by tests/tools/kind_decks.py, which says

@@ -38,6 +38,15 @@ INCREMENT 2e-3, MAX PLASTIC STRAIN INCREMENT 1e-3) that is below 2e-3 of s_y (E 
 finer run; 1.2e-4 over all its increments, the first elastic increment's lateral stress), and
 the end state must agree within 1e-4 of s_y (measured 1.2e-5).
 
+NLGEOM with reversal (KINEMATIC and COMBINED, issue 18): stretched to 1.04 in a first step,
+compressed to 0.99 in a second (PEEQ stays below 0.1, the end of the curves), every frame
+against the closed form above evaluated along the logarithmic strain of the frames: the back
+stress is co-rotated with the material (the Jaumann transport of doc/theory.md 1.4), so with
+fixed axes it obeys the small-strain law in logarithmic strain as the stress does. Same
+tolerance as the monotonic NLGEOM check (2e-3 of s_y, the carried out-of-balance force). A
+back stress convected by the stretch (CalculiX's, doc/theory.md 2.8) would be off by about
+int b d(ln l), 7e-3 of s_y at the end of the first step.
+
 Every element kind (issue 18): the ISOTROPIC case, small strain, on the same cube cut into
 each of C3D4, C3D6, C3D8R, C3D8I, C3D10, C3D15, C3D20, C3D20R (tests/tools/kind_meshes.py:
 six tetrahedra or two wedges per cell, mid-side nodes on straight edges) with the same checks
@@ -59,6 +68,7 @@ TOLERANCE = 1e-10
 NLGEOM_STRAIN = 0.1
 NLGEOM_TOLERANCE = 2e-3
 NLGEOM_FINE = '*RMIN, MAX STRAIN INCREMENT=5e-4, MAX PLASTIC STRAIN INCREMENT=2.5e-4'
+NLGEOM_REVERSAL = (0.04, -0.01)
 CASES = {
     # name: (hardening, *PLASTIC curve, *CYCLIC HARDENING curve, H_i, H_k)
     'isotropic': ('ISOTROPIC', [(200.0, 0.0), (400.0, 0.1)], None, 2000.0, 0.0),
@@ -68,7 +78,7 @@ CASES = {
 }
 
 
-def deck(path, case, nlgeom=False, rmin=None, frequency=1, kind='C3D8'):
+def deck(path, case, nlgeom=False, rmin=None, frequency=1, kind='C3D8', reverse=None):
     hardening, curve, cyclic, _, _ = CASES[case]
     lines = ['*HEADING', 'uniaxial stress, %s hardening, %s (tests/integration/plasticity/uniaxial.py)'
              % (case, kind)]
@@ -85,7 +95,10 @@ def deck(path, case, nlgeom=False, rmin=None, frequency=1, kind='C3D8'):
     lines += ['*BOUNDARY', 'X0, 1, 1', 'Y0, 2, 2', 'Z0, 3, 3']
     if nlgeom:
         lines += ['*STEP, NLGEOM', '*STATIC', '0.05, 1.'] + ([rmin] if rmin else [])
-        lines += ['*BOUNDARY', 'TOP, 3, 3, %r' % NLGEOM_STRAIN]
+        lines += ['*BOUNDARY', 'TOP, 3, 3, %r' % (NLGEOM_STRAIN if reverse is None else reverse[0])]
+        if reverse is not None:
+            lines += ['*NODE FILE, FREQUENCY=1', 'U', '*EL FILE, FREQUENCY=1', 'S, PEEQ', '*END STEP',
+                      '*STEP, NLGEOM', '*STATIC', '0.05, 1.', '*BOUNDARY', 'TOP, 3, 3, %r' % reverse[1]]
     else:
         lines += fc.amplitude_card('PATH', [0.0, 1.0, 2.0], [0.0, 1.0, -1.0])
         lines += ['*STEP', '*STATIC', '0.02, 2., , 0.02', '*BOUNDARY, AMPLITUDE=PATH', 'TOP, 3, 3, %r' % TOP]
@@ -197,6 +210,27 @@ def nlgeom_errors(work, name, rmin, frequency):
     return max(error.max(), lateral.max()), max(error[-1], lateral[-1]), len(records)
 
 
+def check_nlgeom_reversal(work, case, checker):
+    """KINEMATIC or COMBINED at NLGEOM, stretched to 1 + NLGEOM_REVERSAL[0] and compressed to
+    1 + NLGEOM_REVERSAL[1]: every frame's s_zz (and lateral stresses) against the closed form
+    along the frames' logarithmic strain."""
+    job = os.path.join(work, 'uniaxial_nlgeom_' + case)
+    deck(job + '.inp', case, nlgeom=True, reverse=NLGEOM_REVERSAL)
+    fc.run_fcs3d(job + '.inp')
+    frames = pc.Frames(job + '.h5')
+    top = frames.node(fc.Block(nx=2, ny=2, nz=2).face(2, 1)[0])
+    log_strain = np.log(1.0 + frames.displacement[:, top, 2])
+    expected, _ = closed_form(case, log_strain)
+    error = np.abs(frames.stress[:, :, :, 2] - expected[:, None, None]).max() / YIELD
+    lateral = np.abs(frames.stress[:, :, :, [0, 1, 3, 4, 5]]).max() / YIELD
+    reached = abs(log_strain[-1] - np.log(1 + NLGEOM_REVERSAL[1])) < 1e-12
+    checker.check(max(error, lateral) <= NLGEOM_TOLERANCE and reached,
+                  'NLGEOM %s, stretched to %g and compressed to %g (%d frames): Cauchy s_zz vs '
+                  'the closed form in logarithmic strain, and the lateral stresses, within %.2e '
+                  'of s_y (tolerance %.0e)' % (case, 1 + NLGEOM_REVERSAL[0], 1 + NLGEOM_REVERSAL[1],
+                                              len(log_strain), max(error, lateral), NLGEOM_TOLERANCE))
+
+
 def check_nlgeom(work, checker):
     default, _, n_default = nlgeom_errors(work, 'uniaxial_nlgeom', None, 1)
     fine, end, n_fine = nlgeom_errors(work, 'uniaxial_nlgeom_fine', NLGEOM_FINE, 4)
@@ -217,6 +251,8 @@ def main():
     for case in CASES:
         check_small_strain(work, case, checker)
     check_nlgeom(work, checker)
+    for case in ('kinematic', 'combined'):
+        check_nlgeom_reversal(work, case, checker)
     for kind in pc.OTHER_KINDS:
         check_small_strain(work, 'isotropic', checker, kind)
     checker.finish()
