@@ -7,7 +7,7 @@
 !> keywords marked "fcs3d" are our extensions in the same syntax.
 module fcs_keywords
   use fcs_strings, only: string_t, to_upper
-  use fcs_solver_factory, only: LINEAR_SOLVER_NAMES, DEFAULT_LINEAR_SOLVER
+  use fcs_solver_factory, only: linear_solver_names, DEFAULT_LINEAR_SOLVER
   use fcs_element_catalogue, only: ELEMENT_KIND_NAMES
   use fcs_friction_factory, only: friction_parameter_t, friction_parameters, friction_laws, &
                                   friction_registry_t
@@ -150,7 +150,7 @@ contains
             'kept: <job>.rst.h5 (newest), <job>.rst.1.h5, ... (fcs3d extension).')]), &
       kw('SOLVER', CONTEXT_MODEL, 'fcs3d', 'Choose the linear solver.', '', &
          [p('TYPE', PARAM_CHOICE, default=DEFAULT_LINEAR_SOLVER, &
-            choices=names(LINEAR_SOLVER_NAMES), &
+            choices=linear_solver_names(), &
             description='UMFPACK (SuiteSparse, default), SKYLINE (profile LU with reverse ' // &
             'Cuthill-McKee numbering) or MUMPS. The command line option --solver overrides it.'), &
           p('REUSE TOLERANCE', PARAM_REAL, default='0', unit='-', description='Relative ' // &
