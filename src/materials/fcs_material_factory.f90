@@ -24,13 +24,11 @@ module fcs_material_factory
   use fcs_error, only: fatal_error
   implicit none
   private
-  public :: create_material, plastic_def_t, MATERIAL_NAMES, HARDENING_NAMES, DP_HARDENING_TYPES
+  public :: create_material, plastic_def_t, HARDENING_NAMES, DP_HARDENING_TYPES
   public :: PLASTICITY_NONE, PLASTICITY_MISES, PLASTICITY_DRUCKER_PRAGER, max_friction_angle
   public :: material_registry_t, material_entry_t, material_constructor, builtin_material_registry
   public :: MATERIAL_MODEL_NAMES
 
-  !> The built-in material model names as text (the registry's names; messages read those).
-  character(len=*), parameter :: MATERIAL_NAMES = 'HYPOELASTIC, VON MISES, DRUCKER PRAGER'
   !> *PLASTIC, HARDENING= and *DRUCKER PRAGER HARDENING, TYPE= choices.
   character(len=*), parameter :: HARDENING_NAMES = 'ISOTROPIC, KINEMATIC, COMBINED'
   character(len=*), parameter :: DP_HARDENING_TYPES = 'COMPRESSION, TENSION, SHEAR'
