@@ -10,9 +10,18 @@
 !> parameter by name; `friction_def_problems` lists every problem of a definition (each message
 !> names the parameter and its valid range) and `create_friction_law` refuses a definition with
 !> any. Messages carry no file:line; the deck handler prefixes it.
+!>
+!> The laws themselves are a registry (`friction_registry_t`): one entry per law
+!> (`friction_law_entry_t`: name, required and optional parameters, default RATE UPDATE, the
+!> constructor from a checked `friction_def_t`, and any law-specific check). The law names, the
+!> per-law parameter lists, the messages and the keyword table (fcs_keywords) read it. Every
+!> public procedure takes an optional `registry`; without one it uses the built-in laws
+!> (`builtin_friction_registry`). A law is added by its module and one entry in
+!> `builtin_friction_registry`, or at run time with `registry%register` (the unit test
+!> registers a test-only law that way).
 module fcs_friction_factory
   use fcs_kinds, only: dp
-  use fcs_error, only: error_t, input_error
+  use fcs_error, only: error_t, input_error, fatal_error
   use fcs_strings, only: string_t, str, join_strings, to_upper, split_fields
   use fcs_diagnostics, only: source_loc_t
   use fcs_friction_law, only: friction_law_t
@@ -28,11 +37,9 @@ module fcs_friction_factory
   public :: friction_def_t, friction_parameter_t, create_friction_law, friction_def_problems
   public :: set_friction_parameter, friction_parameters, friction_laws
   public :: friction_required_parameters, friction_optional_parameters, friction_parameter_names
-  public :: FRICTION_LAW_NAMES, FRICTION_UNSET
-
-  !> Valid law names.
-  character(len=*), parameter :: FRICTION_LAW_NAMES = 'COULOMB, STATIC KINETIC, ' // &
-    'SLIP WEAKENING, RATE DEPENDENT, RATE STATE, RATE STATE ARCSINH'
+  public :: friction_registry_t, friction_law_entry_t, friction_law_entry
+  public :: builtin_friction_registry, friction_constructor, friction_check
+  public :: FRICTION_UNSET
 
   !> The value of a real parameter the deck did not give.
   real(dp), parameter :: FRICTION_UNSET = -huge(1.0_dp)
@@ -48,7 +55,7 @@ module fcs_friction_factory
   !> REGULARISATION regularisation, STATE LAW state_law, THETA0 initial_state,
   !> VINIT initial_rate.
   type :: friction_def_t
-    !> Law name, upper case (FRICTION_LAW_NAMES).
+    !> Law name, upper case (a name of the registry, friction_laws()).
     character(len=:), allocatable :: law
     !> MU0 [-]: Coulomb coefficient; static coefficient (STATIC KINETIC, SLIP WEAKENING);
     !> steady-state friction at V0 (rate laws).
@@ -90,6 +97,49 @@ module fcs_friction_factory
     type(string_t), allocatable :: choices(:)
   end type friction_parameter_t
 
+  abstract interface
+    !> Build the law of a definition with no problems (friction_def_problems): allocate `law`
+    !> from the parameters of `def` (the factory then sets its explicit_rate).
+    subroutine friction_constructor(def, law)
+      import :: friction_def_t, friction_law_t
+      type(friction_def_t), intent(in) :: def
+      class(friction_law_t), allocatable, intent(out) :: law
+    end subroutine friction_constructor
+
+    !> Append the problems of `def` particular to one law (beyond its required parameters and
+    !> the catalogue's ranges) to `problems`.
+    pure subroutine friction_check(def, problems)
+      import :: friction_def_t, string_t
+      type(friction_def_t), intent(in) :: def
+      type(string_t), allocatable, intent(inout) :: problems(:)
+    end subroutine friction_check
+  end interface
+
+  !> One friction law of the registry: its deck name, the parameters it requires and those it
+  !> may take (names of the catalogue friction_parameters()), its RATE UPDATE when the deck
+  !> gives none (.true. EXPLICIT, .false. IMPLICIT), its constructor, and an optional check of
+  !> what is particular to it.
+  type :: friction_law_entry_t
+    character(len=:), allocatable :: name
+    type(string_t), allocatable :: required(:)
+    type(string_t), allocatable :: optional(:)
+    logical :: explicit_rate = .false.
+    procedure(friction_constructor), pointer, nopass :: construct => null()
+    procedure(friction_check), pointer, nopass :: check => null()
+  end type friction_law_entry_t
+
+  !> The friction laws a run knows, in the order the messages list them.
+  type :: friction_registry_t
+    type(friction_law_entry_t), allocatable :: laws(:)
+  contains
+    procedure :: init => registry_init
+    procedure :: free => registry_free
+    procedure :: register => registry_register
+    procedure :: find => registry_find
+    procedure :: names => registry_names
+    procedure :: size => registry_size
+  end type friction_registry_t
+
   !> Set one deck parameter by name, as a real or as a choice (text).
   interface set_friction_parameter
     module procedure set_friction_real, set_friction_text
@@ -97,106 +147,270 @@ module fcs_friction_factory
 
 contains
 
-  !> The law `def` describes; a definition with any problem (friction_def_problems) is an
-  !> input error that lists them all, separated by "; ".
-  subroutine create_friction_law(def, law, err)
+  !> The law `def` describes (a law of `registry`, by default the built-in ones); a definition
+  !> with any problem (friction_def_problems) is an input error that lists them all, separated
+  !> by "; ".
+  subroutine create_friction_law(def, law, err, registry)
     type(friction_def_t), intent(in) :: def
     class(friction_law_t), allocatable, intent(out) :: law
     type(error_t), allocatable, intent(out) :: err
+    type(friction_registry_t), intent(in), optional :: registry
+    type(friction_registry_t) :: laws
     type(string_t), allocatable :: problems(:)
-    real(dp) :: theta0
-    problems = friction_def_problems(def)
+    integer :: k
+    laws = registry_or_builtin(registry)
+    problems = friction_def_problems(def, laws)
     if (size(problems) > 0) then
       call input_error(err, join_strings(problems, '; '))
       return
     end if
-    select case (def%law)
-    case ('COULOMB')
-      allocate (law, source=coulomb_t(mu0=def%mu0))
-    case ('STATIC KINETIC')
-      allocate (law, source=static_kinetic_t(mu0=def%mu0, mu_kinetic=def%mu_kinetic, &
-                                             decay=def%decay))
-    case ('SLIP WEAKENING')
-      allocate (law, source=slip_weakening_t(mu0=def%mu0, mu_kinetic=def%mu_kinetic, dc=def%dc))
-    case ('RATE DEPENDENT')
-      allocate (law, source=rate_dependent_t(mu0=def%mu0, a=def%a, b=def%b, v0=def%v0, &
-        cutoff_rate=def%cutoff_rate, regularisation=merge(REGULARISATION_FLOOR, &
-        REGULARISATION_LINEAR, def%regularisation == 'FLOOR')))
-    case ('RATE STATE', 'RATE STATE ARCSINH')
-      theta0 = def%initial_state
-      if (.not. given(theta0)) theta0 = def%dc / def%initial_rate
-      if (def%law == 'RATE STATE') then
-        allocate (law, source=rate_state_t(mu0=def%mu0, a=def%a, b=def%b, dc=def%dc, &
-          v0=def%v0, theta0=theta0, state_law=state_law_of(def), cutoff_rate=def%cutoff_rate))
-      else
-        allocate (law, source=rate_state_arcsinh_t(mu0=def%mu0, a=def%a, b=def%b, dc=def%dc, &
-          v0=def%v0, theta0=theta0, state_law=state_law_of(def)))
-      end if
-    end select
-    law%explicit_rate = explicit_rate_of(def)
+    k = laws%find(def%law)
+    call laws%laws(k)%construct(def, law)
+    law%explicit_rate = explicit_rate_of(def, laws%laws(k))
   end subroutine create_friction_law
 
-  !> RATE UPDATE as given, else the law's default: EXPLICIT for RATE DEPENDENT (no state: mu
-  !> falls at once with the rate when a < b), IMPLICIT for the laws with a state (their direct
-  !> effect a > 0 makes the implicit update stable and exact); no rate, no matter.
-  pure logical function explicit_rate_of(def) result(explicit)
+  !> RATE UPDATE as given, else the law's default (`explicit_rate` of its entry): EXPLICIT for
+  !> RATE DEPENDENT (no state: mu falls at once with the rate when a < b), IMPLICIT for the
+  !> laws with a state (their direct effect a > 0 makes the implicit update stable and exact);
+  !> no rate, no matter.
+  pure logical function explicit_rate_of(def, entry) result(explicit)
     type(friction_def_t), intent(in) :: def
+    type(friction_law_entry_t), intent(in) :: entry
     if (allocated(def%rate_update)) then
       explicit = def%rate_update == 'EXPLICIT'
     else
-      explicit = def%law == 'RATE DEPENDENT'
+      explicit = entry%explicit_rate
     end if
   end function explicit_rate_of
 
-  !> Every problem of `def`: unknown law; a parameter the law does not take; a missing one;
-  !> THETA0 and VINIT both or neither (Dieterich-Ruina laws); a value out of range or not
-  !> among the choices. Each message names the parameter and says what is valid.
-  pure function friction_def_problems(def) result(problems)
-    type(friction_def_t), intent(in) :: def
-    type(string_t), allocatable :: problems(:)
-    type(friction_parameter_t), allocatable :: catalogue(:)
-    type(string_t), allocatable :: required(:)
-    character(len=:), allocatable :: law
+  !> The built-in laws, one entry each: adding a law is its module and one entry here.
+  function builtin_friction_registry() result(registry)
+    type(friction_registry_t) :: registry
+    registry%laws = [ &
+      friction_law_entry('COULOMB', 'MU0', '', .false., new_coulomb), &
+      friction_law_entry('STATIC KINETIC', 'MU0, MUK, DECAY', '', .false., new_static_kinetic), &
+      friction_law_entry('SLIP WEAKENING', 'MU0, MUK, DC', '', .false., new_slip_weakening), &
+      friction_law_entry('RATE DEPENDENT', 'MU0, A, B, V0, VC, REGULARISATION', &
+                         'RATE UPDATE', .true., new_rate_dependent), &
+      friction_law_entry('RATE STATE', 'MU0, A, B, DC, V0, VC, STATE LAW', &
+                         'THETA0, VINIT, RATE UPDATE', .false., new_rate_state, &
+                         check_initial_state), &
+      friction_law_entry('RATE STATE ARCSINH', 'MU0, A, B, DC, V0, STATE LAW', &
+                         'THETA0, VINIT, RATE UPDATE', .false., new_rate_state_arcsinh, &
+                         check_initial_state)]
+  end function builtin_friction_registry
+
+  !> A registry entry: law `name`, its required and optional parameters as comma-separated
+  !> lists of catalogue names ('' for none), its default RATE UPDATE (`explicit_rate`), its
+  !> constructor and optionally its own check.
+  function friction_law_entry(name, required, optional, explicit_rate, construct, check) &
+      result(entry)
+    character(len=*), intent(in) :: name, required, optional
+    logical, intent(in) :: explicit_rate
+    procedure(friction_constructor) :: construct
+    procedure(friction_check), optional :: check
+    type(friction_law_entry_t) :: entry
+    entry%name = name
+    entry%required = list_of(required)
+    entry%optional = list_of(optional)
+    entry%explicit_rate = explicit_rate
+    entry%construct => construct
+    if (present(check)) entry%check => check
+  end function friction_law_entry
+
+  !> The built-in laws.
+  subroutine registry_init(this)
+    class(friction_registry_t), intent(inout) :: this
+    type(friction_registry_t) :: builtin
+    call this%free()
+    builtin = builtin_friction_registry()
+    call move_alloc(builtin%laws, this%laws)
+  end subroutine registry_init
+
+  !> Forget every law.
+  subroutine registry_free(this)
+    class(friction_registry_t), intent(inout) :: this
+    if (allocated(this%laws)) deallocate (this%laws)
+  end subroutine registry_free
+
+  !> Add law `entry`. An internal error if it has no name or constructor, if its name is
+  !> already registered, or if it names a parameter the catalogue does not have.
+  subroutine registry_register(this, entry, err)
+    class(friction_registry_t), intent(inout) :: this
+    type(friction_law_entry_t), intent(in) :: entry
+    type(error_t), allocatable, intent(out) :: err
+    type(string_t), allocatable :: parameters(:)
     integer :: i
-    allocate (problems(0))
-    law = ''
-    if (allocated(def%law)) law = def%law
-    if (.not. is_friction_law(law)) then
-      problems = [string_t('unknown friction law "' // law // '"; expected one of ' // &
-                           FRICTION_LAW_NAMES)]
+    if (.not. allocated(this%laws)) allocate (this%laws(0))
+    if (.not. allocated(entry%name) .or. .not. associated(entry%construct)) then
+      call fatal_error(err, 'friction registry: a law needs a name and a constructor')
       return
     end if
-    catalogue = friction_parameters()
-    required = friction_required_parameters(law)
-    do i = 1, size(catalogue)
-      associate (name => catalogue(i)%name)
-        if (is_given(def, name) .and. .not. takes_parameter(law, name)) then
-          problems = [problems, string_t('parameter ' // name // ' does not apply to law ' // &
-            law // '; expected one of ' // friction_parameter_names(law))]
-        end if
-      end associate
-    end do
-    do i = 1, size(required)
-      if (.not. is_given(def, required(i)%s)) problems = [problems, string_t('law ' // law // &
-        ': missing parameter ' // required(i)%s // ' (' // describe(required(i)%s) // ')')]
-    end do
-    if (law == 'RATE STATE' .or. law == 'RATE STATE ARCSINH') then
-      if (given(def%initial_state) .and. given(def%initial_rate)) then
-        problems = [problems, string_t('law ' // law // ': give the initial state either ' // &
-          'as THETA0 or as VINIT, not both')]
-      else if (.not. (given(def%initial_state) .or. given(def%initial_rate))) then
-        problems = [problems, string_t('law ' // law // ': missing parameter THETA0 or ' // &
-          'VINIT (' // describe('THETA0') // '; or ' // describe('VINIT') // ')')]
-      end if
+    if (this%find(entry%name) /= 0) then
+      call fatal_error(err, 'friction registry: law ' // entry%name // ' is already registered')
+      return
     end if
-    call check_ranges(def, law, problems)
+    parameters = [entry%required, entry%optional]
+    do i = 1, size(parameters)
+      if (.not. known_parameter(parameters(i)%s)) then
+        call fatal_error(err, 'friction registry: law ' // entry%name // ' names parameter ' // &
+          parameters(i)%s // ', which is not in the catalogue (friction_parameters)')
+        return
+      end if
+    end do
+    this%laws = [this%laws, entry]
+  end subroutine registry_register
+
+  !> Index of law `name` (exact, upper case), 0 if none.
+  pure integer function registry_find(this, name) result(index)
+    class(friction_registry_t), intent(in) :: this
+    character(len=*), intent(in) :: name
+    if (allocated(this%laws)) then
+      do index = 1, size(this%laws)
+        if (this%laws(index)%name == name) return
+      end do
+    end if
+    index = 0
+  end function registry_find
+
+  !> The law names in registry order.
+  pure function registry_names(this) result(names)
+    class(friction_registry_t), intent(in) :: this
+    type(string_t), allocatable :: names(:)
+    integer :: i
+    allocate (names(this%size()))
+    do i = 1, size(names)
+      names(i)%s = this%laws(i)%name
+    end do
+  end function registry_names
+
+  !> Number of laws.
+  pure integer function registry_size(this) result(n)
+    class(friction_registry_t), intent(in) :: this
+    n = 0
+    if (allocated(this%laws)) n = size(this%laws)
+  end function registry_size
+
+  !> `registry` if present, else the built-in laws.
+  function registry_or_builtin(registry) result(laws)
+    type(friction_registry_t), intent(in), optional :: registry
+    type(friction_registry_t) :: laws
+    if (present(registry)) then
+      laws = registry
+    else
+      laws = builtin_friction_registry()
+    end if
+  end function registry_or_builtin
+
+  subroutine new_coulomb(def, law)
+    type(friction_def_t), intent(in) :: def
+    class(friction_law_t), allocatable, intent(out) :: law
+    allocate (law, source=coulomb_t(mu0=def%mu0))
+  end subroutine new_coulomb
+
+  subroutine new_static_kinetic(def, law)
+    type(friction_def_t), intent(in) :: def
+    class(friction_law_t), allocatable, intent(out) :: law
+    allocate (law, source=static_kinetic_t(mu0=def%mu0, mu_kinetic=def%mu_kinetic, &
+                                           decay=def%decay))
+  end subroutine new_static_kinetic
+
+  subroutine new_slip_weakening(def, law)
+    type(friction_def_t), intent(in) :: def
+    class(friction_law_t), allocatable, intent(out) :: law
+    allocate (law, source=slip_weakening_t(mu0=def%mu0, mu_kinetic=def%mu_kinetic, dc=def%dc))
+  end subroutine new_slip_weakening
+
+  subroutine new_rate_dependent(def, law)
+    type(friction_def_t), intent(in) :: def
+    class(friction_law_t), allocatable, intent(out) :: law
+    allocate (law, source=rate_dependent_t(mu0=def%mu0, a=def%a, b=def%b, v0=def%v0, &
+      cutoff_rate=def%cutoff_rate, regularisation=merge(REGULARISATION_FLOOR, &
+      REGULARISATION_LINEAR, def%regularisation == 'FLOOR')))
+  end subroutine new_rate_dependent
+
+  subroutine new_rate_state(def, law)
+    type(friction_def_t), intent(in) :: def
+    class(friction_law_t), allocatable, intent(out) :: law
+    allocate (law, source=rate_state_t(mu0=def%mu0, a=def%a, b=def%b, dc=def%dc, &
+      v0=def%v0, theta0=initial_theta(def), state_law=state_law_of(def), &
+      cutoff_rate=def%cutoff_rate))
+  end subroutine new_rate_state
+
+  subroutine new_rate_state_arcsinh(def, law)
+    type(friction_def_t), intent(in) :: def
+    class(friction_law_t), allocatable, intent(out) :: law
+    allocate (law, source=rate_state_arcsinh_t(mu0=def%mu0, a=def%a, b=def%b, dc=def%dc, &
+      v0=def%v0, theta0=initial_theta(def), state_law=state_law_of(def)))
+  end subroutine new_rate_state_arcsinh
+
+  !> The initial state theta0 of a Dieterich-Ruina law: THETA0, or DC/VINIT.
+  pure real(dp) function initial_theta(def) result(theta0)
+    type(friction_def_t), intent(in) :: def
+    theta0 = def%initial_state
+    if (.not. given(theta0)) theta0 = def%dc / def%initial_rate
+  end function initial_theta
+
+  !> The Dieterich-Ruina laws need exactly one of THETA0 and VINIT.
+  pure subroutine check_initial_state(def, problems)
+    type(friction_def_t), intent(in) :: def
+    type(string_t), allocatable, intent(inout) :: problems(:)
+    if (given(def%initial_state) .and. given(def%initial_rate)) then
+      problems = [problems, string_t('law ' // def%law // ': give the initial state either ' // &
+        'as THETA0 or as VINIT, not both')]
+    else if (.not. (given(def%initial_state) .or. given(def%initial_rate))) then
+      problems = [problems, string_t('law ' // def%law // ': missing parameter THETA0 or ' // &
+        'VINIT (' // describe('THETA0') // '; or ' // describe('VINIT') // ')')]
+    end if
+  end subroutine check_initial_state
+
+  !> Every problem of `def`: unknown law (of `registry`, by default the built-in laws); a
+  !> parameter the law does not take; a missing one; what the law's own check finds (THETA0
+  !> and VINIT both or neither for the Dieterich-Ruina laws); a value out of range or not among
+  !> the choices. Each message names the parameter and says what is valid.
+  function friction_def_problems(def, registry) result(problems)
+    type(friction_def_t), intent(in) :: def
+    type(friction_registry_t), intent(in), optional :: registry
+    type(string_t), allocatable :: problems(:)
+    type(friction_registry_t) :: laws
+    type(friction_parameter_t), allocatable :: catalogue(:)
+    character(len=:), allocatable :: law
+    integer :: i, k
+    allocate (problems(0))
+    laws = registry_or_builtin(registry)
+    law = ''
+    if (allocated(def%law)) law = def%law
+    k = laws%find(law)
+    if (k == 0) then
+      problems = [string_t('unknown friction law "' // law // '"; expected one of ' // &
+                           join_strings(laws%names(), ', '))]
+      return
+    end if
+    associate (entry => laws%laws(k))
+      catalogue = friction_parameters()
+      do i = 1, size(catalogue)
+        associate (name => catalogue(i)%name)
+          if (is_given(def, name) .and. .not. takes_parameter(entry, name)) then
+            problems = [problems, string_t('parameter ' // name // ' does not apply to law ' // &
+              law // '; expected one of ' // parameter_names_of(entry))]
+          end if
+        end associate
+      end do
+      do i = 1, size(entry%required)
+        if (.not. is_given(def, entry%required(i)%s)) problems = [problems, string_t('law ' // &
+          law // ': missing parameter ' // entry%required(i)%s // ' (' // &
+          describe(entry%required(i)%s) // ')')]
+      end do
+      if (associated(entry%check)) call entry%check(def, problems)
+      call check_ranges(def, entry, problems)
+    end associate
   end function friction_def_problems
 
   !> Out-of-range values and invalid choices of the parameters `law` takes, appended to
   !> `problems` (parameters the law does not take are reported by the caller).
-  pure subroutine check_ranges(def, law, problems)
+  pure subroutine check_ranges(def, entry, problems)
     type(friction_def_t), intent(in) :: def
-    character(len=*), intent(in) :: law
+    type(friction_law_entry_t), intent(in) :: entry
     type(string_t), allocatable, intent(inout) :: problems(:)
     if (applies('MU0')) then
       if (def%mu0 < 0.0_dp) call out_of_range(problems, 'MU0', def%mu0, 'MU0 >= 0')
@@ -214,7 +428,7 @@ contains
       if (def%dc <= 0.0_dp) call out_of_range(problems, 'DC', def%dc, 'DC > 0 [length]')
     end if
     if (applies('A')) then
-      if (law == 'RATE STATE ARCSINH' .and. def%a <= 0.0_dp) then
+      if (entry%name == 'RATE STATE ARCSINH' .and. def%a <= 0.0_dp) then
         call out_of_range(problems, 'A', def%a, 'A > 0 (the arcsinh form divides by A)')
       else if (def%a < 0.0_dp) then
         call out_of_range(problems, 'A', def%a, 'A >= 0')
@@ -255,7 +469,7 @@ contains
   contains
     pure logical function applies(name)
       character(len=*), intent(in) :: name
-      applies = is_given(def, name) .and. takes_parameter(law, name)
+      applies = is_given(def, name) .and. takes_parameter(entry, name)
     end function applies
   end subroutine check_ranges
 
@@ -378,57 +592,69 @@ contains
         'steady state at it, theta0 = DC/VINIT; > 0') ]
   end function friction_parameters
 
-  !> The valid law names, for the keyword table's choices.
-  pure function friction_laws() result(names)
+  !> The law names of `registry` (by default the built-in laws), for the keyword table's
+  !> choices and the messages.
+  function friction_laws(registry) result(names)
+    type(friction_registry_t), intent(in), optional :: registry
     type(string_t), allocatable :: names(:)
-    names = list_of(FRICTION_LAW_NAMES)
+    type(friction_registry_t) :: laws
+    laws = registry_or_builtin(registry)
+    names = laws%names()
   end function friction_laws
 
   !> The parameters `law` requires (empty for an unknown law). The Dieterich-Ruina laws also
   !> need exactly one of their optional THETA0, VINIT.
-  pure function friction_required_parameters(law) result(names)
+  function friction_required_parameters(law, registry) result(names)
     character(len=*), intent(in) :: law
+    type(friction_registry_t), intent(in), optional :: registry
     type(string_t), allocatable :: names(:)
-    select case (law)
-    case ('COULOMB')
-      names = list_of('MU0')
-    case ('STATIC KINETIC')
-      names = list_of('MU0, MUK, DECAY')
-    case ('SLIP WEAKENING')
-      names = list_of('MU0, MUK, DC')
-    case ('RATE DEPENDENT')
-      names = list_of('MU0, A, B, V0, VC, REGULARISATION')
-    case ('RATE STATE')
-      names = list_of('MU0, A, B, DC, V0, VC, STATE LAW')
-    case ('RATE STATE ARCSINH')
-      names = list_of('MU0, A, B, DC, V0, STATE LAW')
-    case default
+    type(friction_registry_t) :: laws
+    integer :: k
+    laws = registry_or_builtin(registry)
+    k = laws%find(law)
+    if (k == 0) then
       allocate (names(0))
-    end select
+    else
+      names = laws%laws(k)%required
+    end if
   end function friction_required_parameters
 
   !> The optional parameters of `law`: THETA0 and VINIT for the Dieterich-Ruina laws (exactly
   !> one of them must be given) and RATE UPDATE for every rate law; none for the others.
-  pure function friction_optional_parameters(law) result(names)
+  function friction_optional_parameters(law, registry) result(names)
     character(len=*), intent(in) :: law
+    type(friction_registry_t), intent(in), optional :: registry
     type(string_t), allocatable :: names(:)
-    select case (law)
-    case ('RATE STATE', 'RATE STATE ARCSINH')
-      names = list_of('THETA0, VINIT, RATE UPDATE')
-    case ('RATE DEPENDENT')
-      names = list_of('RATE UPDATE')
-    case default
+    type(friction_registry_t) :: laws
+    integer :: k
+    laws = registry_or_builtin(registry)
+    k = laws%find(law)
+    if (k == 0) then
       allocate (names(0))
-    end select
+    else
+      names = laws%laws(k)%optional
+    end if
   end function friction_optional_parameters
 
   !> All parameters of `law` as text, "MU0, MUK, DECAY" ('' for an unknown law).
-  pure function friction_parameter_names(law) result(text)
+  function friction_parameter_names(law, registry) result(text)
     character(len=*), intent(in) :: law
+    type(friction_registry_t), intent(in), optional :: registry
     character(len=:), allocatable :: text
-    text = join_strings([friction_required_parameters(law), &
-                         friction_optional_parameters(law)], ', ')
+    type(friction_registry_t) :: laws
+    integer :: k
+    laws = registry_or_builtin(registry)
+    k = laws%find(law)
+    text = ''
+    if (k /= 0) text = parameter_names_of(laws%laws(k))
   end function friction_parameter_names
+
+  !> The parameters of a law entry as text, required then optional.
+  pure function parameter_names_of(entry) result(text)
+    type(friction_law_entry_t), intent(in) :: entry
+    character(len=:), allocatable :: text
+    text = join_strings([entry%required, entry%optional], ', ')
+  end function parameter_names_of
 
   pure function parameter_entry(name, unit, description, choices) result(entry)
     character(len=*), intent(in) :: name, unit, description
@@ -489,15 +715,11 @@ contains
     known_parameter = in_list(name, all_parameter_names())
   end function known_parameter
 
-  pure logical function is_friction_law(name)
+  !> Whether law `entry` takes parameter `name` (required or optional).
+  pure logical function takes_parameter(entry, name)
+    type(friction_law_entry_t), intent(in) :: entry
     character(len=*), intent(in) :: name
-    is_friction_law = in_list(name, FRICTION_LAW_NAMES)
-  end function is_friction_law
-
-  !> Whether `law` takes parameter `name` (required or optional).
-  pure logical function takes_parameter(law, name)
-    character(len=*), intent(in) :: law, name
-    takes_parameter = in_list(name, friction_parameter_names(law))
+    takes_parameter = in_list(name, parameter_names_of(entry))
   end function takes_parameter
 
   !> Whether the deck gave parameter `name` (a known name) in `def`.
@@ -558,10 +780,14 @@ contains
     end do
   end function in_list
 
-  !> The items of a comma-separated list.
+  !> The items of a comma-separated list (none for a blank text).
   pure function list_of(text) result(items)
     character(len=*), intent(in) :: text
     type(string_t), allocatable :: items(:)
+    if (len_trim(text) == 0) then
+      allocate (items(0))
+      return
+    end if
     call split_fields(text, items)
   end function list_of
 

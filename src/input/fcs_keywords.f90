@@ -7,14 +7,15 @@
 !> keywords marked "fcs3d" are our extensions in the same syntax.
 module fcs_keywords
   use fcs_strings, only: string_t, to_upper
-  use fcs_solver_factory, only: LINEAR_SOLVER_NAMES, DEFAULT_LINEAR_SOLVER
+  use fcs_solver_factory, only: linear_solver_names, DEFAULT_LINEAR_SOLVER
   use fcs_element_catalogue, only: ELEMENT_KIND_NAMES
-  use fcs_friction_factory, only: friction_parameter_t, friction_parameters, friction_laws
+  use fcs_friction_factory, only: friction_parameter_t, friction_parameters, friction_laws, &
+                                  friction_registry_t
   implicit none
   private
   public :: keyword_spec_t, param_spec_t, keyword_table, find_keyword, find_param_spec, same_name
   public :: PARAM_FLAG, PARAM_TEXT, PARAM_NAME, PARAM_REAL, PARAM_INTEGER, PARAM_CHOICE, PARAM_FILE
-  public :: PARAM_IGNORED
+  public :: PARAM_IGNORED, friction_keyword_params
   public :: CONTEXT_MODEL, CONTEXT_STEP, CONTEXT_ANY, param_kind_name, context_name
 
   !> Parameter kinds: a flag without value, free text, a (case-insensitive) name of a set or
@@ -149,7 +150,7 @@ contains
             'kept: <job>.rst.h5 (newest), <job>.rst.1.h5, ... (fcs3d extension).')]), &
       kw('SOLVER', CONTEXT_MODEL, 'fcs3d', 'Choose the linear solver.', '', &
          [p('TYPE', PARAM_CHOICE, default=DEFAULT_LINEAR_SOLVER, &
-            choices=names(LINEAR_SOLVER_NAMES), &
+            choices=linear_solver_names(), &
             description='UMFPACK (SuiteSparse, default), SKYLINE (profile LU with reverse ' // &
             'Cuthill-McKee numbering) or MUMPS. The command line option --solver overrides it.'), &
           p('REUSE TOLERANCE', PARAM_REAL, default='0', unit='-', description='Relative ' // &
@@ -389,14 +390,16 @@ contains
       ]
   end function constraint_keywords
 
-  !> Parameters of *FRICTION: LAW, STICK SLOPE and every law parameter of the friction
-  !> library's catalogue (fcs_friction_factory), so that the table stays the library's.
-  function friction_keyword_params() result(params)
+  !> Parameters of *FRICTION: LAW (the laws of `registry`, by default the built-in ones),
+  !> STICK SLOPE and every law parameter of the friction library's catalogue
+  !> (fcs_friction_factory), so that the table stays the library's.
+  function friction_keyword_params(registry) result(params)
+    type(friction_registry_t), intent(in), optional :: registry
     type(param_spec_t), allocatable :: params(:)
     type(friction_parameter_t), allocatable :: catalogue(:)
     integer :: i
     catalogue = friction_parameters()
-    params = [p('LAW', PARAM_CHOICE, default='COULOMB', choices=friction_laws(), &
+    params = [p('LAW', PARAM_CHOICE, default='COULOMB', choices=friction_laws(registry), &
                 description='Friction law.'), &
               p('STICK SLOPE', PARAM_REAL, unit='stress/length', description='Stick stiffness ' // &
                 'E_t (default: E_n, the normal penalty).'), &

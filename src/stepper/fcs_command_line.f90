@@ -3,7 +3,7 @@ module fcs_command_line
   use, intrinsic :: iso_fortran_env, only: output_unit
   use fcs_error, only: error_t, input_error
   use fcs_run_options, only: run_options_t
-  use fcs_solver_factory, only: LINEAR_SOLVER_NAMES
+  use fcs_solver_factory, only: is_linear_solver, linear_solver_names_text, DEFAULT_LINEAR_SOLVER
   use fcs_kinds, only: dp
   use fcs_strings, only: to_upper, basename, path_stem, join_path, parse_real
   use fcs_version, only: FCS3D_IDENTITY
@@ -68,9 +68,9 @@ contains
         select case (arg)
         case ('--solver')
           options%solver = to_upper(argument(i))
-          if (.not. any(LINEAR_SOLVER_NAMES == options%solver)) then
+          if (.not. is_linear_solver(options%solver)) then
             call input_error(err, '--solver ' // argument(i) // ': unknown solver; expected ' // &
-                             'UMFPACK, SKYLINE or MUMPS')
+                             'one of ' // linear_solver_names_text())
             return
           end if
         case ('--restart')
@@ -181,8 +181,6 @@ contains
       '  --list-keywords       the keywords the deck may use, with their parameters', &
       '  --markdown            with --list-keywords: the deck reference in Markdown', &
       '  --check               read and check the deck and the model, write job.echo, do not run', &
-      '  --solver NAME         linear solver: UMFPACK (default; MUMPS in a parallel run), SKYLINE', &
-      '                        or MUMPS', &
       '  --restart FILE        continue from a checkpoint (job.rst.h5)', &
       '  --reuse-tolerance TOL', &
       '                        relative residual of a tangent solved by GMRES with the factors', &
@@ -202,6 +200,12 @@ contains
     integer :: i
     do i = 1, size(lines)
       write (output_unit, '(a)') trim(lines(i))
+      ! The solver names come from the solver factory's registry.
+      if (index(lines(i), '  --check ') == 1) then
+        write (output_unit, '(a)') '  --solver NAME         linear solver: ' // &
+          linear_solver_names_text() // ' (default ' // DEFAULT_LINEAR_SOLVER // ';'
+        write (output_unit, '(a)') '                        MUMPS in a parallel run)'
+      end if
     end do
   end subroutine print_help
 

@@ -2,6 +2,9 @@
 !> parameter catalogue and per-law lists, and the negative cases: unknown law (message lists the
 !> valid ones), unknown/repeated/mistyped parameter, parameter of another law, missing
 !> parameter, THETA0/VINIT both or neither, and every out-of-range value (message names it).
+!> The registry: a test-only law (TEST LINEAR RATE, fcs_test_friction_laws) registered at run
+!> time is listed by the law names, the *FRICTION keyword parameters and the messages, is
+!> built by create_friction_law from a definition, and passes the shared derivative checks.
 program test_fcs_friction_factory
   use, intrinsic :: iso_fortran_env, only: error_unit
   use fcs_kinds, only: dp
@@ -11,8 +14,11 @@ program test_fcs_friction_factory
   use fcs_friction_factory, only: friction_def_t, friction_parameter_t, create_friction_law, &
     set_friction_parameter, friction_parameters, friction_laws, friction_required_parameters, &
     friction_optional_parameters, friction_parameter_names, friction_def_problems, &
-    FRICTION_LAW_NAMES
+    friction_registry_t, friction_law_entry_t
+  use fcs_strings, only: join_strings
+  use fcs_keywords, only: param_spec_t, friction_keyword_params, PARAM_CHOICE
   use fcs_test_assertions, only: test_suite_t
+  use fcs_test_friction_laws, only: test_linear_rate_entry, check_derivatives
   implicit none
   type(test_suite_t) :: suite
 
@@ -24,6 +30,7 @@ program test_fcs_friction_factory
   call check_applicability(suite)
   call check_out_of_range(suite)
   call check_rate_update(suite)
+  call check_registered_law(suite)
   call suite%report()
 
 contains
@@ -103,6 +110,87 @@ contains
     call create_friction_law(def, law, err)
     call suite%check(allocated(err), 'RATE UPDATE refused for COULOMB')
   end subroutine check_rate_update
+
+  !> The recipe "How to add a friction law" on a test-only law: registered at run time, the
+  !> registry's names, parameter lists, messages and the *FRICTION keyword parameters include
+  !> it; create_friction_law builds it from deck-style parameters with its default RATE
+  !> UPDATE; its derivatives pass the shared finite-difference checks. A second registration
+  !> of the name, and an entry naming a parameter outside the catalogue, are refused.
+  subroutine check_registered_law(suite)
+    type(test_suite_t), intent(inout) :: suite
+    type(friction_registry_t) :: registry
+    type(friction_def_t) :: def
+    class(friction_law_t), allocatable :: law
+    type(error_t), allocatable :: err
+    type(param_spec_t), allocatable :: params(:)
+    character(len=*), parameter :: NAME = 'TEST LINEAR RATE'
+    integer :: i
+    call registry%init()
+    call suite%equal_int(size(registry%names()), size(friction_laws()), 'registry: the built-in laws')
+    call registry%register(test_linear_rate_entry(), err)
+    call suite%check(.not. allocated(err), 'registry: ' // NAME // ' registered')
+    call suite%check(any_is(friction_laws(registry), NAME), 'registry: law names include it')
+    call suite%check(.not. any_is(friction_laws(), NAME), 'registry: the built-in list does not')
+    call suite%check(friction_parameter_names(NAME, registry) == 'MU0, A, V0, RATE UPDATE', &
+                     'registry: its parameter list')
+    params = friction_keyword_params(registry)
+    call suite%check(params(1)%name == 'LAW' .and. params(1)%kind == PARAM_CHOICE, &
+                     'keyword table: *FRICTION LAW= is a choice')
+    call suite%check(any_is(params(1)%choices, NAME), 'keyword table: LAW= offers it')
+    params = friction_keyword_params()
+    call suite%check(.not. any_is(params(1)%choices, NAME), 'keyword table: built-in LAW= does not')
+    def = deck_def(NAME, 'MU0=0.5, A=0.02, V0=0.001')
+    call suite%equal_int(size(friction_def_problems(def, registry)), 0, 'registry: a valid definition')
+    call suite%equal_int(size(friction_def_problems(def)), 1, 'built-in: an unknown law')
+    call create_friction_law(def, law, err, registry)
+    call suite%check(.not. allocated(err), 'create_friction_law builds ' // NAME)
+    if (allocated(law)) then
+      call suite%check(law%name() == NAME, 'its name()')
+      call suite%check(law%explicit_rate, 'its default RATE UPDATE (EXPLICIT)')
+      call suite%close_to(law%mu(1.0_dp, 0.002_dp, 0.0_dp), 0.54_dp, 1.0e-15_dp, &
+                          'mu = MU0 + A V/V0')
+      do i = 0, 2
+        call check_derivatives(suite, law, 10.0_dp, 0.001_dp * i, 0.0_dp, 0.001_dp, 1.0_dp, NAME)
+      end do
+    end if
+    call create_friction_law(deck_def(NAME, 'MU0=0.5, A=0.02, V0=0.001, RATE UPDATE=IMPLICIT'), &
+                             law, err, registry)
+    call suite%check(.not. allocated(err) .and. .not. law%explicit_rate, 'RATE UPDATE=IMPLICIT given')
+    call create_friction_law(deck_def(NAME, 'MU0=0.5, A=0.02'), law, err, registry)
+    call suite%check(allocated(err), 'missing V0 refused')
+    if (allocated(err)) call suite%check(contains_text(err%message, 'law ' // NAME // &
+      ': missing parameter V0'), 'missing V0: message names the law and the parameter')
+    call create_friction_law(deck_def(NAME, 'MU0=0.5, A=0.02, V0=0.001, DC=1'), law, err, registry)
+    call suite%check(allocated(err), 'DC refused')
+    if (allocated(err)) call suite%check(contains_text(err%message, 'parameter DC does not ' // &
+      'apply to law ' // NAME // '; expected one of MU0, A, V0, RATE UPDATE'), &
+      'DC: message lists its parameters')
+    def%law = 'NO SUCH LAW'
+    call create_friction_law(def, law, err, registry)
+    call suite%check(allocated(err), 'unknown law refused')
+    if (allocated(err)) call suite%check(contains_text(err%message, 'RATE STATE ARCSINH, ' // NAME), &
+                                         'unknown law: the message lists the registered law')
+    call registry%register(test_linear_rate_entry(), err)
+    call suite%check(allocated(err), 'a second ' // NAME // ' refused')
+    block
+      type(friction_law_entry_t) :: entry
+      entry = test_linear_rate_entry()
+      entry%name = 'TEST OTHER'
+      entry%required = [string_t('MU0'), string_t('K')]
+      call registry%register(entry, err)
+      call suite%check(allocated(err), 'a parameter outside the catalogue refused')
+    end block
+  end subroutine check_registered_law
+
+  logical function any_is(names, name)
+    type(string_t), intent(in) :: names(:)
+    character(len=*), intent(in) :: name
+    integer :: i
+    any_is = .false.
+    do i = 1, size(names)
+      if (names(i)%s == name) any_is = .true.
+    end do
+  end function any_is
 
   logical function contains_text(message, text)
     character(len=*), intent(in) :: message, text
@@ -190,7 +278,8 @@ contains
     if (.not. allocated(err)) return
     call suite%equal_int(err%exit_code, EXIT_INPUT, 'unknown law: input error')
     call suite%check(contains_text(err%message, '"RATE AND STATE"'), 'unknown law: named')
-    call suite%check(contains_text(err%message, FRICTION_LAW_NAMES), 'unknown law: lists valid')
+    call suite%check(contains_text(err%message, join_strings(friction_laws(), ', ')), &
+                     'unknown law: lists valid')
     laws = friction_laws()
     do i = 1, size(laws)
       call suite%check(contains_text(err%message, laws(i)%s), 'unknown law: lists ' // laws(i)%s)

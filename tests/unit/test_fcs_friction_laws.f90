@@ -14,17 +14,9 @@ program test_fcs_friction_laws
   use fcs_rate_state, only: rate_state_t
   use fcs_rate_state_arcsinh, only: rate_state_arcsinh_t
   use fcs_test_assertions, only: test_suite_t
+  use fcs_test_friction_laws, only: check_derivatives
   implicit none
   type(test_suite_t) :: suite
-
-  ! Finite-difference tolerance. The central difference with step h = 1e-5 x has truncation
-  ! error ~ (h/x)^2 x^2 |mu'''|/(6 |mu'|) ~ 1e-10 relative for the logarithmic and exponential
-  ! forms at the points used, and rounding error ~ eps |mu| / (h |mu'|) <~ 1e-8 relative
-  ! (worst: the static-kinetic law well past its decay, where |mu'| << |mu|/V); 1e-6 leaves
-  ! two orders of margin and still catches any wrong factor or sign.
-  real(dp), parameter :: FD_TOLERANCE = 1.0e-6_dp
-  ! Relative finite-difference step.
-  real(dp), parameter :: FD_STEP = 1.0e-5_dp
 
   suite%name = 'fcs_friction_laws'
   call check_coulomb(suite)
@@ -37,47 +29,6 @@ program test_fcs_friction_laws
   call suite%report()
 
 contains
-
-  !> Compare the analytic derivatives of `law` at (pressure, rate, state) with central
-  !> differences with relative steps FD_STEP (steps FD_STEP * rate_scale, FD_STEP * state_scale
-  !> where the argument is 0). At rate = 0 the rate difference is the one-sided second-order
-  !> formula (-3 f(0) + 4 f(h) - f(2h)) / (2h), also O(h^2). A difference carries a rounding
-  !> error ~ eps |mu| / h, so derivatives are compared relative to max(|expected|, 1e-3 |mu|/x)
-  !> (x the argument or its scale): a zero derivative is then checked to ~1e-9 |mu|/x, and no
-  !> non-zero derivative of these laws at the points used is below that floor.
-  subroutine check_derivatives(suite, law, pressure, rate, state, rate_scale, state_scale, what)
-    type(test_suite_t), intent(inout) :: suite
-    class(friction_law_t), intent(in) :: law
-    real(dp), intent(in) :: pressure, rate, state, rate_scale, state_scale
-    character(len=*), intent(in) :: what
-    type(friction_derivatives_t) :: d
-    real(dp) :: h, fd, x
-    character(len=64) :: where
-    write (where, '(a,es10.3,a,es10.3)') ' at V=', rate, ' state=', state
-    d = law%evaluate(pressure, rate, state)
-    call suite%check(d%mu == d%mu .and. abs(d%mu) < huge(1.0_dp), what // ': finite mu' // trim(where))
-    call suite%check(d%mu == law%mu(pressure, rate, state), what // ': mu() = evaluate()%mu')
-    x = max(abs(pressure), 1.0_dp)
-    h = FD_STEP * x
-    fd = (law%mu(pressure + h, rate, state) - law%mu(pressure - h, rate, state)) / (2.0_dp * h)
-    call suite%close_to(d%dmu_dpressure, fd, FD_TOLERANCE, what // ': dmu/dp' // trim(where), &
-                        floor=1.0e-3_dp * abs(d%mu) / x)
-    x = merge(rate, rate_scale, rate > 0.0_dp)
-    h = FD_STEP * x
-    if (rate > 0.0_dp) then
-      fd = (law%mu(pressure, rate + h, state) - law%mu(pressure, rate - h, state)) / (2.0_dp * h)
-    else
-      fd = (-3.0_dp * law%mu(pressure, rate, state) + 4.0_dp * law%mu(pressure, rate + h, state) &
-            - law%mu(pressure, rate + 2.0_dp * h, state)) / (2.0_dp * h)
-    end if
-    call suite%close_to(d%dmu_drate, fd, FD_TOLERANCE, what // ': dmu/dV' // trim(where), &
-                        floor=1.0e-3_dp * abs(d%mu) / x)
-    x = merge(abs(state), state_scale, state /= 0.0_dp)
-    h = FD_STEP * x
-    fd = (law%mu(pressure, rate, state + h) - law%mu(pressure, rate, state - h)) / (2.0_dp * h)
-    call suite%close_to(d%dmu_dstate, fd, FD_TOLERANCE, what // ': dmu/dstate' // trim(where), &
-                        floor=1.0e-3_dp * abs(d%mu) / x)
-  end subroutine check_derivatives
 
   subroutine check_coulomb(suite)
     type(test_suite_t), intent(inout) :: suite
