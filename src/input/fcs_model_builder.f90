@@ -22,7 +22,7 @@ module fcs_model_builder
                             handle_surface, handle_mesh
   use fcs_build_material, only: handle_material, handle_elastic, handle_density, &
                                 handle_solid_section, handle_solver, handle_restart, &
-                                resolve_section_materials
+                                resolve_section_materials, handle_orientation, is_isotropic_elastic
   use fcs_build_plasticity, only: handle_plastic, handle_cyclic_hardening, handle_drucker_prager, &
                                   handle_drucker_prager_hardening
   use fcs_build_step, only: handle_step, handle_static, handle_end_step, handle_boundary, &
@@ -178,7 +178,7 @@ contains
     call model%mesh%init(mesh_kinds(model%element_kinds))
     allocate (model%materials(0), model%sections(0), model%amplitudes(0), &
               model%time_points(0), model%steps(0), model%interactions(0), model%equations(0), &
-              model%rotation_nodes(0), model%transforms(0), model%contact_pairs(0), &
+              model%rotation_nodes(0), model%transforms(0), model%orientations(0), model%contact_pairs(0), &
               model%histories(0), model%warnings(0))
   end subroutine init_model
 
@@ -236,7 +236,7 @@ contains
     case ('MATERIAL')
       call handle_material(card, model, state, diag)
     case ('ELASTIC')
-      if (is_elastic_table(card)) then
+      if (is_isotropic_elastic(card) .and. is_elastic_table(card)) then
         call handle_elastic_table(card, model, state, diag)
       else
         call handle_elastic(card, model, state, diag)
@@ -259,6 +259,8 @@ contains
       call handle_drucker_prager_hardening(card, model, state, diag)
     case ('SOLID SECTION')
       call handle_solid_section(card, model, diag)
+    case ('ORIENTATION')
+      call handle_orientation(card, model, diag)
     case ('SURFACE INTERACTION')
       call handle_surface_interaction(card, model, state, diag)
     case ('SURFACE BEHAVIOR')

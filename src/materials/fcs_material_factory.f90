@@ -8,6 +8,7 @@ module fcs_material_factory
   use fcs_error, only: error_t, input_error
   use fcs_material, only: material_t
   use fcs_hypoelastic, only: hypoelastic_t
+  use fcs_anisotropic_elastic, only: anisotropic_elastic_t
   use fcs_von_mises, only: von_mises_t
   use fcs_drucker_prager, only: drucker_prager_t
   use fcs_hardening_table, only: hardening_table_t, constant_table
@@ -55,12 +56,25 @@ contains
     end if
   end function max_friction_angle
 
-  !> A material with Young's modulus `e`, Poisson's ratio `nu` and the plastic part `plastic`.
-  subroutine create_material(e, nu, plastic, material, err)
+  !> A material with Young's modulus `e`, Poisson's ratio `nu` and the plastic part `plastic`;
+  !> with `stiffness` (6 x 6, local axes), an anisotropic elastic one (fcs_anisotropic_elastic;
+  !> e and nu then give its isotropic scale, voigt_isotropic), which takes no plasticity.
+  subroutine create_material(e, nu, plastic, material, err, stiffness)
     real(dp), intent(in) :: e, nu
     type(plastic_def_t), intent(in) :: plastic
     class(material_t), allocatable, intent(out) :: material
     type(error_t), allocatable, intent(out) :: err
+    real(dp), intent(in), optional :: stiffness(6, 6)
+    if (present(stiffness)) then
+      if (plastic%model /= PLASTICITY_NONE) then
+        call input_error(err, 'plasticity with anisotropic elasticity is not available')
+        return
+      end if
+      allocate (material, source=anisotropic_elastic_t(stiffness=stiffness))
+      material%youngs_modulus = e
+      material%poisson_ratio = nu
+      return
+    end if
     select case (plastic%model)
     case (PLASTICITY_NONE)
       allocate (hypoelastic_t :: material)
