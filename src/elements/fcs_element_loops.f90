@@ -780,7 +780,7 @@ contains
   !> With `axes` (an anisotropic elastic material in an element with an *ORIENTATION, small
   !> strains: the model checks refuse it with NLGEOM or plasticity), the material takes the
   !> strain increment in those axes and its stress increment is turned back to global ones
-  !> (doc/theory.md 2.6): sigma + T C_local T^T delta_epsilon.
+  !> (doc/theory.md 2.7): sigma + T C_local T^T delta_epsilon.
   pure subroutine update_point(material, nlgeom, strain_increment, spin, stress, strain, state, &
                                tangent, axes)
     class(material_t), intent(in) :: material

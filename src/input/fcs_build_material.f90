@@ -217,6 +217,8 @@ contains
       else
         call diag%report(card%lines(1)%loc, '*ORIENTATION: a is zero or b is parallel to a')
       end if
+      ! Kept (nothing runs on a deck with errors), so that its sections find it.
+      model%orientations = [model%orientations, item]
       return
     end if
     if (card%n_lines == 2) then
@@ -231,6 +233,7 @@ contains
         if (item%axes%cylindrical) then
           call diag%report(line%loc, '*ORIENTATION: an additional rotation is only allowed ' // &
                            'for rectangular systems (as in CalculiX)')
+          model%orientations = [model%orientations, item]
           return
         end if
         item%axes = rotate_about_axis(item%axes, axis, angle)

@@ -180,7 +180,7 @@ contains
          'follows sigma = C(T) eps_el as in CalculiX (doc/theory.md section 2.5). ' // &
          'TYPE=ORTHO, ENGINEERING CONSTANTS, ANISO: a constant stiffness in the material ' // &
          'axes of the section''s *ORIENTATION (global axes without one), CalculiX''s order ' // &
-         'of the constants (doc/theory.md section 2.6); it must be positive definite; not with ' // &
+         'of the constants (doc/theory.md section 2.7); it must be positive definite; not with ' // &
          'plasticity, NLGEOM, temperature tables, C3D8I or C3D8R elements.', &
          'TYPE=ISO: Young''s modulus [stress], Poisson''s ratio [-][, temperature]: one line, ' // &
          'or one line per temperature, temperatures strictly increasing. ORTHO: D1111, D1122, ' // &
@@ -279,7 +279,7 @@ contains
             'Hughes 1980), which removes volumetric locking (fcs3d extension).')]), &
       kw('ORIENTATION', CONTEXT_MODEL, 'CalculiX', 'Local material axes for the sections that ' // &
          'name it (*SOLID SECTION, ORIENTATION=), at every integration point (from its ' // &
-         'position in the reference configuration), as CalculiX (doc/theory.md section 2.6). ' // &
+         'position in the reference configuration), as CalculiX (doc/theory.md section 2.7). ' // &
          'RECTANGULAR: e1 along a, e2 the part of b normal to a, e3 = e1 x e2. CYLINDRICAL: ' // &
          'a and b are two points of the axis; e1 radial, e2 tangential, e3 along b - a.', &
          'a1, a2, a3, b1, b2, b3 [length]; optionally a second line: a local axis (1, 2 or 3) ' // &

@@ -1,6 +1,6 @@
 !> Linear anisotropic (hypo)elasticity: sigma^J = C : D with a constant 6 x 6 stiffness C in
 !> the material's local axes (ccx manual, *ELASTIC, TYPE=ORTHO | ENGINEERING CONSTANTS |
-!> ANISO; doc/theory.md 2.6). The element loops turn the strain increment into the local axes
+!> ANISO; doc/theory.md 2.7). The element loops turn the strain increment into the local axes
 !> of an *ORIENTATION and the stress increment back (fcs_orientation); without one the local
 !> axes are the global ones.
 !>

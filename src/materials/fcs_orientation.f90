@@ -1,5 +1,5 @@
 !> Local material axes (*ORIENTATION) and the Voigt transformations between local and global
-!> components, as CalculiX defines them (ccx manual, *ORIENTATION; doc/theory.md 2.6).
+!> components, as CalculiX defines them (ccx manual, *ORIENTATION; doc/theory.md 2.7).
 !>
 !> The axes at a point are the columns of A = [e1 e2 e3] (global components of the local unit
 !> vectors). A rectangular system is given by two vectors a and b: e1 = a / |a|, e2 the part
