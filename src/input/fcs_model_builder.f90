@@ -521,12 +521,13 @@ contains
              'COUPLING', 'DISTRIBUTING', 'KINEMATIC', 'CYCLIC SYMMETRY MODEL'])) then
       reason = 'constraints other than *BOUNDARY, *EQUATION, *MPC (PLANE, STRAIGHT), *RIGID ' // &
                'BODY and *TRANSFORM are not available yet'
-    else if (is_one_of(keyword, [character(len=34) :: 'ORIENTATION', &
+    else if (is_one_of(keyword, [character(len=34) :: &
              'CONDUCTIVITY', 'SPECIFIC HEAT', 'HYPERELASTIC', 'HYPERFOAM', 'CREEP', &
              'USER MATERIAL', 'DEFORMATION PLASTICITY', 'RATE DEPENDENT', 'CAP PLASTICITY', &
              'MOHR COULOMB', 'DRUCKER PRAGER CREEP'])) then
-      reason = 'materials are isotropic hypoelastic (*ELASTIC), with von Mises (*PLASTIC) or ' // &
-               'linear Drucker-Prager (*DRUCKER PRAGER) plasticity'
+      reason = 'materials are hypoelastic (*ELASTIC: isotropic, or anisotropic and elastic ' // &
+               'only), with von Mises (*PLASTIC) or linear Drucker-Prager (*DRUCKER PRAGER) ' // &
+               'plasticity'
     else if (is_one_of(keyword, [character(len=34) :: 'CFLUX', 'DFLUX', 'FILM', 'RADIATE'])) then
       reason = 'this load or initial condition is not available yet'
     else if (is_one_of(keyword, [character(len=34) :: 'CHANGE SURFACE BEHAVIOR', &
