@@ -206,6 +206,8 @@ contains
     this%x_reference = mesh%x(:, 1:mesh%n_nodes)
     call move_alloc(materials, this%materials)
     this%mine = [(e, e = 1, mesh%n_elements)]
+    if (allocated(this%axes_index)) deallocate (this%axes_index)
+    if (allocated(this%axes)) deallocate (this%axes)
     allocate (this%axes_index(0), this%axes(3, 3, 0, 0))
     used = .false.
     used(this%kind) = .true.
@@ -227,7 +229,8 @@ contains
     integer, intent(in) :: element_orientation(:)
     real(dp), allocatable :: x(:, :)
     integer :: e, q, k
-    deallocate (this%axes_index, this%axes)
+    if (allocated(this%axes_index)) deallocate (this%axes_index)
+    if (allocated(this%axes)) deallocate (this%axes)
     allocate (this%axes_index(this%n_elements))
     this%axes_index = 0
     k = 0
