@@ -44,6 +44,8 @@ module fcs_element_loops
   use fcs_hex8_element, only: hex8_rotate_stress, mises_stress
   use fcs_material, only: material_t, material_slot_t
   use fcs_voigt, only: spin_rotation, rotate_stress_like, rotate_strain_like
+  use fcs_orientation, only: orientation_t, orientation_axes, stress_to_global, strain_to_local, &
+                             stress_to_local, rotate_stiffness
   use fcs_sparse, only: sparse_matrix_t
   use fcs_rmin_events, only: rmin_collector_t, EVENT_STRAIN_LIMIT, EVENT_ROTATION_LIMIT, &
                              EVENT_YIELD, EVENT_PLASTIC_STRAIN_LIMIT
@@ -94,8 +96,18 @@ module fcs_element_loops
     integer, allocatable :: mine(:)
     !> Whether some element has hourglass control (C3D8R), whose forces are element state.
     logical :: hourglass = .false.
+    !> *ORIENTATION axes of the elements whose section has one: axes(:, :, q, axes_index(e))
+    !> at point q (columns: the local unit vectors in global components, from the point's
+    !> reference position); axes_index(e) = 0: none (empty without orientations). An
+    !> anisotropic material works in these axes (`update_point`); others need them for output
+    !> only (`to_material_axes`).
+    integer, allocatable :: axes_index(:)
+    real(dp), allocatable :: axes(:, :, :, :)
   contains
     procedure :: init => loops_init
+    procedure :: set_orientations => loops_set_orientations
+    procedure :: to_material_axes => loops_to_material_axes
+    procedure :: has_orientation => loops_has_orientation
     procedure :: set_share => loops_set_share
     procedure :: n_points => loops_n_points
     procedure :: point_counts => loops_point_counts
@@ -194,6 +206,9 @@ contains
     this%x_reference = mesh%x(:, 1:mesh%n_nodes)
     call move_alloc(materials, this%materials)
     this%mine = [(e, e = 1, mesh%n_elements)]
+    if (allocated(this%axes_index)) deallocate (this%axes_index)
+    if (allocated(this%axes)) deallocate (this%axes)
+    allocate (this%axes_index(0), this%axes(3, 3, 0, 0))
     used = .false.
     used(this%kind) = .true.
     this%max_points = 0
@@ -204,6 +219,78 @@ contains
       if (catalogue%kinds(k)%formulation == FORMULATION_HOURGLASS) this%hourglass = .true.
     end do
   end subroutine loops_init
+
+  !> The *ORIENTATION of every element (`element_orientation(e)`: index into `orientations`,
+  !> 0 none): the axes at each of its integration points (orientation_axes at the point's
+  !> reference position; CalculiX evaluates them there too).
+  subroutine loops_set_orientations(this, orientations, element_orientation)
+    class(element_loops_t), intent(inout) :: this
+    type(orientation_t), intent(in) :: orientations(:)
+    integer, intent(in) :: element_orientation(:)
+    real(dp), allocatable :: x(:, :)
+    integer :: e, q, k
+    if (allocated(this%axes_index)) deallocate (this%axes_index)
+    if (allocated(this%axes)) deallocate (this%axes)
+    allocate (this%axes_index(this%n_elements))
+    this%axes_index = 0
+    k = 0
+    do e = 1, this%n_elements
+      if (element_orientation(e) == 0) cycle
+      k = k + 1
+      this%axes_index(e) = k
+    end do
+    allocate (this%axes(3, 3, this%max_points, k))
+    this%axes = 0.0_dp
+    do e = 1, this%n_elements
+      if (this%axes_index(e) == 0) cycle
+      x = this%point_positions(e)
+      do q = 1, size(x, 2)
+        this%axes(:, :, q, this%axes_index(e)) = orientation_axes(orientations(element_orientation(e)), &
+                                                                  x(:, q))
+      end do
+    end do
+  end subroutine loops_set_orientations
+
+  !> Whether element e has an *ORIENTATION.
+  pure logical function loops_has_orientation(this, e) result(has)
+    class(element_loops_t), intent(in) :: this
+    integer, intent(in) :: e
+    has = .false.
+    if (size(this%axes_index) > 0) has = this%axes_index(e) > 0
+  end function loops_has_orientation
+
+  !> Whether the points of element e work in local axes: an anisotropic material in an
+  !> element with an *ORIENTATION.
+  pure logical function works_in_local_axes(this, e) result(local)
+    type(element_loops_t), intent(in) :: this
+    integer, intent(in) :: e
+    local = .false.
+    if (.not. this%has_orientation(e)) return
+    local = this%materials(this%material(e))%m%is_anisotropic()
+  end function works_in_local_axes
+
+  !> A copy of stress-like (`strain_like` false) or engineering-strain values(6, q, e) with
+  !> the points of oriented elements in their local axes (*EL PRINT, GLOBAL=NO).
+  function loops_to_material_axes(this, values, strain_like) result(local)
+    class(element_loops_t), intent(in) :: this
+    real(dp), intent(in) :: values(:, :, :)
+    logical, intent(in) :: strain_like
+    real(dp), allocatable :: local(:, :, :)
+    integer :: e, q
+    local = values
+    do e = 1, this%n_elements
+      if (.not. this%has_orientation(e)) cycle
+      do q = 1, this%n_points(e)
+        associate (axes => this%axes(:, :, q, this%axes_index(e)))
+          if (strain_like) then
+            local(:, q, e) = strain_to_local(values(:, q, e), axes)
+          else
+            local(:, q, e) = stress_to_local(values(:, q, e), axes)
+          end if
+        end associate
+      end do
+    end do
+  end function loops_to_material_axes
 
   !> The elements this process works on.
   subroutine loops_set_share(this, mine)
@@ -455,6 +542,11 @@ contains
               end do
             end if
           end if
+          if (works_in_local_axes(this, e)) then
+            do q = 1, kind%n_points
+              c(:, :, q) = rotate_stiffness(c(:, :, q), this%axes(:, :, q, this%axes_index(e)))
+            end do
+          end if
         end associate
         call element_tangent(kind, geo, fields%stress(:, :, e), c(:, :, 1:kind%n_points), &
                              this%bbar(e), nlgeom, k(1:3 * n, 1:3 * n))
@@ -505,7 +597,20 @@ contains
         associate (material => this%materials(this%material(e))%m)
           thermal = present(temperature_start) .and. present(temperature_end)
           if (thermal) thermal = material%thermal%is_active()
-          if (thermal) then
+          if (works_in_local_axes(this, e)) then
+            if (thermal) then
+              call point_temperatures(this, e, temperature_start, t_start)
+              call point_temperatures(this, e, temperature_end, t_end)
+            else
+              t_start = 0.0_dp
+              t_end = 0.0_dp
+            end if
+            do q = 1, kind%n_points
+              call update_point_thermal(material, nlgeom, strain(:, q), spin(:, :, q), &
+                fields%stress(:, q, e), fields%strain(:, q, e), fields%material_state(:, q, e), &
+                t_start(q), t_end(q), this%axes(:, :, q, this%axes_index(e)))
+            end do
+          else if (thermal) then
             call point_temperatures(this, e, temperature_start, t_start)
             call point_temperatures(this, e, temperature_end, t_end)
             do q = 1, kind%n_points
@@ -676,15 +781,26 @@ contains
   !> Without NLGEOM there is no rotation: sigma + the material's increment.
   !> With `tangent`, also the material's consistent tangent d(sigma)/d(strain_increment) of
   !> this update (in the rotated frame), for equilibrium iterations.
+  !> With `axes` (an anisotropic elastic material in an element with an *ORIENTATION, small
+  !> strains: the model checks refuse it with NLGEOM or plasticity), the material takes the
+  !> strain increment in those axes and its stress increment is turned back to global ones
+  !> (doc/theory.md 2.9): sigma + T C_local T^T delta_epsilon.
   pure subroutine update_point(material, nlgeom, strain_increment, spin, stress, strain, state, &
-                               tangent)
+                               tangent, axes)
     class(material_t), intent(in) :: material
     logical, intent(in) :: nlgeom
     real(dp), intent(in) :: strain_increment(6), spin(3, 3)
     real(dp), intent(inout) :: stress(6), strain(6), state(:)
     real(dp), intent(out), optional :: tangent(6, 6)
+    real(dp), intent(in), optional :: axes(3, 3)
     real(dp) :: updated(6), increment(6), q(3, 3)
-    if (nlgeom .and. material%n_state() > 0) then
+    if (present(axes)) then
+      increment = 0.0_dp
+      call material%update(increment, strain_to_local(strain_increment, axes), state, tangent)
+      stress = stress + stress_to_global(increment, axes)
+      strain = strain + strain_increment
+      if (present(tangent)) tangent = rotate_stiffness(tangent, axes)
+    else if (nlgeom .and. material%n_state() > 0) then
       q = spin_rotation(spin)
       stress = rotate_stress_like(stress, q)
       call material%rotate_state(state, q)
@@ -711,21 +827,26 @@ contains
   !> end temperature with the elastic strain held (material%rescale_stress: isotropic, so it
   !> commutes with the rotation) and update with the constants at t_end. The accumulated
   !> strain is the total one (mechanical + thermal), CalculiX's E.
+  !> With `axes`, the update in local axes of update_point (the isotropic thermal strain is
+  !> the same in any axes).
   subroutine update_point_thermal(material, nlgeom, strain_increment, spin, stress, strain, &
-                                  state, t_start, t_end)
+                                  state, t_start, t_end, axes)
     class(material_t), intent(in) :: material
     logical, intent(in) :: nlgeom
     real(dp), intent(in) :: strain_increment(6), spin(3, 3), t_start, t_end
     real(dp), intent(inout) :: stress(6), strain(6), state(:)
+    real(dp), intent(in), optional :: axes(3, 3)
     real(dp) :: thermal(6)
     class(material_t), allocatable :: at_end
     thermal = material%thermal_strain_increment(t_start, t_end)
     if (material%thermal%elastic_varies()) then
       stress = material%rescale_stress(stress, t_start, t_end)
       call material%at_temperature(t_end, at_end)
-      call update_point(at_end, nlgeom, strain_increment - thermal, spin, stress, strain, state)
+      call update_point(at_end, nlgeom, strain_increment - thermal, spin, stress, strain, state, &
+                        axes=axes)
     else
-      call update_point(material, nlgeom, strain_increment - thermal, spin, stress, strain, state)
+      call update_point(material, nlgeom, strain_increment - thermal, spin, stress, strain, state, &
+                        axes=axes)
     end if
     strain = strain + thermal
   end subroutine update_point_thermal
@@ -764,8 +885,13 @@ contains
           stress = fields%stress(:, q, e)
           strain = 0.0_dp
           state = fields%material_state(:, q, e)
-          call update_point_thermal(material, .false., NO_STRAIN, NO_SPIN, stress, strain, state, &
-                                    t_start(q), t_end(q))
+          if (works_in_local_axes(this, e)) then
+            call update_point_thermal(material, .false., NO_STRAIN, NO_SPIN, stress, strain, &
+              state, t_start(q), t_end(q), this%axes(:, :, q, this%axes_index(e)))
+          else
+            call update_point_thermal(material, .false., NO_STRAIN, NO_SPIN, stress, strain, &
+                                      state, t_start(q), t_end(q))
+          end if
           dsigma(:, q) = stress - fields%stress(:, q, e)
         end do
         if (all(dsigma(:, 1:kind%n_points) == 0.0_dp)) cycle

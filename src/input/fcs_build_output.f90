@@ -38,6 +38,7 @@ contains
                                              param_value(card, 'NSET') // '" is not defined')
     case ('EL PRINT')
       request%kind = OUTPUT_EL_PRINT
+      request%global = param_upper(card, 'GLOBAL') == 'YES'
       allowed = [string_t('S'), string_t('E'), string_t('PEEQ'), string_t('PE'), &
                  string_t('ENER'), string_t('ELSE')]
       request%set = model%mesh%find_element_set(param_upper(card, 'ELSET'))

@@ -28,9 +28,9 @@ module fcs_keywords
   integer, parameter :: CONTEXT_MODEL = 1, CONTEXT_STEP = 2, CONTEXT_ANY = 3
 
   !> Output parameters that fcs3d honours by what it always does.
-  character(len=*), parameter :: GLOBAL_ONLY = 'YES or NO give the same: results here are ' // &
-    'in the global system (*ORIENTATION is not supported; local *TRANSFORM axes are used by ' // &
-    '*NODE PRINT only), as CalculiX writes them without local systems.'
+  character(len=*), parameter :: GLOBAL_ONLY = 'YES or NO give the same: results frames hold ' // &
+    'global components (local *TRANSFORM axes are used by *NODE PRINT only, *ORIENTATION ' // &
+    'axes by *EL PRINT only).'
   character(len=*), parameter :: SOLIDS_IN_3D = 'CalculiX''s choice for expanded shell and ' // &
     'beam elements; fcs3d''s solid elements are written in 3D either way (OUTPUT=2D is ' // &
     'accepted with a warning).'
@@ -174,15 +174,27 @@ contains
          'following *ELASTIC, *DENSITY, *PLASTIC, *CYCLIC HARDENING, *DRUCKER PRAGER and ' // &
          '*DRUCKER PRAGER HARDENING lines belong to it.', '', &
          [p('NAME', PARAM_NAME, required=.true., description='Name of the material.')]), &
-      kw('ELASTIC', CONTEXT_MODEL, 'CalculiX', 'Isotropic (hypo)elastic constants of the ' // &
-         'current material, constant or as a table over temperature (linear between the ' // &
-         'lines, constant beyond the first and last, as CalculiX; elastic materials only, not ' // &
-         'with plasticity). With a table the stress follows sigma = C(T) eps_el as in ' // &
-         'CalculiX (doc/theory.md section 2.5).', 'Young''s modulus [stress], Poisson''s ' // &
-         'ratio [-][, temperature]: one line, or one line per temperature, temperatures ' // &
-         'strictly increasing.', &
-         [p('TYPE', PARAM_CHOICE, default='ISO', choices=[s('ISO'), s('ISOTROPIC')], &
-            description='Only isotropic elasticity is available.')], data_required=.true.), &
+      kw('ELASTIC', CONTEXT_MODEL, 'CalculiX', 'Elastic constants of the current material ' // &
+         '(hypoelastic rate form). TYPE=ISO: isotropic, constant or as a table over ' // &
+         'temperature (linear between the lines, constant beyond the first and last, as ' // &
+         'CalculiX; elastic materials only, not with plasticity); with a table the stress ' // &
+         'follows sigma = C(T) eps_el as in CalculiX (doc/theory.md section 2.5). ' // &
+         'TYPE=ORTHO, ENGINEERING CONSTANTS, ANISO: a constant stiffness in the material ' // &
+         'axes of the section''s *ORIENTATION (global axes without one), CalculiX''s order ' // &
+         'of the constants (doc/theory.md section 2.9); it must be positive definite; not with ' // &
+         'plasticity, NLGEOM, temperature tables, C3D8I or C3D8R elements.', &
+         'TYPE=ISO: Young''s modulus [stress], Poisson''s ratio [-][, temperature]: one line, ' // &
+         'or one line per temperature, temperatures strictly increasing. ORTHO: D1111, D1122, ' // &
+         'D2222, D1133, D2233, D3333, D1212, D1313, D2323 [stress][, temperature]. ' // &
+         'ENGINEERING CONSTANTS: E1, E2, E3 [stress], nu12, nu13, nu23 [-], G12, G13, G23 ' // &
+         '[stress][, temperature]. ANISO: D1111, D1122, D2222, D1133, D2233, D3333, D1112, ' // &
+         'D2212, D3312, D1212, D1113, D2213, D3313, D1213, D1313, D1123, D2223, D3323, D1223, ' // &
+         'D1323, D2323 [stress][, temperature]. The constants may be spread over lines as ' // &
+         'CalculiX writes them (8 per line); one set only (the temperature is ignored).', &
+         [p('TYPE', PARAM_CHOICE, default='ISO', choices=[s('ISO'), s('ISOTROPIC'), s('ORTHO'), &
+            s('ORTHOTROPIC'), s('ENGINEERING CONSTANTS'), s('ANISO'), s('ANISOTROPIC')], &
+            description='Isotropic, orthotropic (9 stiffness constants, or 9 engineering ' // &
+            'constants) or fully anisotropic (21 constants).')], data_required=.true.), &
       kw('EXPANSION', CONTEXT_MODEL, 'CalculiX', 'Isotropic thermal expansion of the ' // &
          'current material: the secant coefficient alpha from the reference temperature ZERO, ' // &
          'thermal strain alpha(T) (T - ZERO) - alpha(T0) (T0 - ZERO) from the initial ' // &
@@ -265,11 +277,27 @@ contains
          'warning, as CalculiX ignores it.', &
          [p('ELSET', PARAM_NAME, required=.true., description='Element set.'), &
           p('MATERIAL', PARAM_NAME, required=.true., description='Material name.'), &
+          p('ORIENTATION', PARAM_NAME, description='Name of an *ORIENTATION: the material ' // &
+            'axes of the elements (an anisotropic stiffness is given in them; *EL PRINT ' // &
+            'with GLOBAL=NO prints S and E in them).'), &
           p('OFFSET', PARAM_IGNORED, description=IGNORED_AS_CALCULIX), &
           p('FORMULATION', PARAM_CHOICE, default='FULL', choices=[s('FULL'), s('BBAR')], &
             description='FULL: 2x2x2 Gauss integration of everything (CalculiX C3D8). BBAR: ' // &
             'volumetric strain taken as its element mean (selective reduced integration, ' // &
-            'Hughes 1980), which removes volumetric locking (fcs3d extension).')]) &
+            'Hughes 1980), which removes volumetric locking (fcs3d extension).')]), &
+      kw('ORIENTATION', CONTEXT_MODEL, 'CalculiX', 'Local material axes for the sections that ' // &
+         'name it (*SOLID SECTION, ORIENTATION=), at every integration point (from its ' // &
+         'position in the reference configuration), as CalculiX (doc/theory.md section 2.9). ' // &
+         'RECTANGULAR: e1 along a, e2 the part of b normal to a, e3 = e1 x e2. CYLINDRICAL: ' // &
+         'a and b are two points of the axis; e1 radial, e2 tangential, e3 along b - a.', &
+         'a1, a2, a3, b1, b2, b3 [length]; optionally a second line: a local axis (1, 2 or 3) ' // &
+         'and an angle [degree] to turn the axes about it (RECTANGULAR only).', &
+         [p('NAME', PARAM_NAME, required=.true., description='Name of the orientation.'), &
+          p('SYSTEM', PARAM_CHOICE, default='RECTANGULAR', choices=[s('RECTANGULAR'), &
+            s('R'), s('CYLINDRICAL'), s('C')], description='Rectangular or cylindrical axes.'), &
+          p('DEFINITION', PARAM_CHOICE, default='COORDINATES', choices=[s('COORDINATES')], &
+            description='The axes are given by coordinates (the only way CalculiX reads).')], &
+         data_required=.true.) &
       ]
   end function material_keywords
 
@@ -620,8 +648,11 @@ contains
             description='CalculiX sums whole-element variables (ELSE, EVOL, ...), which ' // &
             'fcs3d does not compute; S, E and PE have no totals, so their tables are printed ' // &
             'as without TOTALS, as CalculiX prints them (a warning says so).'), &
-          p('GLOBAL', PARAM_CHOICE, default='YES', choices=[s('YES'), s('NO')], &
-            description=GLOBAL_ONLY)], &
+          p('GLOBAL', PARAM_CHOICE, default='NO', choices=[s('YES'), s('NO')], &
+            description='NO (CalculiX''s default): S and E of elements whose section has an ' // &
+            '*ORIENTATION are printed in its local axes at each point, the orientation''s name ' // &
+            'after the values, as CalculiX prints them; YES: in global axes. Elements without ' // &
+            'an orientation print global components either way.')], &
          data_required=.true.), &
       kw('CONTACT PRINT', CONTEXT_STEP, 'CalculiX', 'Print the state of every closed contact ' // &
          'node to <job>.dat in CalculiX''s layout and frame: tangential components on t1, the ' // &

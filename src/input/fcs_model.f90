@@ -9,6 +9,7 @@ module fcs_model
   use fcs_friction_factory, only: friction_def_t
   use fcs_material_factory, only: plastic_def_t
   use fcs_thermal_properties, only: thermal_properties_t
+  use fcs_orientation, only: orientation_t
   use fcs_contact_pair, only: contact_pair_def_t
   use fcs_element_catalogue, only: element_catalogue_t
   use fcs_linear_constraints, only: linear_equation_t
@@ -17,7 +18,7 @@ module fcs_model
   public :: model_t, material_def_t, section_t, amplitude_t, time_points_t, dof_condition_t
   public :: face_load_t, output_request_t, step_t, rmin_settings_t, initial_stress_t
   public :: initial_plastic_strain_t
-  public :: body_load_t, BODY_GRAV, BODY_CENTRIF, transform_def_t
+  public :: body_load_t, BODY_GRAV, BODY_CENTRIF, transform_def_t, orientation_def_t
   public :: friction_def_t, friction_change_t, interaction_def_t, contact_pair_def_t, checkpoint_settings_t
   public :: history_item_t, history_request_t, HISTORY_NSET_U, HISTORY_NSET_RF
   public :: HISTORY_CONTACT, HISTORY_ENERGY, HISTORY_RESIDUAL
@@ -63,7 +64,18 @@ module fcs_model
     !> above hold its first row), with the cards that gave them.
     type(thermal_properties_t) :: thermal
     type(source_loc_t) :: expansion_loc, elastic_loc
+    !> *ELASTIC, TYPE=ORTHO, ENGINEERING CONSTANTS or ANISO: the stiffness in the material's
+    !> local axes (fcs_anisotropic_elastic; youngs_modulus and poisson_ratio above then hold
+    !> its Voigt-average isotropic scale).
+    logical :: anisotropic = .false.
+    real(dp) :: stiffness(6, 6) = 0.0_dp
   end type material_def_t
+
+  !> *ORIENTATION: local material axes (fcs_orientation), with the card that gave them.
+  type :: orientation_def_t
+    type(orientation_t) :: axes
+    type(source_loc_t) :: loc
+  end type orientation_def_t
 
   !> *TRANSFORM: local axes for the nodes of a node set. TYPE=R: a is a point on the local x
   !> axis, b a point of the local x-y plane (through the origin); TYPE=C: a and b are two
@@ -83,6 +95,10 @@ module fcs_model
     integer :: material = 0
     character(len=:), allocatable :: material_name
     integer :: formulation = FORMULATION_FULL
+    !> ORIENTATION=: the name, and the index into the model's orientations resolved after the
+    !> last card (0: none, global axes).
+    character(len=:), allocatable :: orientation_name
+    integer :: orientation = 0
     type(source_loc_t) :: loc
   end type section_t
 
@@ -167,7 +183,9 @@ module fcs_model
     integer :: time_points = 0
     integer :: totals = TOTALS_NO
     !> *NODE PRINT, GLOBAL=YES: nodes with local axes (*TRANSFORM) printed in global axes
-    !> too (default NO, as CalculiX: in their local axes, rows marked L).
+    !> too (default NO, as CalculiX: in their local axes, rows marked L). *EL PRINT,
+    !> GLOBAL=YES: S and E in global axes; NO (default, as CalculiX): in the *ORIENTATION axes
+    !> of elements whose section has one.
     logical :: global = .false.
   end type output_request_t
 
@@ -333,6 +351,8 @@ module fcs_model
     !> marks the nodes that have local axes (*BOUNDARY, *CLOAD, *EQUATION terms and the
     !> printed U and RF are in them there, as in CalculiX).
     type(transform_def_t), allocatable :: transforms(:)
+    !> *ORIENTATION cards, named by the sections' ORIENTATION=.
+    type(orientation_def_t), allocatable :: orientations(:)
     real(dp), allocatable :: node_frame(:, :, :)
     logical, allocatable :: transformed(:)
     type(contact_pair_def_t), allocatable :: contact_pairs(:)

@@ -22,7 +22,7 @@ module fcs_model_builder
                             handle_surface, handle_mesh
   use fcs_build_material, only: handle_material, handle_elastic, handle_density, &
                                 handle_solid_section, handle_solver, handle_restart, &
-                                resolve_section_materials
+                                resolve_section_materials, handle_orientation, is_isotropic_elastic
   use fcs_build_plasticity, only: handle_plastic, handle_cyclic_hardening, handle_drucker_prager, &
                                   handle_drucker_prager_hardening
   use fcs_build_step, only: handle_step, handle_static, handle_end_step, handle_boundary, &
@@ -178,7 +178,7 @@ contains
     call model%mesh%init(mesh_kinds(model%element_kinds))
     allocate (model%materials(0), model%sections(0), model%amplitudes(0), &
               model%time_points(0), model%steps(0), model%interactions(0), model%equations(0), &
-              model%rotation_nodes(0), model%transforms(0), model%contact_pairs(0), &
+              model%rotation_nodes(0), model%transforms(0), model%orientations(0), model%contact_pairs(0), &
               model%histories(0), model%warnings(0))
   end subroutine init_model
 
@@ -236,7 +236,7 @@ contains
     case ('MATERIAL')
       call handle_material(card, model, state, diag)
     case ('ELASTIC')
-      if (is_elastic_table(card)) then
+      if (is_isotropic_elastic(card) .and. is_elastic_table(card)) then
         call handle_elastic_table(card, model, state, diag)
       else
         call handle_elastic(card, model, state, diag)
@@ -259,6 +259,8 @@ contains
       call handle_drucker_prager_hardening(card, model, state, diag)
     case ('SOLID SECTION')
       call handle_solid_section(card, model, diag)
+    case ('ORIENTATION')
+      call handle_orientation(card, model, diag)
     case ('SURFACE INTERACTION')
       call handle_surface_interaction(card, model, state, diag)
     case ('SURFACE BEHAVIOR')
@@ -519,12 +521,13 @@ contains
              'COUPLING', 'DISTRIBUTING', 'KINEMATIC', 'CYCLIC SYMMETRY MODEL'])) then
       reason = 'constraints other than *BOUNDARY, *EQUATION, *MPC (PLANE, STRAIGHT), *RIGID ' // &
                'BODY and *TRANSFORM are not available yet'
-    else if (is_one_of(keyword, [character(len=34) :: 'ORIENTATION', &
+    else if (is_one_of(keyword, [character(len=34) :: &
              'CONDUCTIVITY', 'SPECIFIC HEAT', 'HYPERELASTIC', 'HYPERFOAM', 'CREEP', &
              'USER MATERIAL', 'DEFORMATION PLASTICITY', 'RATE DEPENDENT', 'CAP PLASTICITY', &
              'MOHR COULOMB', 'DRUCKER PRAGER CREEP'])) then
-      reason = 'materials are isotropic hypoelastic (*ELASTIC), with von Mises (*PLASTIC) or ' // &
-               'linear Drucker-Prager (*DRUCKER PRAGER) plasticity'
+      reason = 'materials are hypoelastic (*ELASTIC: isotropic, or anisotropic and elastic ' // &
+               'only), with von Mises (*PLASTIC) or linear Drucker-Prager (*DRUCKER PRAGER) ' // &
+               'plasticity'
     else if (is_one_of(keyword, [character(len=34) :: 'CFLUX', 'DFLUX', 'FILM', 'RADIATE'])) then
       reason = 'this load or initial condition is not available yet'
     else if (is_one_of(keyword, [character(len=34) :: 'CHANGE SURFACE BEHAVIOR', &

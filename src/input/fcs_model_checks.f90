@@ -12,6 +12,8 @@ module fcs_model_checks
   use fcs_mesh, only: SURFACE_FACES
   use fcs_model_supports, only: check_supports
   use fcs_build_plasticity, only: check_plasticity, check_initial_plastic_strains
+  use fcs_material_factory, only: PLASTICITY_NONE
+  use fcs_element_kind, only: FORMULATION_HOURGLASS
   use fcs_linear_constraints, only: constraint_map_t
   use fcs_strings, only: str, parse_int
   implicit none
@@ -41,6 +43,7 @@ contains
     call assign_sections(model, diag, deck)
     call check_materials(model, diag)
     call check_thermal_kinds(model, diag)
+    call check_anisotropy(model, diag)
     call check_jacobians(model, diag, deck)
     call resolve_contact(model, diag)
     ! Ties with triangular or quadratic faces become CalculiX's tie equations (T1).
@@ -52,6 +55,47 @@ contains
     call check_constraints(model, diag)
     if (.not. diag%has_errors()) call check_supports(model, diag)
   end subroutine check_model
+
+  !> Anisotropic elasticity (fcs_anisotropic_elastic) is small-strain, elastic only and works
+  !> through the standard point update: refused with NLGEOM (its axes would have to turn with
+  !> the material), with plasticity (isotropic yield surfaces on an anisotropic stiffness are
+  !> not CalculiX's anisotropic plasticity), and for element kinds with their own update
+  !> (C3D8I's incompatible modes, C3D8R's hourglass control).
+  subroutine check_anisotropy(model, diag)
+    type(model_t), intent(in) :: model
+    type(diagnostics_t), intent(inout) :: diag
+    integer :: k, i, e, kind
+    do k = 1, size(model%materials)
+      associate (m => model%materials(k))
+        if (.not. m%anisotropic) cycle
+        if (m%plastic%model /= PLASTICITY_NONE) call diag%report(m%elastic_loc, '*ELASTIC: ' // &
+          'material ' // m%name // ': plasticity (*PLASTIC, *DRUCKER PRAGER) with anisotropic ' // &
+          'elasticity is not available; use TYPE=ISO')
+        if (any(model%steps%nlgeom)) call diag%report(m%elastic_loc, '*ELASTIC: material ' // &
+          m%name // ': anisotropic elasticity is not available with NLGEOM (the material axes ' // &
+          'would have to rotate with the body); use NLGEOM=NO or TYPE=ISO')
+      end associate
+    end do
+    do k = 1, size(model%sections)
+      associate (section => model%sections(k))
+        if (section%material <= 0 .or. section%element_set <= 0) cycle
+        if (.not. model%materials(section%material)%anisotropic) cycle
+        associate (members => model%mesh%element_sets(section%element_set)%members)
+          do i = 1, size(members)
+            e = members(i)
+            kind = model%mesh%element_kind(e)
+            if (model%element_kinds%kinds(kind)%n_modes == 0 .and. &
+                model%element_kinds%kinds(kind)%formulation /= FORMULATION_HOURGLASS) cycle
+            call diag%report(section%loc, '*SOLID SECTION: material ' // &
+              model%materials(section%material)%name // ' is anisotropic, which ' // &
+              model%mesh%kinds(kind)%name // ' elements (element ' // &
+              str(model%mesh%element_id(e)) // ') do not take; use C3D8, C3D20 or C3D20R')
+            exit
+          end do
+        end associate
+      end associate
+    end do
+  end subroutine check_anisotropy
 
   !> Thermal strain is not in the incompatible-mode update (C3D8I) yet: a section that gives
   !> elements with incompatible modes a material with expansion or temperature-dependent

@@ -154,11 +154,13 @@ contains
         case ('S')
           call header(this%file, 'stresses (elem, integ.pnt.,sxx,syy,szz,sxy,sxz,syz)', &
                       set%name, time, err)
-          if (.not. allocated(err)) call ip_rows(this%file, model, elements, n_points, stress, .false., err)
+          if (.not. allocated(err)) call ip_rows(this%file, model, elements, n_points, stress, .false., &
+                                                 .not. request%global, err)
         case ('E')
           call header(this%file, 'strains (elem, integ.pnt.,exx,eyy,ezz,exy,exz,eyz)', &
                       set%name, time, err)
-          if (.not. allocated(err)) call ip_rows(this%file, model, elements, n_points, strain, .true., err)
+          if (.not. allocated(err)) call ip_rows(this%file, model, elements, n_points, strain, .true., &
+                                                 .not. request%global, err)
         case ('PEEQ', 'PE')
           ! ccx 2.20 writes this header without a blank before "for".
           write (stamp, '(e14.7)') time
@@ -228,24 +230,32 @@ contains
   end subroutine point_rows
 
   !> One row per integration point of `elements`; `tensor_shear` halves the shear components
-  !> (engineering to tensor strains).
-  subroutine ip_rows(file, model, elements, n_points, values, tensor_shear, err)
+  !> (engineering to tensor strains). With `local` (*EL PRINT, GLOBAL=NO) the rows of
+  !> elements with an *ORIENTATION (whose values the caller gives in its axes) end with the
+  !> orientation's name, as CalculiX writes them.
+  subroutine ip_rows(file, model, elements, n_points, values, tensor_shear, local, err)
     type(text_file_t), intent(inout) :: file
     type(model_t), intent(in) :: model
     integer, intent(in) :: elements(:), n_points(:)
     real(dp), intent(in) :: values(:, :, :)
-    logical, intent(in) :: tensor_shear
+    logical, intent(in) :: tensor_shear, local
     type(error_t), allocatable, intent(out) :: err
-    character(len=128) :: line
+    character(len=160) :: line
+    character(len=:), allocatable :: label
     real(dp) :: row(6)
-    integer :: i, q, e
+    integer :: i, q, e, k
     do i = 1, size(elements)
       e = elements(i)
+      label = ''
+      if (local .and. size(model%orientations) > 0) then
+        k = model%sections(model%element_section(e))%orientation
+        if (k > 0) label = ' ' // model%orientations(k)%axes%name
+      end if
       do q = 1, n_points(e)
         row = values(:, q, e)
         if (tensor_shear) row(4:6) = 0.5_dp * row(4:6)
         write (line, '(i10,i4,6es14.6)') model%mesh%element_id(e), q, row
-        call file%write(trim(line), err)
+        call file%write(trim(line) // label, err)
         if (allocated(err)) return
       end do
     end do

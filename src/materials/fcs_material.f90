@@ -66,6 +66,7 @@ module fcs_material
     procedure :: add_plastic_strain => material_add_plastic_strain
     procedure :: back_stress => material_back_stress
     procedure :: is_plastic => material_is_plastic
+    procedure :: is_anisotropic => material_is_anisotropic
     procedure :: plastic_strain_fraction => material_plastic_strain_fraction
     procedure :: point_events => material_point_events
     procedure :: unloads => material_unloads
@@ -194,6 +195,13 @@ contains
     class(material_t), intent(in) :: this
     material_is_plastic = .false.
   end function material_is_plastic
+
+  !> Whether the elastic stiffness has material axes (fcs_anisotropic_elastic): the element
+  !> loops then turn strains and stresses into the axes of the element's *ORIENTATION.
+  pure logical function material_is_anisotropic(this)
+    class(material_t), intent(in) :: this
+    material_is_anisotropic = .false.
+  end function material_is_anisotropic
 
   !> The fraction r of a trial increment at which the equivalent plastic strain of this
   !> point grows by `limit` (the R-minimum limit MAX PLASTIC STRAIN INCREMENT), or a value

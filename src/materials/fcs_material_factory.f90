@@ -14,14 +14,14 @@
 !> registers a test-only material that way).
 module fcs_material_factory
   use fcs_kinds, only: dp
-  use fcs_error, only: error_t, input_error
+  use fcs_error, only: error_t, input_error, fatal_error
   use fcs_material, only: material_t
   use fcs_hypoelastic, only: hypoelastic_t
+  use fcs_anisotropic_elastic, only: anisotropic_elastic_t
   use fcs_von_mises, only: von_mises_t
   use fcs_drucker_prager, only: drucker_prager_t
   use fcs_hardening_table, only: hardening_table_t, constant_table
   use fcs_strings, only: to_lower, to_upper, string_t, join_strings
-  use fcs_error, only: fatal_error
   implicit none
   private
   public :: create_material, plastic_def_t, HARDENING_NAMES, DP_HARDENING_TYPES
@@ -99,17 +99,30 @@ contains
 
   !> A material with Young's modulus `e`, Poisson's ratio `nu` and the plastic part `plastic`:
   !> the model `name` if given, else the one `plastic%model` names, of `registry` (by default
-  !> the built-in models).
-  subroutine create_material(e, nu, plastic, material, err, name, registry)
+  !> the built-in models); with `stiffness` (6 x 6, local axes), an anisotropic elastic one
+  !> (fcs_anisotropic_elastic; e and nu then give its isotropic scale, voigt_isotropic), which
+  !> takes no plasticity.
+  subroutine create_material(e, nu, plastic, material, err, stiffness, name, registry)
     real(dp), intent(in) :: e, nu
     type(plastic_def_t), intent(in) :: plastic
     class(material_t), allocatable, intent(out) :: material
     type(error_t), allocatable, intent(out) :: err
+    real(dp), intent(in), optional :: stiffness(6, 6)
     character(len=*), intent(in), optional :: name
     type(material_registry_t), intent(in), optional :: registry
     type(material_registry_t) :: models
     character(len=:), allocatable :: model
     integer :: k
+    if (present(stiffness)) then
+      if (plastic%model /= PLASTICITY_NONE) then
+        call input_error(err, 'plasticity with anisotropic elasticity is not available')
+        return
+      end if
+      allocate (material, source=anisotropic_elastic_t(stiffness=stiffness))
+      material%youngs_modulus = e
+      material%poisson_ratio = nu
+      return
+    end if
     if (present(registry)) then
       models = registry
     else

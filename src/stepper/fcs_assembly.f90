@@ -25,8 +25,13 @@ contains
     integer :: k
     allocate (slots(size(model%materials)))
     do k = 1, size(model%materials)
-      call create_material(model%materials(k)%youngs_modulus, model%materials(k)%poisson_ratio, &
-                           model%materials(k)%plastic, slots(k)%m, err)
+      if (model%materials(k)%anisotropic) then
+        call create_material(model%materials(k)%youngs_modulus, model%materials(k)%poisson_ratio, &
+                             model%materials(k)%plastic, slots(k)%m, err, model%materials(k)%stiffness)
+      else
+        call create_material(model%materials(k)%youngs_modulus, model%materials(k)%poisson_ratio, &
+                             model%materials(k)%plastic, slots(k)%m, err)
+      end if
       if (allocated(err)) return
       slots(k)%m%thermal = model%materials(k)%thermal
     end do

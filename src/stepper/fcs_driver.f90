@@ -230,6 +230,8 @@ contains
         model%sections(model%element_section)%material, &
         model%sections(model%element_section)%formulation == FORMULATION_BBAR, materials, err)
       if (allocated(err)) return
+      if (size(model%orientations) > 0) call a%elements%set_orientations( &
+        model%orientations%axes, model%sections(model%element_section)%orientation)
       n_state = a%elements%n_material_state()
       call set_activity('setting up the analysis', setup_bytes(model, a%elements%max_points, n_state))
       call ensure_memory(setup_bytes(model, a%elements%max_points, n_state), &

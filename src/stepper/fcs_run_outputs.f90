@@ -172,8 +172,16 @@ contains
         else
           allocate (volume(0, 0))
         end if
-        call this%dat%el_print(model, request, state%time, state%elements%stress, &
-                               state%elements%strain, peeq, a%elements%point_counts(), volume, err)
+        if (.not. request%global .and. size(model%orientations) > 0) then
+          ! GLOBAL=NO: S and E of oriented elements in their local axes (as CalculiX).
+          call this%dat%el_print(model, request, state%time, &
+            a%elements%to_material_axes(state%elements%stress, .false.), &
+            a%elements%to_material_axes(state%elements%strain, .true.), peeq, &
+            a%elements%point_counts(), volume, err)
+        else
+          call this%dat%el_print(model, request, state%time, state%elements%stress, &
+                                 state%elements%strain, peeq, a%elements%point_counts(), volume, err)
+        end if
       case (OUTPUT_CONTACT_PRINT)
         call a%contact%print_values(a%x_contact, state%contact, node, closed, displacement, stress)
         call this%dat%contact_print(model, request, state%time, node, closed, displacement, stress, err)

@@ -31,6 +31,15 @@ def parse_number(text):
         return float(match.group(1) + "e" + match.group(2))
 
 
+def is_number(text):
+    """Whether `text` is a number as a .dat file prints it."""
+    try:
+        parse_number(text)
+    except ValueError:
+        return False
+    return True
+
+
 class Block:
     """One table: title ("displacements (vx,vy,vz)"), set name, time, rows {key: values}."""
 
@@ -72,6 +81,10 @@ def read_blocks(path):
             keys = []
             while fields and re.fullmatch(r"[+-]?\d+", fields[0]):
                 keys.append(int(fields.pop(0)))
+            if len(fields) > 1 and not is_number(fields[-1]):
+                # *EL PRINT in local axes (GLOBAL=NO): the row ends with the name of the
+                # element's *ORIENTATION.
+                fields.pop()
             try:
                 values = [parse_number(f) for f in fields]
             except ValueError:
