@@ -44,7 +44,7 @@ contains
     type(error_t), allocatable, intent(out) :: err
     integer :: k
     integer, allocatable :: sizes(:)
-    this%writer = a%comm%is_root()
+    this%writer = a%share%comm%is_root()
     allocate (this%tables(size(model%histories)))
     do k = 1, size(model%histories)
       call this%tables(k)%create(model%histories(k)%name, job // '_' // to_lower_name( &
