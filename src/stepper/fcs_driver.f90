@@ -650,7 +650,7 @@ contains
       end do
       call log_solver_stats(run, a%sys%solver%stats)
       call run%log%info('  ' // a%sys%reuse%summary())
-      call run%monitors%report_open_events(a, run%log)
+      call run%monitors%report_open_events(a%contact, run%log)
     end associate
   end subroutine summary
 

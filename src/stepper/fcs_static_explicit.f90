@@ -112,7 +112,7 @@ contains
     integer(i8) :: krylov_before
     krylov_before = a%sys%reuse%stats%krylov_iterations
     associate (step => model%steps(a%state%step))
-      call trial_time_increment(a, step, t0, dt, limited_by_friction)
+      call trial_time_increment(a%state, a%loading, step, t0, dt, limited_by_friction)
       record%trial_increment = dt
       call external_forces(a, model, step%nlgeom, t0, t0 + dt)
       call prescribed_increments(a, model, t0, t0 + dt)
@@ -165,7 +165,7 @@ contains
         if (allocated(err)) return
       end do
       record%r = r
-      record%n_events_taken = count_taken(a, r)
+      record%n_events_taken = count_taken(a%trial%collector, r)
       record%krylov_iterations = int(a%sys%reuse%stats%krylov_iterations - krylov_before)
       a%state%residual_norm = record%residual_ratio
       a%state%increment = a%state%increment + 1
@@ -182,20 +182,21 @@ contains
   !> The trial time increment from t0: the step's maximum (its initial increment first), or
   !> less if the friction-rate limits of the last increment say so (not below the minimum),
   !> cut at the next breakpoint of the loading.
-  subroutine trial_time_increment(a, step, t0, dt, limited_by_friction)
-    type(analysis_t), intent(in) :: a
+  subroutine trial_time_increment(state, loading, step, t0, dt, limited_by_friction)
+    type(state_t), intent(in) :: state
+    type(step_loading_t), intent(in) :: loading
     type(step_t), intent(in) :: step
     real(dp), intent(out) :: t0, dt
     logical, intent(out) :: limited_by_friction
-    t0 = a%state%step_time
+    t0 = state%step_time
     dt = step%max_increment
-    if (a%state%step_increment == 0) dt = step%initial_increment
+    if (state%step_increment == 0) dt = step%initial_increment
     limited_by_friction = .false.
-    if (a%state%friction_dt > 0.0_dp .and. max(a%state%friction_dt, step%min_increment) < dt) then
-      dt = max(a%state%friction_dt, step%min_increment)
+    if (state%friction_dt > 0.0_dp .and. max(state%friction_dt, step%min_increment) < dt) then
+      dt = max(state%friction_dt, step%min_increment)
       limited_by_friction = .true.
     end if
-    dt = min(dt, a%loading%next_breakpoint(t0) - t0)
+    dt = min(dt, loading%next_breakpoint(t0) - t0)
   end subroutine trial_time_increment
 
   !> Rebuild the sparse pattern when the contact elements have moved out of it (and, in a
@@ -260,7 +261,7 @@ contains
     call collect_events(a, step, err)
     call a%share%comm%agree_error(err)
     if (allocated(err)) return
-    call global_fraction(a, step%rmin%event_tolerance, r)
+    call global_fraction(a%trial%collector, a%share%comm, step%rmin%event_tolerance, r)
     record%limiting = a%trial%collector%limiting
     if (limited_by_friction .and. record%limiting%kind == EVENT_FULL_INCREMENT) &
       record%limiting = rmin_event_t(1.0_dp, a%state%friction_kind, a%state%friction_node, 0)
@@ -322,7 +323,7 @@ contains
       call contact_positions(a, model)
       if (a%contact%n_slaves() > 0) then
         call a%contact%update(a%x_contact, state%contact, state%step_time - t0, r)
-        call friction_step_control(a, step, state%step_time - t0)
+        call friction_step_control(a%contact, step, state%step_time - t0, state)
       end if
       state%time = state%time + (state%step_time - t0)
       state%last_increment = state%step_time - t0
@@ -522,7 +523,7 @@ contains
         '), the out-of-balance force is still ' // str(record%residual_ratio) // ' of the force ' // &
         'scale (tolerance ' // str(step%rmin%equilibrium_tolerance) // '), largest at node ' // &
         str(model%mesh%node_id(max(record%residual_node, 1))) // ' in ' // &
-        AXIS(max(record%residual_direction, 1)) // distortion_note(a, model, step%nlgeom) // &
+        AXIS(max(record%residual_direction, 1)) // distortion_note(a%elements, a%state%x, model, step%nlgeom) // &
         '; check the loading and the supports, or raise EQUILIBRIUM TOLERANCE or MAX ' // &
         'ITERATIONS on *RMIN')
       return
@@ -539,19 +540,20 @@ contains
   !> by at most a factor 2 when the changes are small, and is not limited when no node slips.
   !> Scaling an increment does not change its slip rate, so rate effects are controlled
   !> through the time increment (method notes 1.6).
-  subroutine friction_step_control(a, step, dt)
-    type(analysis_t), intent(inout) :: a
+  subroutine friction_step_control(contact, step, dt, state)
+    type(contact_system_t), intent(in) :: contact
     type(step_t), intent(in) :: step
     real(dp), intent(in) :: dt
+    type(state_t), intent(inout) :: state
     real(dp) :: limits(4), factors(4), change(4)
     integer :: i, worst, change_node(4)
     integer, parameter :: kinds(4) = [EVENT_SLIP_RATE_CHANGE, EVENT_FRICTION_CHANGE, EVENT_STATE_CHANGE, &
                                       EVENT_SLIP_INCREMENT]
-    call a%contact%friction_changes(change, change_node)
+    call contact%friction_changes(change, change_node)
     ! MAX SLIP INCREMENT is an option (0: none).
     if (step%rmin%max_slip_increment <= 0.0_dp) change(4) = 0.0_dp
     if (all(change <= 0.0_dp) .or. dt <= 0.0_dp) then
-      a%state%friction_dt = 0.0_dp
+      state%friction_dt = 0.0_dp
       return
     end if
     limits = [step%rmin%max_log_rate_change, step%rmin%max_friction_change, step%rmin%max_state_change, &
@@ -561,9 +563,9 @@ contains
       if (change(i) > 0.0_dp) factors(i) = min(2.0_dp, limits(i) / change(i))
     end do
     worst = minloc(factors, 1)
-    a%state%friction_dt = dt * factors(worst)
-    a%state%friction_kind = kinds(worst)
-    a%state%friction_node = change_node(worst)
+    state%friction_dt = dt * factors(worst)
+    state%friction_kind = kinds(worst)
+    state%friction_node = change_node(worst)
   end subroutine friction_step_control
 
   !> K + K_f + load stiffness and the internal, contact forces on the current state. Each
@@ -616,16 +618,16 @@ contains
     type(error_t), allocatable, intent(out) :: err
     logical :: nlgeom
     nlgeom = model%steps(min(a%state%step, size(model%steps)))%nlgeom
-    call internal_forces(a, model, nlgeom, a%sys%f_int, err)
+    call internal_forces(a, nlgeom, a%sys%f_int, err)
     if (allocated(err)) return
     a%sys%f_contact = 0.0_dp
     if (a%contact%n_slaves() > 0) call a%contact%forces(a%x_contact, a%state%contact, a%sys%f_contact)
     a%sys%f_ext_end = 0.0_dp
     if (allocated(a%loading%bc_dof)) call external_force_at(a, model, nlgeom, a%state%step_time, a%sys%f_ext_end)
-    where (.not. supported_dofs(a, model)) a%sys%f_ext_end = 0.0_dp
+    where (.not. supported_dofs(a%loading, model)) a%sys%f_ext_end = 0.0_dp
     reaction = reshape(a%sys%f_int - a%sys%f_contact - a%sys%f_ext_end, shape(reaction))
     call local_axes_reactions(a, model, reaction)
-    call transmitted_reactions(a, model, reaction)
+    call transmitted_reactions(a%sys, model, reaction)
   end subroutine current_reactions
 
   !> At a node with local axes (*TRANSFORM) the prescribed degrees of freedom are local
@@ -662,27 +664,27 @@ contains
   !> T^T (f_int - f_c) there (L2), less the load applied there at a prescribed degree of
   !> freedom, as CalculiX prints RF at the nodes of its RIGID MPCs (resultsforc: their
   !> constraint forces are left on those nodes).
-  subroutine transmitted_reactions(a, model, reaction)
-    type(analysis_t), intent(in) :: a
+  subroutine transmitted_reactions(sys, model, reaction)
+    type(linear_system_t), intent(in) :: sys
     type(model_t), intent(in) :: model
     real(dp), intent(inout) :: reaction(:, :)
     real(dp), allocatable :: transmitted(:)
     integer :: k, j, node
     if (.not. any(model%equations(:)%transmits)) return
-    transmitted = a%sys%f_int - a%sys%f_contact
-    call a%sys%links%reduce_vector(transmitted)
+    transmitted = sys%f_int - sys%f_contact
+    call sys%links%reduce_vector(transmitted)
     do k = 1, size(model%equations)
       if (.not. model%equations(k)%transmits) cycle
       do j = 2, size(model%equations(k)%terms)
         node = model%equations(k)%terms(j)%node
-        reaction(:, node) = transmitted(3 * node - 2:3 * node) - a%sys%f_ext_end(3 * node - 2:3 * node)
+        reaction(:, node) = transmitted(3 * node - 2:3 * node) - sys%f_ext_end(3 * node - 2:3 * node)
       end do
     end do
   end subroutine transmitted_reactions
 
   !> The degrees of freedom the current step prescribes (and those of nodes in no element).
-  function supported_dofs(a, model) result(supported)
-    type(analysis_t), intent(in) :: a
+  function supported_dofs(loading, model) result(supported)
+    type(step_loading_t), intent(in) :: loading
     type(model_t), intent(in) :: model
     logical :: supported(3 * model%mesh%n_nodes)
     integer :: node
@@ -690,13 +692,12 @@ contains
     do node = 1, model%mesh%n_nodes
       if (model%free_node(node)) supported(3 * node - 2:3 * node) = .true.
     end do
-    if (allocated(a%loading%bc_dof)) supported(a%loading%bc_dof) = .true.
+    if (allocated(loading%bc_dof)) supported(loading%bc_dof) = .true.
   end function supported_dofs
 
   !> Internal forces of the current state (all elements, summed over the processes).
-  subroutine internal_forces(a, model, nlgeom, f_int, err)
+  subroutine internal_forces(a, nlgeom, f_int, err)
     type(analysis_t), intent(in) :: a
-    type(model_t), intent(in) :: model
     logical, intent(in) :: nlgeom
     real(dp), intent(out) :: f_int(:)
     type(error_t), allocatable, intent(out) :: err
@@ -731,22 +732,23 @@ contains
   !> The fraction of the trial increment taken, over all processes: the smallest event
   !> fraction (and its event, from the process that has it), widened to the near-simultaneous
   !> discrete events within `tolerance`, never beyond a strain or rotation limit.
-  subroutine global_fraction(a, tolerance, r)
-    type(analysis_t), intent(inout) :: a
+  subroutine global_fraction(collector, comm, tolerance, r)
+    type(rmin_collector_t), intent(inout) :: collector
+    type(comm_t), intent(in) :: comm
     real(dp), intent(in) :: tolerance
     real(dp), intent(out) :: r
     real(dp) :: r_min, band, limit
     integer :: owner, event(4)
-    r_min = a%trial%collector%r_min
-    call a%share%comm%min_real(r_min, owner)
-    event = [a%trial%collector%limiting%kind, a%trial%collector%limiting%entity, a%trial%collector%limiting%detail, 0]
-    call a%share%comm%broadcast_int(event, owner)
-    a%trial%collector%r_min = r_min
-    a%trial%collector%limiting = rmin_event_t(r_min, event(1), event(2), event(3))
-    band = a%trial%collector%band_fraction(tolerance)
-    limit = a%trial%collector%limit_fraction()
-    call a%share%comm%max_real(band)
-    call a%share%comm%min_real(limit)
+    r_min = collector%r_min
+    call comm%min_real(r_min, owner)
+    event = [collector%limiting%kind, collector%limiting%entity, collector%limiting%detail, 0]
+    call comm%broadcast_int(event, owner)
+    collector%r_min = r_min
+    collector%limiting = rmin_event_t(r_min, event(1), event(2), event(3))
+    band = collector%band_fraction(tolerance)
+    limit = collector%limit_fraction()
+    call comm%max_real(band)
+    call comm%min_real(limit)
     r = min(band, limit)
     if (event(1) == EVENT_STRAIN_LIMIT .or. event(1) == EVENT_ROTATION_LIMIT .or. &
         event(1) == EVENT_FULL_INCREMENT) r = r_min
@@ -964,8 +966,10 @@ contains
   !> For the message of an increment without equilibrium: the most distorted element of
   !> the current configuration when it is nearly inverted (its Jacobian determinant varies by
   !> more than a factor 20 over its integration points), else nothing.
-  function distortion_note(a, model, nlgeom) result(note)
-    type(analysis_t), intent(in) :: a
+  function distortion_note(elements, x, model, nlgeom) result(note)
+    type(element_loops_t), intent(in) :: elements
+    !> Current coordinates (3, n_nodes).
+    real(dp), intent(in) :: x(:, :)
     type(model_t), intent(in) :: model
     logical, intent(in) :: nlgeom
     character(len=:), allocatable :: note
@@ -973,7 +977,7 @@ contains
     integer :: worst_element
     note = ''
     if (.not. nlgeom) return
-    call a%elements%most_distorted(a%state%x, worst_element, worst)
+    call elements%most_distorted(x, worst_element, worst)
     if (worst_element == 0 .or. worst >= 0.05_dp) return
     note = '; element ' // str(model%mesh%element_id(worst_element)) // ' is nearly inverted ' // &
       '(its Jacobian determinant varies by a factor ' // str(1.0_dp / max(worst, tiny(1.0_dp))) // &
@@ -981,16 +985,16 @@ contains
   end function distortion_note
 
   !> How many discrete events fall within the increment taken (near-simultaneous ones).
-  integer function count_taken(a, r) result(n)
-    type(analysis_t), intent(in) :: a
+  integer function count_taken(collector, r) result(n)
+    type(rmin_collector_t), intent(in) :: collector
     real(dp), intent(in) :: r
     integer :: i
     n = 0
-    do i = 1, a%trial%collector%n_events
-      if (a%trial%collector%events(i)%kind == EVENT_STRAIN_LIMIT .or. &
-          a%trial%collector%events(i)%kind == EVENT_ROTATION_LIMIT .or. &
-          a%trial%collector%events(i)%kind == EVENT_PLASTIC_STRAIN_LIMIT) cycle
-      if (a%trial%collector%events(i)%r <= r) n = n + 1
+    do i = 1, collector%n_events
+      if (collector%events(i)%kind == EVENT_STRAIN_LIMIT .or. &
+          collector%events(i)%kind == EVENT_ROTATION_LIMIT .or. &
+          collector%events(i)%kind == EVENT_PLASTIC_STRAIN_LIMIT) cycle
+      if (collector%events(i)%r <= r) n = n + 1
     end do
   end function count_taken
 
