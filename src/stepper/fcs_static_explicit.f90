@@ -61,6 +61,17 @@ module fcs_static_explicit
     integer :: residual_direction = 0
   end type increment_record_t
 
+  !> The increment being taken: the state at its start, its start time t0 in the step, the
+  !> trial time increment dt, and the fraction r of it taken.
+  type :: increment_t
+    type(state_t) :: start
+    real(dp) :: t0 = 0.0_dp
+    real(dp) :: dt = 0.0_dp
+    real(dp) :: r = 1.0_dp
+  contains
+    procedure :: end_time => increment_end_time
+  end type increment_t
+
   !> Largest number of solves of one increment while contact tangents are switched.
   integer, parameter :: MAX_STATE_PASSES = 12
   !> Largest number of cuts (by CUT_FACTOR each) of one increment whose equilibrium
@@ -106,78 +117,119 @@ contains
     type(model_t), intent(in) :: model
     type(increment_record_t), intent(out) :: record
     type(error_t), allocatable, intent(out) :: err
-    type(state_t) :: start
-    real(dp) :: t0, dt, r
-    logical :: limited_by_friction, converged
+    type(increment_t) :: inc
+    logical :: limited_by_friction
     integer(i8) :: krylov_before
     krylov_before = a%sys%reuse%stats%krylov_iterations
     associate (step => model%steps(a%state%step))
-      call trial_time_increment(a%state, a%loading, step, t0, dt, limited_by_friction)
-      record%trial_increment = dt
-      call external_forces(a, model, step%nlgeom, t0, t0 + dt)
-      call prescribed_increments(a, model, t0, t0 + dt)
+      call trial_time_increment(a%state, a%loading, step, inc%t0, inc%dt, limited_by_friction)
+      record%trial_increment = inc%dt
+      call external_forces(a, model, step%nlgeom, inc%t0, inc%t0 + inc%dt)
+      call prescribed_increments(a, model, inc%t0, inc%t0 + inc%dt)
       call ensure_pattern(a, model, err)
       if (allocated(err)) return
-      call trial_solution(a, model, step, t0, dt, record, err)
+      call trial_solution(a, model, step, inc%t0, inc%dt, record, err)
       if (allocated(err)) return
       call a%timers%start('r-minimum')
-      call choose_fraction(a, model, step, dt, limited_by_friction, record, r, err)
+      call choose_fraction(a, model, step, inc%dt, limited_by_friction, record, inc%r, err)
       call a%timers%stop('r-minimum')
       if (allocated(err)) return
-      start = a%state
-      do
-        a%sys%du = a%sys%du_residual + r * a%sys%du_load
-        ! The increment as the R-minimum strategy chose it must keep every element valid
-        ! and every contact node within the penetration limit: if not, the deformation or
-        ! the penalty is wrong, not the increment.
-        call apply_increment(a, model, step, t0, dt, r, err, .true.)
-        if (allocated(err)) then
-          a%state = start
-          return
-        end if
-        if (a%contact%n_slaves() > 0) call a%contact%hold_states(a%state%contact)
-        call equilibrate(a, model, step, start, t0, dt, r, record, converged, err)
-        if (a%contact%n_slaves() > 0) call a%contact%release_states(a%state%contact)
-        if (.not. allocated(err) .and. converged .and. a%contact%n_slaves() > 0) &
-          call a%contact%check_gaps(model%mesh%node_id, a%state%contact, err)
-        if (allocated(err)) then
-          a%state = start
-          return
-        end if
-        ! Iterations that do not converge cut the increment (NO EQUILIBRIUM=STOP), or the
-        ! increment is taken as the static-explicit scheme takes it, without iterations, its
-        ! out-of-balance force carried into the next (NO EQUILIBRIUM=CARRY: an unstable slip
-        ! event has no equilibrium to cut towards).
-        if (converged) exit
-        if (step%rmin%carry_unbalanced) then
-          a%state = start
-          a%sys%du = a%sys%du_residual + r * a%sys%du_load
-          call apply_increment(a, model, step, t0, dt, r, err, .true.)
-          if (.not. allocated(err)) call out_of_balance(a, model, step, record, err)
-          if (allocated(err)) then
-            a%state = start
-            return
-          end if
-          record%carried = .true.
-          exit
-        end if
-        call cut_increment(a, model, step, start, dt, record, r, err)
-        if (allocated(err)) return
-      end do
-      record%r = r
-      record%n_events_taken = count_taken(a%trial%collector, r)
+      inc%start = a%state
+      call take_fraction(a, model, step, inc, record, err)
+      if (allocated(err)) return
+      record%r = inc%r
+      record%n_events_taken = count_taken(a%trial%collector, inc%r)
       record%krylov_iterations = int(a%sys%reuse%stats%krylov_iterations - krylov_before)
-      a%state%residual_norm = record%residual_ratio
-      a%state%increment = a%state%increment + 1
-      a%state%force_scale = a%state%force_scale + (record%force_scale - a%state%force_scale) / &
-                            a%state%increment
-      if (record%residual_ratio >= a%state%step_worst_residual) then
-        a%state%step_worst_residual = record%residual_ratio
-        a%state%step_worst_residual_increment = a%state%increment
-      end if
-      a%state%step_increment = a%state%step_increment + 1
+      call count_increment(a%state, record)
     end associate
   end subroutine take_increment
+
+  !> Take the fraction inc%r of the trial increment from the state inc%start, in equilibrium:
+  !> apply it, iterate to equilibrium with the contact states held, and cut it while the
+  !> iterations do not converge. Iterations that do not converge cut the increment (NO
+  !> EQUILIBRIUM=STOP), or the increment is taken as the static-explicit scheme takes it,
+  !> without iterations, its out-of-balance force carried into the next (NO
+  !> EQUILIBRIUM=CARRY: an unstable slip event has no equilibrium to cut towards). On an
+  !> error the state is inc%start.
+  subroutine take_fraction(a, model, step, inc, record, err)
+    type(analysis_t), intent(inout) :: a
+    type(model_t), intent(in) :: model
+    type(step_t), intent(in) :: step
+    type(increment_t), intent(inout) :: inc
+    type(increment_record_t), intent(inout) :: record
+    type(error_t), allocatable, intent(out) :: err
+    logical :: converged
+    do
+      a%sys%du = a%sys%du_residual + inc%r * a%sys%du_load
+      ! The increment as the R-minimum strategy chose it must keep every element valid
+      ! and every contact node within the penetration limit: if not, the deformation or
+      ! the penalty is wrong, not the increment.
+      call apply_increment(a, model, step, inc, err, predict_penetration=.true.)
+      if (.not. allocated(err)) call equilibrate_held(a, model, step, inc, record, converged, err)
+      if (allocated(err)) then
+        a%state = inc%start
+        return
+      end if
+      if (converged) exit
+      if (step%rmin%carry_unbalanced) then
+        a%state = inc%start
+        a%sys%du = a%sys%du_residual + inc%r * a%sys%du_load
+        call apply_increment(a, model, step, inc, err, predict_penetration=.true.)
+        if (.not. allocated(err)) call out_of_balance(a, model, step, record, err)
+        if (allocated(err)) then
+          a%state = inc%start
+          return
+        end if
+        record%carried = .true.
+        exit
+      end if
+      call cut_increment(a, model, step, inc, record, err)
+      if (allocated(err)) return
+    end do
+  end subroutine take_fraction
+
+  !> Equilibrium iterations (`equilibrate`) with the contact states held, then the gaps of
+  !> the converged solution checked.
+  subroutine equilibrate_held(a, model, step, inc, record, converged, err)
+    type(analysis_t), intent(inout) :: a
+    type(model_t), intent(in) :: model
+    type(step_t), intent(in) :: step
+    type(increment_t), intent(in) :: inc
+    type(increment_record_t), intent(inout) :: record
+    logical, intent(out) :: converged
+    type(error_t), allocatable, intent(out) :: err
+    if (a%contact%n_slaves() > 0) call a%contact%hold_states(a%state%contact)
+    call equilibrate(a, model, step, inc, record, converged, err)
+    if (a%contact%n_slaves() > 0) call a%contact%release_states(a%state%contact)
+    if (.not. allocated(err) .and. converged .and. a%contact%n_slaves() > 0) &
+      call a%contact%check_gaps(model%mesh%node_id, a%state%contact, err)
+  end subroutine equilibrate_held
+
+  !> The run's counters after an increment was taken: increments (of the run and of the
+  !> step), the out-of-balance force left, the mean force scale, the step's worst residual.
+  subroutine count_increment(state, record)
+    type(state_t), intent(inout) :: state
+    type(increment_record_t), intent(in) :: record
+    state%residual_norm = record%residual_ratio
+    state%increment = state%increment + 1
+    state%force_scale = state%force_scale + (record%force_scale - state%force_scale) / &
+                        state%increment
+    if (record%residual_ratio >= state%step_worst_residual) then
+      state%step_worst_residual = record%residual_ratio
+      state%step_worst_residual_increment = state%increment
+    end if
+    state%step_increment = state%step_increment + 1
+  end subroutine count_increment
+
+  !> Step time at the end of the increment: t0 + r dt (t0 + dt exactly when r = 1).
+  pure real(dp) function increment_end_time(this) result(t_end)
+    class(increment_t), intent(in) :: this
+    if (this%r >= 1.0_dp) then
+      t_end = this%t0 + this%dt
+    else
+      t_end = this%t0 + this%r * this%dt
+    end if
+  end function increment_end_time
 
   !> The trial time increment from t0: the step's maximum (its initial increment first), or
   !> less if the friction-rate limits of the last increment say so (not below the minimum),
@@ -280,14 +332,14 @@ contains
     end if
   end subroutine choose_fraction
 
-  !> Apply the increment a%sys%du (fraction r of the trial increment over [t0, t0 + dt]) to the
-  !> state: stresses, displacements, positions, time, and the contact states decided on the
-  !> new positions. Nothing changes before every element is known to stay valid.
-  subroutine apply_increment(a, model, step, t0, dt, r, err, predict_penetration)
+  !> Apply the increment a%sys%du (fraction inc%r of the trial increment over [t0, t0 + dt])
+  !> to the state: stresses, displacements, positions, time, and the contact states decided
+  !> on the new positions. Nothing changes before every element is known to stay valid.
+  subroutine apply_increment(a, model, step, inc, err, predict_penetration)
     type(analysis_t), intent(inout) :: a
     type(model_t), intent(in) :: model
     type(step_t), intent(in) :: step
-    real(dp), intent(in) :: t0, dt, r
+    type(increment_t), intent(in) :: inc
     type(error_t), allocatable, intent(out) :: err
     !> Check the penetration the increment predicts (the first application; the iterates of
     !> the equilibrium iterations are checked on their result instead).
@@ -300,7 +352,7 @@ contains
         call a%contact%check_penetration(model%mesh%node_id, a%x_contact, state%contact, a%sys%du, err)
       if (.not. allocated(err)) then
         if (allocated(state%temperature)) then
-          call end_temperatures(a, model, t0, dt, r)
+          call end_temperatures(a, model, inc%end_time())
           call a%elements%update(state%x, a%sys%du, state%elements, step%nlgeom, err, &
                                  state%temperature, a%trial%temperature)
         else
@@ -315,35 +367,25 @@ contains
       if (allocated(state%temperature)) state%temperature = a%trial%temperature
       state%u = state%u + reshape(a%sys%du, shape(state%u))
       if (step%nlgeom) state%x = state%x + reshape(a%sys%du, shape(state%x))
-      if (r >= 1.0_dp) then
-        state%step_time = t0 + dt
-      else
-        state%step_time = t0 + r * dt
-      end if
+      state%step_time = inc%end_time()
       call contact_positions(a, model)
       if (a%contact%n_slaves() > 0) then
-        call a%contact%update(a%x_contact, state%contact, state%step_time - t0, r)
-        call friction_step_control(a%contact, step, state%step_time - t0, state)
+        call a%contact%update(a%x_contact, state%contact, state%step_time - inc%t0, inc%r)
+        call friction_step_control(a%contact, step, state%step_time - inc%t0, state)
       end if
-      state%time = state%time + (state%step_time - t0)
-      state%last_increment = state%step_time - t0
-      state%last_r = r
+      state%time = state%time + (state%step_time - inc%t0)
+      state%last_increment = state%step_time - inc%t0
+      state%last_r = inc%r
     end associate
     call a%timers%stop('update')
   end subroutine apply_increment
 
-  !> The nodal temperatures at the end of the increment of fraction r of [t0, t0 + dt], into
-  !> a%trial%temperature (the time apply_increment gives the state).
-  subroutine end_temperatures(a, model, t0, dt, r)
+  !> The nodal temperatures at step time t_end (the end of the increment), into
+  !> a%trial%temperature.
+  subroutine end_temperatures(a, model, t_end)
     type(analysis_t), intent(inout) :: a
     type(model_t), intent(in) :: model
-    real(dp), intent(in) :: t0, dt, r
-    real(dp) :: t_end
-    if (r >= 1.0_dp) then
-      t_end = t0 + dt
-    else
-      t_end = t0 + r * dt
-    end if
+    real(dp), intent(in) :: t_end
     if (.not. allocated(a%trial%temperature)) allocate (a%trial%temperature(size(a%state%temperature)))
     call a%loading%temperature_at(model%amplitudes, t_end, a%trial%temperature)
   end subroutine end_temperatures
@@ -351,23 +393,21 @@ contains
   !> Equilibrium iterations on the increment just applied: while the out-of-balance force
   !> at its end exceeds the step's EQUILIBRIUM TOLERANCE, solve K dc = R with the tangent of
   !> the current iterate (prescribed values held), add dc to the increment and apply it
-  !> again from the state `start` at the start of the increment, so that stresses, contact
+  !> again from the state inc%start at the start of the increment, so that stresses, contact
   !> and friction states are decided on the corrected solution (Newton's method on the
   !> increment, as in an implicit step; the R-minimum choice of the increment keeps the
   !> state changes within it small). `converged` is false when the iterations did not reach
   !> the tolerance within MAX ITERATIONS or started to diverge: the caller cuts the increment.
-  subroutine equilibrate(a, model, step, start, t0, dt, r, record, converged, err)
+  subroutine equilibrate(a, model, step, inc, record, converged, err)
     type(analysis_t), intent(inout) :: a
     type(model_t), intent(in) :: model
     type(step_t), intent(in) :: step
-    type(state_t), intent(in) :: start
-    real(dp), intent(in) :: t0, dt, r
+    type(increment_t), intent(in) :: inc
     type(increment_record_t), intent(inout) :: record
     logical, intent(out) :: converged
     type(error_t), allocatable, intent(out) :: err
-    real(dp), allocatable :: base(:)
-    real(dp) :: norm, trial_norm, step_length, previous(2)
-    integer :: iteration, search, n_growing, n_changed
+    real(dp) :: norm, trial_norm, previous(2)
+    integer :: iteration, n_growing
     converged = .false.
     n_growing = 0
     previous = huge(1.0_dp)
@@ -376,17 +416,8 @@ contains
     norm = norm2(a%sys%rhs_residual)
     do iteration = 1, step%rmin%max_iterations + 1
       if (record%residual_ratio <= step%rmin%equilibrium_tolerance) then
-        ! In equilibrium with the held contact states: are they still right?
-        n_changed = 0
-        if (a%contact%n_slaves() > 0) call a%contact%check_held(a%state%contact, n_changed)
-        if (n_changed == 0) then
-          converged = .true.
-          return
-        end if
-        a%state = start
-        call apply_increment(a, model, step, t0, dt, r, err, .false.)
-        if (.not. allocated(err)) call out_of_balance(a, model, step, record, err)
-        if (allocated(err)) return
+        call recheck_held_states(a, model, step, inc, record, converged, err)
+        if (converged .or. allocated(err)) return
         norm = norm2(a%sys%rhs_residual)
         n_growing = 0
         previous = huge(1.0_dp)
@@ -394,27 +425,14 @@ contains
       if (iteration > step%rmin%max_iterations) return
       ! A correction that cannot be solved (the iterate lost the contact that supported a
       ! body: a singular tangent) is a failed iteration: the increment is cut.
-      call correction(a, model, step, t0, a%state%step_time - t0, err)
+      call correction(a, model, step, inc%t0, a%state%step_time - inc%t0, err)
       if (allocated(err)) then
         deallocate (err)
         return
       end if
       record%iterations = record%iterations + 1
-      ! Backtracking on the norm of the out-of-balance force: the contact and friction
-      ! states make the residual only piecewise smooth, and a full Newton step across a
-      ! change of state can overshoot.
-      base = a%sys%du
-      step_length = 1.0_dp
-      do search = 1, MAX_LINE_SEARCH
-        a%sys%du = base + step_length * a%sys%correction
-        a%state = start
-        call apply_increment(a, model, step, t0, dt, r, err, .false.)
-        if (.not. allocated(err)) call out_of_balance(a, model, step, record, err)
-        if (allocated(err)) return
-        trial_norm = norm2(a%sys%rhs_residual)
-        if (trial_norm < norm .or. search == MAX_LINE_SEARCH) exit
-        step_length = 0.5_dp * step_length
-      end do
+      call line_search(a, model, step, inc, record, norm, trial_norm, err)
+      if (allocated(err)) return
       if (trial_norm >= norm) then
         n_growing = n_growing + 1
         if (n_growing >= 2) return
@@ -428,6 +446,58 @@ contains
       norm = trial_norm
     end do
   end subroutine equilibrate
+
+  !> In equilibrium with the held contact states: are they still right? `settled` when no
+  !> held state changed; else the increment is applied again from inc%start with the changed
+  !> states and its out-of-balance force computed anew.
+  subroutine recheck_held_states(a, model, step, inc, record, settled, err)
+    type(analysis_t), intent(inout) :: a
+    type(model_t), intent(in) :: model
+    type(step_t), intent(in) :: step
+    type(increment_t), intent(in) :: inc
+    type(increment_record_t), intent(inout) :: record
+    logical, intent(out) :: settled
+    type(error_t), allocatable, intent(out) :: err
+    integer :: n_changed
+    n_changed = 0
+    if (a%contact%n_slaves() > 0) call a%contact%check_held(a%state%contact, n_changed)
+    settled = n_changed == 0
+    if (settled) return
+    a%state = inc%start
+    call apply_increment(a, model, step, inc, err, predict_penetration=.false.)
+    if (.not. allocated(err)) call out_of_balance(a, model, step, record, err)
+  end subroutine recheck_held_states
+
+  !> Backtracking on the norm of the out-of-balance force: the correction a%sys%correction
+  !> added to the increment with step lengths 1, 1/2, 1/4, ... (MAX_LINE_SEARCH of them),
+  !> each applied from inc%start, until |R| falls below `norm`; `trial_norm` is |R| of the
+  !> last one, which is the state left. The contact and friction states make the residual
+  !> only piecewise smooth, and a full Newton step across a change of state can overshoot.
+  subroutine line_search(a, model, step, inc, record, norm, trial_norm, err)
+    type(analysis_t), intent(inout) :: a
+    type(model_t), intent(in) :: model
+    type(step_t), intent(in) :: step
+    type(increment_t), intent(in) :: inc
+    type(increment_record_t), intent(inout) :: record
+    real(dp), intent(in) :: norm
+    real(dp), intent(out) :: trial_norm
+    type(error_t), allocatable, intent(out) :: err
+    real(dp), allocatable :: base(:)
+    real(dp) :: step_length
+    integer :: search
+    base = a%sys%du
+    step_length = 1.0_dp
+    do search = 1, MAX_LINE_SEARCH
+      a%sys%du = base + step_length * a%sys%correction
+      a%state = inc%start
+      call apply_increment(a, model, step, inc, err, predict_penetration=.false.)
+      if (.not. allocated(err)) call out_of_balance(a, model, step, record, err)
+      if (allocated(err)) return
+      trial_norm = norm2(a%sys%rhs_residual)
+      if (trial_norm < norm .or. search == MAX_LINE_SEARCH) exit
+      step_length = 0.5_dp * step_length
+    end do
+  end subroutine line_search
 
   !> The out-of-balance force R = f_ext + f_c - f_int of the current state at its time (free
   !> degrees of freedom, into a%sys%rhs_residual) and its size: the largest nodal |R| over the
@@ -506,30 +576,29 @@ contains
   !> The equilibrium iterations of the increment did not converge: go back to its start and
   !> take CUT_FACTOR of it (not less than the step's minimum increment); at the minimum the
   !> run stops, naming where the out-of-balance force is largest.
-  subroutine cut_increment(a, model, step, start, dt, record, r, err)
+  subroutine cut_increment(a, model, step, inc, record, err)
     type(analysis_t), intent(inout) :: a
     type(model_t), intent(in) :: model
     type(step_t), intent(in) :: step
-    type(state_t), intent(in) :: start
-    real(dp), intent(in) :: dt
+    type(increment_t), intent(inout) :: inc
     type(increment_record_t), intent(inout) :: record
-    real(dp), intent(inout) :: r
     type(error_t), allocatable, intent(out) :: err
     character(len=1), parameter :: AXIS(3) = ['x', 'y', 'z']
-    a%state = start
-    if (record%cuts >= MAX_CUTS .or. r * dt <= step%min_increment * (1.0_dp + 1.0e-12_dp)) then
+    a%state = inc%start
+    if (record%cuts >= MAX_CUTS .or. inc%r * inc%dt <= step%min_increment * (1.0_dp + 1.0e-12_dp)) then
       call fatal_error(err, 'no equilibrium: after ' // str(record%iterations) // ' iteration(s) ' // &
-        'and ' // str(record%cuts) // ' cut(s) of the increment (to ' // str(r * dt) // &
+        'and ' // str(record%cuts) // ' cut(s) of the increment (to ' // str(inc%r * inc%dt) // &
         '), the out-of-balance force is still ' // str(record%residual_ratio) // ' of the force ' // &
         'scale (tolerance ' // str(step%rmin%equilibrium_tolerance) // '), largest at node ' // &
         str(model%mesh%node_id(max(record%residual_node, 1))) // ' in ' // &
-        AXIS(max(record%residual_direction, 1)) // distortion_note(a%elements, a%state%x, model, step%nlgeom) // &
+        AXIS(max(record%residual_direction, 1)) // &
+        distortion_note(a%elements, a%state%x, model, step%nlgeom) // &
         '; check the loading and the supports, or raise EQUILIBRIUM TOLERANCE or MAX ' // &
         'ITERATIONS on *RMIN')
       return
     end if
     record%cuts = record%cuts + 1
-    r = max(r * CUT_FACTOR, step%min_increment / dt)
+    inc%r = max(inc%r * CUT_FACTOR, step%min_increment / inc%dt)
   end subroutine cut_increment
 
   !> The trial time increment for the next increment from the friction changes over the last
