@@ -14,6 +14,7 @@ module fcs_driver
   use fcs_static_explicit, only: analysis_t, take_increment, increment_record_t, build_pattern, &
                                  contact_positions, current_reactions, gather_element_fields
   use fcs_comm, only: comm_t
+  use fcs_linear_system, only: linear_system_t
   use fcs_partition, only: partition_elements
   use fcs_solver_factory, only: create_linear_solver
   use fcs_linear_solver, only: solver_stats_t
@@ -126,6 +127,8 @@ contains
     if (.not. allocated(err) .and. allocated(log_err)) call move_alloc(log_err, err)
   end subroutine end_log
 
+  !> The run on every process: the log, the model, the set-up, the steps, the summary and
+  !> the closing of the outputs.
   subroutine run_job_on_ranks(options, run, model, deck, t_start, memory_note, err)
     type(run_options_t), intent(in) :: options
     type(run_t), intent(inout) :: run
@@ -134,26 +137,9 @@ contains
     real(dp), intent(in) :: t_start
     character(len=*), intent(in) :: memory_note
     type(error_t), allocatable, intent(out) :: err
-    integer :: i
     call start_log(options, run, memory_note, err)
+    if (.not. allocated(err)) call read_model(options, run, model, deck, err)
     if (allocated(err)) return
-    call set_activity('reading the deck ' // options%deck_path)
-    call build_model(options%deck_path, model, deck, err)
-    if (allocated(err)) return
-    do i = 1, size(model%warnings)
-      call run%log%warn(model%warnings(i)%s)
-    end do
-    if (len(options%solver) > 0) model%solver_name = to_upper(options%solver)
-    if (options%reuse_tolerance >= 0.0_dp) model%reuse_tolerance = options%reuse_tolerance
-    if (run%analysis%share%comm%size > 1 .and. len(options%solver) == 0 .and. .not. model%solver_chosen) &
-      model%solver_name = 'MUMPS'
-    if (run%writer) call write_echo(options%job // '.echo', deck, model, err)
-    call run%analysis%share%comm%agree_error(err)
-    if (allocated(err)) return
-    call describe_model(run%log, model, options)
-    if (run%analysis%share%comm%size > 1) call run%log%info('parallel run on ' // &
-      str(run%analysis%share%comm%size) // ' processes (elements partitioned by METIS, solver ' // &
-      model%solver_name // ')')
     if (options%check_only) then
       call run%log%info('check: the deck and the model are valid (echo in ' // options%job // '.echo)')
       return
@@ -183,6 +169,34 @@ contains
     end if
     call close_outputs(run, err)
   end subroutine run_job_on_ranks
+
+  !> The model from the deck, with the command line's solver choices applied; its echo
+  !> written, its warnings and a description of it in the log.
+  subroutine read_model(options, run, model, deck, err)
+    type(run_options_t), intent(in) :: options
+    type(run_t), intent(inout) :: run
+    type(model_t), intent(out) :: model
+    type(deck_t), intent(out) :: deck
+    type(error_t), allocatable, intent(out) :: err
+    integer :: i
+    call set_activity('reading the deck ' // options%deck_path)
+    call build_model(options%deck_path, model, deck, err)
+    if (allocated(err)) return
+    do i = 1, size(model%warnings)
+      call run%log%warn(model%warnings(i)%s)
+    end do
+    if (len(options%solver) > 0) model%solver_name = to_upper(options%solver)
+    if (options%reuse_tolerance >= 0.0_dp) model%reuse_tolerance = options%reuse_tolerance
+    if (run%analysis%share%comm%size > 1 .and. len(options%solver) == 0 .and. .not. model%solver_chosen) &
+      model%solver_name = 'MUMPS'
+    if (run%writer) call write_echo(options%job // '.echo', deck, model, err)
+    call run%analysis%share%comm%agree_error(err)
+    if (allocated(err)) return
+    call describe_model(run%log, model, options)
+    if (run%analysis%share%comm%size > 1) call run%log%info('parallel run on ' // &
+      str(run%analysis%share%comm%size) // ' processes (elements partitioned by METIS, solver ' // &
+      model%solver_name // ')')
+  end subroutine read_model
 
   subroutine describe_model(log, model, options)
     type(logger_t), intent(inout) :: log
@@ -222,22 +236,9 @@ contains
     type(run_t), intent(inout) :: run
     type(model_t), intent(in) :: model
     type(error_t), allocatable, intent(out) :: err
-    type(material_slot_t), allocatable :: materials(:)
-    integer :: n_state
     associate (a => run%analysis)
-      call make_materials(model, materials, err)
-      if (.not. allocated(err)) call a%elements%init(model%element_kinds, model%mesh, &
-        model%sections(model%element_section)%material, &
-        model%sections(model%element_section)%formulation == FORMULATION_BBAR, materials, err)
+      call setup_state(a, model, err)
       if (allocated(err)) return
-      n_state = a%elements%n_material_state()
-      call set_activity('setting up the analysis', setup_bytes(model, a%elements%max_points, n_state))
-      call ensure_memory(setup_bytes(model, a%elements%max_points, n_state), &
-                         'setting up the analysis', err)
-      if (allocated(err)) return
-      call a%state%init(model%mesh%x, model%mesh%n_elements, a%elements%max_points, n_state)
-      if (model%has_temperature) call a%state%init_temperature(model%initial_temperature)
-      call apply_initial_stresses(a%elements, model, a%state%elements)
       call contact_positions(a, model)
       if (size(model%contact_pairs) > 0) then
         call a%contact%init(model%contact_pairs, pair_frictions(model), model%mesh, a%x_contact, &
@@ -248,23 +249,57 @@ contains
       call distribute_work(run, model, err)
       if (allocated(err)) return
       call a%sys%links%init(model%equations, model%mesh%n_nodes, model%mesh%node_id, err, &
-                        model%node_frame, model%transformed)
+                            model%node_frame, model%transformed)
       if (allocated(err)) return
       call build_pattern(a, model)
-      call create_linear_solver(model%solver_name, a%sys%solver, err)
+      call setup_solver(a%sys, a%share%comm, model, err)
       if (allocated(err)) return
-      a%sys%solver%node_id = model%mesh%node_id(1:model%mesh%n_nodes)
-      call a%sys%reuse%init(reuse_settings_t(tolerance=model%reuse_tolerance), a%share%comm)
-      if (a%share%comm%size > 1 .and. .not. a%sys%solver%runs_in_parallel()) then
-        call input_error(err, 'a parallel run needs the MUMPS solver (*SOLVER, TYPE=MUMPS or ' // &
-                         '--solver MUMPS); ' // model%solver_name // ' runs on one process only')
-        return
-      end if
-      call a%sys%solver%set_comm(a%share%comm)
-      call a%sys%allocate_vectors(model%mesh%n_nodes)
     end associate
     run%total_time = sum(model%steps(:)%period)
   end subroutine setup
+
+  !> The element loops with their materials, and the state they start from (initial
+  !> temperatures and stresses), once the memory they take is known to be there.
+  subroutine setup_state(a, model, err)
+    type(analysis_t), intent(inout) :: a
+    type(model_t), intent(in) :: model
+    type(error_t), allocatable, intent(out) :: err
+    type(material_slot_t), allocatable :: materials(:)
+    integer :: n_state
+    call make_materials(model, materials, err)
+    if (.not. allocated(err)) call a%elements%init(model%element_kinds, model%mesh, &
+      model%sections(model%element_section)%material, &
+      model%sections(model%element_section)%formulation == FORMULATION_BBAR, materials, err)
+    if (allocated(err)) return
+    n_state = a%elements%n_material_state()
+    call set_activity('setting up the analysis', setup_bytes(model, a%elements%max_points, n_state))
+    call ensure_memory(setup_bytes(model, a%elements%max_points, n_state), &
+                       'setting up the analysis', err)
+    if (allocated(err)) return
+    call a%state%init(model%mesh%x, model%mesh%n_elements, a%elements%max_points, n_state)
+    if (model%has_temperature) call a%state%init_temperature(model%initial_temperature)
+    call apply_initial_stresses(a%elements, model, a%state%elements)
+  end subroutine setup_state
+
+  !> The model's linear solver on the run's processes (a parallel run needs MUMPS), the reuse
+  !> of its factors, and the vectors of the system.
+  subroutine setup_solver(sys, comm, model, err)
+    type(linear_system_t), intent(inout) :: sys
+    type(comm_t), intent(in) :: comm
+    type(model_t), intent(in) :: model
+    type(error_t), allocatable, intent(out) :: err
+    call create_linear_solver(model%solver_name, sys%solver, err)
+    if (allocated(err)) return
+    sys%solver%node_id = model%mesh%node_id(1:model%mesh%n_nodes)
+    call sys%reuse%init(reuse_settings_t(tolerance=model%reuse_tolerance), comm)
+    if (comm%size > 1 .and. .not. sys%solver%runs_in_parallel()) then
+      call input_error(err, 'a parallel run needs the MUMPS solver (*SOLVER, TYPE=MUMPS or ' // &
+                       '--solver MUMPS); ' // model%solver_name // ' runs on one process only')
+      return
+    end if
+    call sys%solver%set_comm(comm)
+    call sys%allocate_vectors(model%mesh%n_nodes)
+  end subroutine setup_solver
 
   !> The friction law of each contact pair: its interaction's *FRICTION, or frictionless
   !> Coulomb (mu = 0) when it has none.
