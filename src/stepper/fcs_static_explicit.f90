@@ -508,8 +508,6 @@ contains
     type(step_t), intent(in) :: step
     type(increment_record_t), intent(inout) :: record
     type(error_t), allocatable, intent(out) :: err
-    real(dp) :: worst, scale, node_norm, sums(2)
-    integer :: node
     call a%timers%start('equilibrium')
     call a%elements%assemble(a%state%x, a%state%elements, step%nlgeom, a%sys%f_int, err, flux=a%sys%flux)
     call a%share%comm%agree_error(err)
@@ -525,28 +523,41 @@ contains
     a%sys%rhs_residual = a%sys%f_ext_end + a%sys%f_contact - a%sys%f_int
     call a%sys%links%reduce_vector(a%sys%rhs_residual)
     where (a%sys%constrained) a%sys%rhs_residual = 0.0_dp
+    call measure_residual(a%sys, a%state%force_scale, record)
+    call a%timers%stop('equilibrium')
+  end subroutine out_of_balance
+
+  !> The size of the out-of-balance force sys%rhs_residual into `record`: where its nodal
+  !> norm is largest, the force scale (the mean nodal force flux sys%flux of the nodes that
+  !> carry force, at least the thermal load's scale) and the ratio of the largest nodal norm
+  !> to that scale, or to the run's mean force scale `run_scale` when that is larger.
+  subroutine measure_residual(sys, run_scale, record)
+    type(linear_system_t), intent(in) :: sys
+    real(dp), intent(in) :: run_scale
+    type(increment_record_t), intent(inout) :: record
+    real(dp) :: worst, scale, node_norm, sums(2)
+    integer :: node
     worst = 0.0_dp
     record%residual_node = 0
-    do node = 1, model%mesh%n_nodes
-      node_norm = norm2(a%sys%rhs_residual(3 * node - 2:3 * node))
+    do node = 1, size(sys%flux)
+      node_norm = norm2(sys%rhs_residual(3 * node - 2:3 * node))
       if (node_norm > worst) then
         worst = node_norm
         record%residual_node = node
-        record%residual_direction = maxloc(abs(a%sys%rhs_residual(3 * node - 2:3 * node)), 1)
+        record%residual_direction = maxloc(abs(sys%rhs_residual(3 * node - 2:3 * node)), 1)
       end if
     end do
-    sums = [sum(a%sys%flux, mask=a%sys%flux > 0.0_dp), real(count(a%sys%flux > 0.0_dp), dp)]
+    sums = [sum(sys%flux, mask=sys%flux > 0.0_dp), real(count(sys%flux > 0.0_dp), dp)]
     record%force_scale = 0.0_dp
     if (sums(2) > 0.0_dp) record%force_scale = sums(1) / sums(2)
-    record%force_scale = max(record%force_scale, a%sys%thermal_scale)
+    record%force_scale = max(record%force_scale, sys%thermal_scale)
     ! The scale is never below the mean over the increments of the run so far (CalculiX
     ! averages its force scale over the increments of a step): a body unloaded to nearly no
     ! stress keeps a tolerance relative to the forces it carried, not to its round-off.
-    scale = max(record%force_scale, a%state%force_scale)
+    scale = max(record%force_scale, run_scale)
     record%residual_ratio = 0.0_dp
     if (worst > 0.0_dp) record%residual_ratio = worst / max(scale, tiny(1.0_dp))
-    call a%timers%stop('equilibrium')
-  end subroutine out_of_balance
+  end subroutine measure_residual
 
   !> One equilibrium correction: K dc = R (a%sys%rhs_residual) with K the tangent of the current
   !> state and dc = 0 on the prescribed degrees of freedom; dt is the duration of the
