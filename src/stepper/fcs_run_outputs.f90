@@ -17,8 +17,7 @@ module fcs_run_outputs
   use fcs_event_catalog, only: EVENT_COLUMNS
   use fcs_output_schedule, only: is_due, outputs_due
   use fcs_field, only: field_t, field, point_field, FIELD_NODES, FIELD_CELLS
-  use fcs_element_loops, only: element_loops_t, mises_stress
-  use fcs_element_state, only: element_state_t
+  use fcs_element_loops, only: mises_stress
   use fcs_log, only: logger_t
   use fcs_files, only: truncate_file, file_size
   use fcs_memory, only: set_activity, ensure_memory
@@ -192,6 +191,8 @@ contains
     type(monitors_t), intent(in) :: monitors
     type(logger_t), intent(inout) :: log
     type(error_t), allocatable, intent(out) :: err
+    real(dp), allocatable :: nodal(:, :), cell_mises(:, :), nodal_mises(:, :)
+    integer :: q
     integer(i8) :: bytes
     call gather_element_fields(a)
     if (.not. this%writer) return
@@ -210,7 +211,19 @@ contains
       if (.not. allocated(err) .and. allocated(state%temperature)) call this%results%write_field( &
         field('NT', FIELD_NODES, reshape(state%temperature, [1, size(state%temperature)])), err)
       if (allocated(err)) return
-      call write_stress_fields(this, a%elements, state%elements, model%mesh%n_nodes, err)
+      nodal = a%elements%nodal_average(state%elements%stress, model%mesh%n_nodes)
+      allocate (nodal_mises(1, size(nodal, 2)), cell_mises(1, model%mesh%n_elements))
+      do q = 1, size(nodal, 2)
+        nodal_mises(1, q) = mises_stress(nodal(:, q))
+      end do
+      do q = 1, model%mesh%n_elements
+        cell_mises(1, q) = element_mean_mises(state%elements%stress(:, 1:a%elements%n_points(q), q))
+      end do
+      call this%results%write_field(field('stress', FIELD_NODES, nodal), err)
+      if (.not. allocated(err)) call this%results%write_field(field('mises', FIELD_NODES, nodal_mises), err)
+      if (.not. allocated(err)) call this%results%write_field(field('mises', FIELD_CELLS, cell_mises), err)
+      if (.not. allocated(err)) call this%results%write_field(point_field('stress', state%elements%stress), err)
+      if (.not. allocated(err)) call this%results%write_field(point_field('strain', state%elements%strain), err)
       if (.not. allocated(err) .and. a%elements%has_states()) &
         call write_plastic_fields(this, a, model, err)
       if (.not. allocated(err)) call write_contact_fields(this, a, err)
@@ -219,33 +232,6 @@ contains
       call log_contact_totals(a, log, .true.)
     end associate
   end subroutine outputs_write_frame
-
-  !> Stresses and strains in a frame: the stress at the integration points and averaged at
-  !> the nodes (of the values extrapolated to them), the Mises stress of the nodal averages
-  !> and per element (the mean over its points), the strain at the integration points.
-  subroutine write_stress_fields(this, elements, fields, n_nodes, err)
-    type(run_outputs_t), intent(inout) :: this
-    type(element_loops_t), intent(in) :: elements
-    type(element_state_t), intent(in) :: fields
-    integer, intent(in) :: n_nodes
-    type(error_t), allocatable, intent(out) :: err
-    real(dp), allocatable :: nodal(:, :), cell_mises(:, :), nodal_mises(:, :)
-    integer :: q, n_elements
-    n_elements = size(fields%stress, 3)
-    nodal = elements%nodal_average(fields%stress, n_nodes)
-    allocate (nodal_mises(1, size(nodal, 2)), cell_mises(1, n_elements))
-    do q = 1, size(nodal, 2)
-      nodal_mises(1, q) = mises_stress(nodal(:, q))
-    end do
-    do q = 1, n_elements
-      cell_mises(1, q) = element_mean_mises(fields%stress(:, 1:elements%n_points(q), q))
-    end do
-    call this%results%write_field(field('stress', FIELD_NODES, nodal), err)
-    if (.not. allocated(err)) call this%results%write_field(field('mises', FIELD_NODES, nodal_mises), err)
-    if (.not. allocated(err)) call this%results%write_field(field('mises', FIELD_CELLS, cell_mises), err)
-    if (.not. allocated(err)) call this%results%write_field(point_field('stress', fields%stress), err)
-    if (.not. allocated(err)) call this%results%write_field(point_field('strain', fields%strain), err)
-  end subroutine write_stress_fields
 
   !> The plastic state in a frame, named as CalculiX (PEEQ, PE) and Abaqus (ALPHA, the back
   !> stress) name it: PEEQ at the integration points, averaged at the nodes and per element
