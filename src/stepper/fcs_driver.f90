@@ -14,6 +14,7 @@ module fcs_driver
   use fcs_static_explicit, only: analysis_t, take_increment, increment_record_t, build_pattern, &
                                  contact_positions, current_reactions, gather_element_fields
   use fcs_comm, only: comm_t
+  use fcs_linear_system, only: linear_system_t
   use fcs_partition, only: partition_elements
   use fcs_solver_factory, only: create_linear_solver
   use fcs_linear_solver, only: solver_stats_t
@@ -71,16 +72,16 @@ contains
     call keep_freed_memory(err)
     if (.not. allocated(err)) call prepare_memory(memory_note, err)
     if (allocated(err)) return
-    call run%analysis%comm%init(err)
+    call run%analysis%share%comm%init(err)
     if (allocated(err)) return
-    run%writer = run%analysis%comm%is_root()
+    run%writer = run%analysis%share%comm%is_root()
     call run_job_on_ranks(options, run, model, deck, t_start, memory_note, err)
-    call run%analysis%comm%agree_error(err)
+    call run%analysis%share%comm%agree_error(err)
     ! Every rank of a parallel run returns the same error; rank 0 reports it.
     if (allocated(err) .and. .not. run%writer) err%silent = .true.
     call end_log(run, err)
     call run%lock%release()
-    call run%analysis%comm%finalize()
+    call run%analysis%share%comm%finalize()
   end subroutine run_job
 
   !> Take the job's lock, then open the log (appended to on a restart): both before anything
@@ -92,14 +93,14 @@ contains
     character(len=*), intent(in) :: memory_note
     type(error_t), allocatable, intent(out) :: err
     if (run%writer) call run%lock%acquire(options%job, err)
-    call run%analysis%comm%agree_error(err)
+    call run%analysis%share%comm%agree_error(err)
     if (allocated(err)) return
     if (run%writer) then
       call run%log%open(options%job // '.log', options%quiet, err, append=len(options%restart_file) > 0)
     else
       run%log%terminal = .false.
     end if
-    call run%analysis%comm%agree_error(err)
+    call run%analysis%share%comm%agree_error(err)
     if (allocated(err)) return
     if (run%writer) call set_failure_log(options%job // '.log')
     call run%log%detail(FCS3D_IDENTITY)
@@ -126,6 +127,8 @@ contains
     if (.not. allocated(err) .and. allocated(log_err)) call move_alloc(log_err, err)
   end subroutine end_log
 
+  !> The run on every process: the log, the model, the set-up, the steps, the summary and
+  !> the closing of the outputs.
   subroutine run_job_on_ranks(options, run, model, deck, t_start, memory_note, err)
     type(run_options_t), intent(in) :: options
     type(run_t), intent(inout) :: run
@@ -134,26 +137,9 @@ contains
     real(dp), intent(in) :: t_start
     character(len=*), intent(in) :: memory_note
     type(error_t), allocatable, intent(out) :: err
-    integer :: i
     call start_log(options, run, memory_note, err)
+    if (.not. allocated(err)) call read_model(options, run, model, deck, err)
     if (allocated(err)) return
-    call set_activity('reading the deck ' // options%deck_path)
-    call build_model(options%deck_path, model, deck, err)
-    if (allocated(err)) return
-    do i = 1, size(model%warnings)
-      call run%log%warn(model%warnings(i)%s)
-    end do
-    if (len(options%solver) > 0) model%solver_name = to_upper(options%solver)
-    if (options%reuse_tolerance >= 0.0_dp) model%reuse_tolerance = options%reuse_tolerance
-    if (run%analysis%comm%size > 1 .and. len(options%solver) == 0 .and. .not. model%solver_chosen) &
-      model%solver_name = 'MUMPS'
-    if (run%writer) call write_echo(options%job // '.echo', deck, model, err)
-    call run%analysis%comm%agree_error(err)
-    if (allocated(err)) return
-    call describe_model(run%log, model, options)
-    if (run%analysis%comm%size > 1) call run%log%info('parallel run on ' // &
-      str(run%analysis%comm%size) // ' processes (elements partitioned by METIS, solver ' // &
-      model%solver_name // ')')
     if (options%check_only) then
       call run%log%info('check: the deck and the model are valid (echo in ' // options%job // '.echo)')
       return
@@ -183,6 +169,34 @@ contains
     end if
     call close_outputs(run, err)
   end subroutine run_job_on_ranks
+
+  !> The model from the deck, with the command line's solver choices applied; its echo
+  !> written, its warnings and a description of it in the log.
+  subroutine read_model(options, run, model, deck, err)
+    type(run_options_t), intent(in) :: options
+    type(run_t), intent(inout) :: run
+    type(model_t), intent(out) :: model
+    type(deck_t), intent(out) :: deck
+    type(error_t), allocatable, intent(out) :: err
+    integer :: i
+    call set_activity('reading the deck ' // options%deck_path)
+    call build_model(options%deck_path, model, deck, err)
+    if (allocated(err)) return
+    do i = 1, size(model%warnings)
+      call run%log%warn(model%warnings(i)%s)
+    end do
+    if (len(options%solver) > 0) model%solver_name = to_upper(options%solver)
+    if (options%reuse_tolerance >= 0.0_dp) model%reuse_tolerance = options%reuse_tolerance
+    if (run%analysis%share%comm%size > 1 .and. len(options%solver) == 0 .and. .not. model%solver_chosen) &
+      model%solver_name = 'MUMPS'
+    if (run%writer) call write_echo(options%job // '.echo', deck, model, err)
+    call run%analysis%share%comm%agree_error(err)
+    if (allocated(err)) return
+    call describe_model(run%log, model, options)
+    if (run%analysis%share%comm%size > 1) call run%log%info('parallel run on ' // &
+      str(run%analysis%share%comm%size) // ' processes (elements partitioned by METIS, solver ' // &
+      model%solver_name // ')')
+  end subroutine read_model
 
   subroutine describe_model(log, model, options)
     type(logger_t), intent(inout) :: log
@@ -222,24 +236,9 @@ contains
     type(run_t), intent(inout) :: run
     type(model_t), intent(in) :: model
     type(error_t), allocatable, intent(out) :: err
-    type(material_slot_t), allocatable :: materials(:)
-    integer :: n_state, n
     associate (a => run%analysis)
-      call make_materials(model, materials, err)
-      if (.not. allocated(err)) call a%elements%init(model%element_kinds, model%mesh, &
-        model%sections(model%element_section)%material, &
-        model%sections(model%element_section)%formulation == FORMULATION_BBAR, materials, err)
+      call setup_state(a, model, err)
       if (allocated(err)) return
-      if (size(model%orientations) > 0) call a%elements%set_orientations( &
-        model%orientations%axes, model%sections(model%element_section)%orientation)
-      n_state = a%elements%n_material_state()
-      call set_activity('setting up the analysis', setup_bytes(model, a%elements%max_points, n_state))
-      call ensure_memory(setup_bytes(model, a%elements%max_points, n_state), &
-                         'setting up the analysis', err)
-      if (allocated(err)) return
-      call a%state%init(model%mesh%x, model%mesh%n_elements, a%elements%max_points, n_state)
-      if (model%has_temperature) call a%state%init_temperature(model%initial_temperature)
-      call apply_initial_stresses(a%elements, model, a%state%elements)
       call contact_positions(a, model)
       if (size(model%contact_pairs) > 0) then
         call a%contact%init(model%contact_pairs, pair_frictions(model), model%mesh, a%x_contact, &
@@ -249,31 +248,60 @@ contains
       end if
       call distribute_work(run, model, err)
       if (allocated(err)) return
-      call a%links%init(model%equations, model%mesh%n_nodes, model%mesh%node_id, err, &
-                        model%node_frame, model%transformed)
+      call a%sys%links%init(model%equations, model%mesh%n_nodes, model%mesh%node_id, err, &
+                            model%node_frame, model%transformed)
       if (allocated(err)) return
       call build_pattern(a, model)
-      call create_linear_solver(model%solver_name, a%solver, err)
+      call setup_solver(a%sys, a%share%comm, model, err)
       if (allocated(err)) return
-      a%solver%node_id = model%mesh%node_id(1:model%mesh%n_nodes)
-      call a%reuse%init(reuse_settings_t(tolerance=model%reuse_tolerance), a%comm)
-      if (a%comm%size > 1 .and. .not. a%solver%runs_in_parallel()) then
-        call input_error(err, 'a parallel run needs the MUMPS solver (*SOLVER, TYPE=MUMPS or ' // &
-                         '--solver MUMPS); ' // model%solver_name // ' runs on one process only')
-        return
-      end if
-      call a%solver%set_comm(a%comm)
-      n = 3 * model%mesh%n_nodes
-      allocate (a%f_int(n), a%f_ext0(n), a%f_ext1(n), a%rhs(n), a%du(n), a%prescribed(n), &
-                a%constrained(n), a%f_contact(n), a%du_load(n), a%du_residual(n), a%rhs_residual(n), &
-                a%f_ext_end(n), a%correction(n), a%flux(model%mesh%n_nodes))
-      a%f_int = 0.0_dp
-      a%f_contact = 0.0_dp
-      a%f_ext_end = 0.0_dp
-      a%constrained = .false.
     end associate
     run%total_time = sum(model%steps(:)%period)
   end subroutine setup
+
+  !> The element loops with their materials, and the state they start from (initial
+  !> temperatures and stresses), once the memory they take is known to be there.
+  subroutine setup_state(a, model, err)
+    type(analysis_t), intent(inout) :: a
+    type(model_t), intent(in) :: model
+    type(error_t), allocatable, intent(out) :: err
+    type(material_slot_t), allocatable :: materials(:)
+    integer :: n_state
+    call make_materials(model, materials, err)
+    if (.not. allocated(err)) call a%elements%init(model%element_kinds, model%mesh, &
+      model%sections(model%element_section)%material, &
+      model%sections(model%element_section)%formulation == FORMULATION_BBAR, materials, err)
+    if (allocated(err)) return
+    if (size(model%orientations) > 0) call a%elements%set_orientations( &
+      model%orientations%axes, model%sections(model%element_section)%orientation)
+    n_state = a%elements%n_material_state()
+    call set_activity('setting up the analysis', setup_bytes(model, a%elements%max_points, n_state))
+    call ensure_memory(setup_bytes(model, a%elements%max_points, n_state), &
+                       'setting up the analysis', err)
+    if (allocated(err)) return
+    call a%state%init(model%mesh%x, model%mesh%n_elements, a%elements%max_points, n_state)
+    if (model%has_temperature) call a%state%init_temperature(model%initial_temperature)
+    call apply_initial_stresses(a%elements, model, a%state%elements)
+  end subroutine setup_state
+
+  !> The model's linear solver on the run's processes (a parallel run needs MUMPS), the reuse
+  !> of its factors, and the vectors of the system.
+  subroutine setup_solver(sys, comm, model, err)
+    type(linear_system_t), intent(inout) :: sys
+    type(comm_t), intent(in) :: comm
+    type(model_t), intent(in) :: model
+    type(error_t), allocatable, intent(out) :: err
+    call create_linear_solver(model%solver_name, sys%solver, err)
+    if (allocated(err)) return
+    sys%solver%node_id = model%mesh%node_id(1:model%mesh%n_nodes)
+    call sys%reuse%init(reuse_settings_t(tolerance=model%reuse_tolerance), comm)
+    if (comm%size > 1 .and. .not. sys%solver%runs_in_parallel()) then
+      call input_error(err, 'a parallel run needs the MUMPS solver (*SOLVER, TYPE=MUMPS or ' // &
+                       '--solver MUMPS); ' // model%solver_name // ' runs on one process only')
+      return
+    end if
+    call sys%solver%set_comm(comm)
+    call sys%allocate_vectors(model%mesh%n_nodes)
+  end subroutine setup_solver
 
   !> The friction law of each contact pair: its interaction's *FRICTION, or frictionless
   !> Coulomb (mu = 0) when it has none.
@@ -314,22 +342,17 @@ contains
     type(model_t), intent(in) :: model
     type(error_t), allocatable, intent(out) :: err
     integer, allocatable :: owner(:), nodes(:)
-    integer :: e, n, k, i
+    integer :: e, k, i
     associate (a => run%analysis)
-      call partition_elements(a%comm, model%mesh%connectivity, model%mesh%n_nodes, owner, err)
+      call partition_elements(a%share%comm, model%mesh%connectivity, model%mesh%n_nodes, owner, err)
       if (allocated(err)) return
-      call a%elements%set_share(pack([(e, e = 1, model%mesh%n_elements)], owner == a%comm%rank))
-      n = a%contact%n_slaves()
-      allocate (a%owns_slave(n))
-      a%owns_slave = [((i - 1) * a%comm%size / max(n, 1) == a%comm%rank, i = 1, n)]
-      allocate (a%pressure_ptr(1), a%pressure_nodes(0))
-      a%pressure_ptr(1) = 1
+      call a%elements%set_share(pack([(e, e = 1, model%mesh%n_elements)], owner == a%share%comm%rank))
+      call a%share%share_slaves(a%contact%n_slaves())
       do k = 1, size(model%steps)
         do i = 1, size(model%steps(k)%pressures)
           nodes = a%elements%face_nodes(model%steps(k)%pressures(i)%element, &
                                         model%steps(k)%pressures(i)%face)
-          a%pressure_nodes = [a%pressure_nodes, nodes]
-          a%pressure_ptr = [a%pressure_ptr, a%pressure_ptr(size(a%pressure_ptr)) + size(nodes)]
+          call a%share%add_pressure_face(nodes)
         end do
       end do
     end associate
@@ -341,7 +364,7 @@ contains
     type(model_t), intent(in) :: model
     type(error_t), allocatable, intent(out) :: err
     call run%outputs%create(model, run%analysis, err)
-    call run%analysis%comm%agree_error(err)
+    call run%analysis%share%comm%agree_error(err)
     if (allocated(err)) return
     call run%monitors%init(model, run%analysis, run%job, err)
     if (.not. allocated(err)) call run%monitors%write_files(err)
@@ -373,7 +396,7 @@ contains
       call run%monitors%write_files(err)
       if (.not. allocated(err)) call run%outputs%reopen(model, run%analysis, info, run%log, err)
     end if
-    call run%analysis%comm%agree_error(err)
+    call run%analysis%share%comm%agree_error(err)
   end subroutine resume_outputs
 
 
@@ -386,7 +409,7 @@ contains
     call gather_element_fields(run%analysis)
     if (run%writer) call save_checkpoint(run%job, run%analysis, run%monitors, model, &
                                          run%outputs%n_frames(), err)
-    call run%analysis%comm%agree_error(err)
+    call run%analysis%share%comm%agree_error(err)
     run%last_checkpoint = wall_time()
     if (.not. allocated(err)) call run%log%detail('checkpoint written: ' // run%job // '.rst.h5 ' // &
       '(time ' // str(run%analysis%state%time) // ', increment ' // str(run%analysis%state%increment) // ')')
@@ -399,7 +422,7 @@ contains
     logical, intent(in) :: flag
     real(dp) :: value
     value = merge(1.0_dp, 0.0_dp, flag)
-    call run%analysis%comm%max_real(value)
+    call run%analysis%share%comm%max_real(value)
     any_rank = value > 0.0_dp
   end function any_rank
 
@@ -449,7 +472,7 @@ contains
         call sample_histories(run, model, .true., err)
         if (.not. allocated(err)) call run%outputs%write_due(run%analysis, model, run%monitors, &
                                                              run%log, .true., err)
-        call run%analysis%comm%agree_error(err)
+        call run%analysis%share%comm%agree_error(err)
         if (allocated(err)) return
         call run%log%info('end of step ' // str(k) // ' ("' // model%steps(k)%name // '") at time ' // &
                           str(state%time) // ' after ' // str(state%step_increment) // ' increment(s)' // &
@@ -496,7 +519,7 @@ contains
                                                                  state%last_increment, run%log, err)
         if (.not. allocated(err)) call sample_histories(run, model, .false., err)
         if (.not. allocated(err)) call run%log%check(err)
-        call run%analysis%comm%agree_error(err)
+        call run%analysis%share%comm%agree_error(err)
         if (allocated(err)) exit
         if (any_rank(run, signal_received() /= 0)) then
           call stop_on_signal(run, model, err)
@@ -658,13 +681,13 @@ contains
     associate (a => run%analysis)
       call run%log%info(outcome // ': ' // str(a%state%increment) // ' increment(s), time ' // &
         str(a%state%time) // ', wall ' // format_duration(wall_time() - run%started) // &
-        ', peak memory ' // memory_text(peak_memory_mib()) // ' MiB; solver ' // a%solver%name())
+        ', peak memory ' // memory_text(peak_memory_mib()) // ' MiB; solver ' // a%sys%solver%name())
       do i = 1, size(phases)
         call run%log%info('  ' // phases(i) // ': ' // format_duration(a%timers%total(trim(phases(i)))))
       end do
-      call log_solver_stats(run, a%solver%stats)
-      call run%log%info('  ' // a%reuse%summary())
-      call run%monitors%report_open_events(a, run%log)
+      call log_solver_stats(run, a%sys%solver%stats)
+      call run%log%info('  ' // a%sys%reuse%summary())
+      call run%monitors%report_open_events(a%contact, run%log)
     end associate
   end subroutine summary
 
@@ -689,7 +712,7 @@ contains
     type(run_t), intent(inout) :: run
     type(error_t), allocatable, intent(inout) :: err
     call run%outputs%close(err)
-    if (allocated(run%analysis%solver)) call run%analysis%solver%free()
+    if (allocated(run%analysis%sys%solver)) call run%analysis%sys%solver%free()
   end subroutine close_outputs
 
 end module fcs_driver

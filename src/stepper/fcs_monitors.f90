@@ -8,7 +8,9 @@ module fcs_monitors
   use fcs_static_explicit, only: analysis_t, current_reactions
   use fcs_history, only: history_table_t
   use fcs_event_catalog, only: event_catalog_t
-  use fcs_contact_system, only: pair_totals_t
+  use fcs_contact_system, only: contact_system_t, pair_totals_t
+  use fcs_element_loops, only: element_loops_t
+  use fcs_element_state, only: element_state_t
   use fcs_log, only: logger_t
   use fcs_strings, only: string_t, str
   use fcs_archive, only: archive_t
@@ -44,7 +46,7 @@ contains
     type(error_t), allocatable, intent(out) :: err
     integer :: k
     integer, allocatable :: sizes(:)
-    this%writer = a%comm%is_root()
+    this%writer = a%share%comm%is_root()
     allocate (this%tables(size(model%histories)))
     do k = 1, size(model%histories)
       call this%tables(k)%create(model%histories(k)%name, job // '_' // to_lower_name( &
@@ -203,7 +205,7 @@ contains
     case (HISTORY_RESIDUAL)
       values = [a%state%residual_norm]
     case default
-      values = [strain_energy(this, a), a%contact%frictional_work(a%state%contact)]
+      values = [strain_energy(this, a%elements, a%state%elements), a%contact%frictional_work(a%state%contact)]
     end select
   end function item_values
 
@@ -221,19 +223,18 @@ contains
   !> 1/2 sum sigma:eps_e dV over the integration points (reference volumes; the elastic strain
   !> energy at small strains), eps_e = eps - eps_p the elastic part of the strain when a
   !> material is plastic.
-  real(dp) function strain_energy(this, a)
+  real(dp) function strain_energy(this, elements, fields)
     type(monitors_t), intent(in) :: this
-    type(analysis_t), intent(in) :: a
+    type(element_loops_t), intent(in) :: elements
+    type(element_state_t), intent(in) :: fields
     real(dp), allocatable :: peeq(:, :), plastic_strain(:, :, :), back_stress(:, :, :)
-    associate (fields => a%state%elements)
-      if (a%elements%has_states()) then
-        call a%elements%plastic_fields(fields, peeq, plastic_strain, back_stress)
-        strain_energy = 0.5_dp * sum(sum(fields%stress * (fields%strain - plastic_strain), dim=1) * &
-                                     this%volume)
-      else
-        strain_energy = 0.5_dp * sum(sum(fields%stress * fields%strain, dim=1) * this%volume)
-      end if
-    end associate
+    if (elements%has_states()) then
+      call elements%plastic_fields(fields, peeq, plastic_strain, back_stress)
+      strain_energy = 0.5_dp * sum(sum(fields%stress * (fields%strain - plastic_strain), dim=1) * &
+                                   this%volume)
+    else
+      strain_energy = 0.5_dp * sum(sum(fields%stress * fields%strain, dim=1) * this%volume)
+    end if
   end function strain_energy
 
   !> Feed the event catalog after an increment that started at t_start; log ended events.
@@ -269,16 +270,16 @@ contains
   !> At the end of a run: say in the log which pairs have a slip event under way. Such an
   !> event is not catalogued (its end is unknown); the checkpoint holds it, so a restart with
   !> added steps completes it (doc/restart.md, "Event catalog").
-  subroutine monitors_report_open_events(this, a, log)
+  subroutine monitors_report_open_events(this, contact, log)
     class(monitors_t), intent(in) :: this
-    type(analysis_t), intent(in) :: a
+    type(contact_system_t), intent(in) :: contact
     type(logger_t), intent(inout) :: log
     integer :: k
     if (.not. this%catalog_on) return
     do k = 1, size(this%catalog%watch)
       associate (w => this%catalog%watch(k))
         if (.not. w%active) cycle
-        call log%info('slip event under way on ' // a%contact%pair_name(k) // ' at the end ' // &
+        call log%info('slip event under way on ' // contact%pair_name(k) // ' at the end ' // &
           'of the run (onset ' // str(w%event%onset) // ', ' // str(count(w%involved)) // &
           ' nodes so far, hypocentre node ' // str(w%event%hypocentre) // '): not in the ' // &
           'catalog; a restart with added steps completes it')

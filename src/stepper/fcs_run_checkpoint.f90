@@ -54,22 +54,23 @@ contains
     info%dat_size = max(0_i8, file_size(job // '.dat'))
     info%n_frames = n_frames
     call begin_checkpoint(job, archive, err)
-    if (.not. allocated(err)) call save_owners(archive, a, monitors, err)
+    if (.not. allocated(err)) call save_owners(archive, a%state, a%contact, monitors, err)
     call end_checkpoint(archive, job, info, model%checkpoint%generations, err)
   end subroutine save_checkpoint
 
   !> Every owner of run state saves itself into `archive`: the state (coordinates,
   !> displacements, integration-point fields, counters), the contact states, the contact
   !> system's search and pattern bookkeeping, the monitors (histories, event catalog).
-  subroutine save_owners(archive, a, monitors, err)
+  subroutine save_owners(archive, state, contact, monitors, err)
     class(archive_t), intent(inout) :: archive
-    type(analysis_t), intent(in) :: a
+    type(state_t), intent(in) :: state
+    type(contact_system_t), intent(in) :: contact
     type(monitors_t), intent(in) :: monitors
     type(error_t), allocatable, intent(out) :: err
-    call a%state%save(archive, err)
-    if (.not. allocated(err)) call a%state%elements%save(archive, '/state', err)
-    if (.not. allocated(err)) call a%state%contact%save(archive, err)
-    if (.not. allocated(err)) call a%contact%save(archive, err)
+    call state%save(archive, err)
+    if (.not. allocated(err)) call state%elements%save(archive, '/state', err)
+    if (.not. allocated(err)) call state%contact%save(archive, err)
+    if (.not. allocated(err)) call contact%save(archive, err)
     if (.not. allocated(err)) call monitors%save(archive, err)
   end subroutine save_owners
 
@@ -115,7 +116,7 @@ contains
     warning = ''
     call read_checkpoint(path, a%state, a%contact, monitors, info, err)
     if (allocated(err)) then
-      call offer_older_generation(path, a, monitors, err)
+      call offer_older_generation(path, a%state, a%contact, monitors, err)
       return
     end if
     call check_deck(model, info, err)
@@ -184,15 +185,16 @@ contains
   !> When a checkpoint cannot be read, name the newest OLDER generation that can be read in
   !> full: read as a restart reads it (every dataset and the overall checksum verified) into
   !> scratch copies of the state, contact bookkeeping and monitors.
-  subroutine offer_older_generation(path, a, monitors, err)
+  subroutine offer_older_generation(path, state, contact, monitors, err)
     character(len=*), intent(in) :: path
-    type(analysis_t), intent(in) :: a
+    type(state_t), intent(in) :: state
+    type(contact_system_t), intent(in) :: contact
     type(monitors_t), intent(in) :: monitors
     type(error_t), intent(inout) :: err
     type(checkpoint_info_t) :: info
     type(error_t), allocatable :: other_err
-    type(state_t) :: state
-    type(contact_system_t) :: contact
+    type(state_t) :: scratch_state
+    type(contact_system_t) :: scratch_contact
     type(monitors_t) :: scratch
     character(len=:), allocatable :: stem, candidate
     integer :: g, k, own
@@ -204,10 +206,10 @@ contains
     do g = own + 1, own + 100
       candidate = checkpoint_generation_path(stem, g)
       if (.not. file_exists(candidate)) exit
-      state = a%state
-      contact = a%contact
+      scratch_state = state
+      scratch_contact = contact
       scratch = monitors
-      call read_checkpoint(candidate, state, contact, scratch, info, other_err)
+      call read_checkpoint(candidate, scratch_state, scratch_contact, scratch, info, other_err)
       if (allocated(other_err)) then
         deallocate (other_err)
         cycle

@@ -8,7 +8,7 @@ module fcs_run_outputs
   use fcs_error, only: error_t
   use fcs_model, only: model_t, OUTPUT_NODE_PRINT, OUTPUT_EL_PRINT, OUTPUT_CONTACT_PRINT
   use fcs_static_explicit, only: analysis_t, current_reactions, gather_element_fields
-  use fcs_contact_system, only: pair_totals_t
+  use fcs_contact_system, only: contact_system_t, pair_totals_t
   use fcs_results, only: results_file_t, GRID_POINTS
   use fcs_xdmf, only: xdmf_cell_type
   use fcs_dat_output, only: dat_file_t
@@ -54,7 +54,7 @@ contains
     call this%dat%open(this%job // '.dat', err)
     if (.not. allocated(err)) call this%results%create(this%job, model%mesh%node_id, model%mesh%x, &
       model%mesh%element_id, model%mesh%connectivity, err, cell_types(model))
-    if (.not. allocated(err)) call define_contact_grids(this, a, err)
+    if (.not. allocated(err)) call define_contact_grids(this, a%contact, err)
   end subroutine outputs_create
 
   !> Cut the text and results files back to the checkpoint `info` and reopen them. Outputs
@@ -92,7 +92,7 @@ contains
       call this%results%create(this%job, model%mesh%node_id, model%mesh%x, model%mesh%element_id, &
                                model%mesh%connectivity, err, cell_types(model))
     end if
-    if (.not. allocated(err)) call define_contact_grids(this, a, err)
+    if (.not. allocated(err)) call define_contact_grids(this, a%contact, err)
   end subroutine outputs_reopen
 
   !> Each element's XDMF cell type, from its kind's faces and nodes.
@@ -272,14 +272,14 @@ contains
   end subroutine write_plastic_fields
 
   !> One point grid per contact pair (its slave nodes) in the results.
-  subroutine define_contact_grids(this, a, err)
+  subroutine define_contact_grids(this, contact, err)
     type(run_outputs_t), intent(inout) :: this
-    type(analysis_t), intent(in) :: a
+    type(contact_system_t), intent(in) :: contact
     type(error_t), allocatable, intent(out) :: err
     integer :: k, m, i
-    do k = 1, a%contact%n_pairs()
-      m = size(a%contact%pair_slave_nodes(k))
-      call this%results%define_surface_grid('contact_' // a%contact%pair_name(k), GRID_POINTS, &
+    do k = 1, contact%n_pairs()
+      m = size(contact%pair_slave_nodes(k))
+      call this%results%define_surface_grid('contact_' // contact%pair_name(k), GRID_POINTS, &
                                             reshape([(i, i = 0, m - 1)], [1, m]), err)
       if (allocated(err)) return
     end do

@@ -15,8 +15,9 @@ module fcs_static_explicit
   use fcs_model, only: model_t, step_t
   use fcs_state, only: state_t
   use fcs_sparse, only: sparse_matrix_t
-  use fcs_linear_solver, only: linear_solver_t
-  use fcs_factor_reuse, only: factor_reuse_t
+  use fcs_linear_system, only: linear_system_t
+  use fcs_work_share, only: work_share_t
+  use fcs_increment_trial, only: increment_trial_t
   use fcs_metis_order, only: metis_equation_order
   use fcs_loading, only: step_loading_t
   use fcs_assembly, only: assemble_pressures, assemble_body_loads
@@ -29,7 +30,6 @@ module fcs_static_explicit
   use fcs_contact_system, only: contact_system_t
   use fcs_comm, only: comm_t
   use fcs_strings, only: str
-  use fcs_linear_constraints, only: constraint_map_t
   implicit none
   private
   public :: analysis_t, take_increment, increment_record_t, build_pattern, contact_positions
@@ -61,6 +61,17 @@ module fcs_static_explicit
     integer :: residual_direction = 0
   end type increment_record_t
 
+  !> The increment being taken: the state at its start, its start time t0 in the step, the
+  !> trial time increment dt, and the fraction r of it taken.
+  type :: increment_t
+    type(state_t) :: start
+    real(dp) :: t0 = 0.0_dp
+    real(dp) :: dt = 0.0_dp
+    real(dp) :: r = 1.0_dp
+  contains
+    procedure :: end_time => increment_end_time
+  end type increment_t
+
   !> Largest number of solves of one increment while contact tangents are switched.
   integer, parameter :: MAX_STATE_PASSES = 12
   !> Largest number of cuts (by CUT_FACTOR each) of one increment whose equilibrium
@@ -73,58 +84,27 @@ module fcs_static_explicit
   !> less than this factor.
   real(dp), parameter :: STAGNATION = 0.5_dp
 
-  !> Working storage of the analysis, allocated once and reused every increment.
+  !> The analysis: the run state and what acts on it. Each part is documented in its own
+  !> module; a routine takes the parts it uses.
   type :: analysis_t
+    !> The run state (saved by checkpoints, with the contact system's bookkeeping).
     type(state_t) :: state
     !> The element loops: kinds, nodes, materials and formulation of every element, and the
     !> elements of this process.
     type(element_loops_t) :: elements
-    type(sparse_matrix_t) :: matrix
-    class(linear_solver_t), allocatable :: solver
-    !> Reuse of the solver's factors across tangents (GMRES preconditioned by them).
-    type(factor_reuse_t) :: reuse
-    type(step_loading_t) :: loading
-    real(dp), allocatable :: f_int(:), f_ext0(:), f_ext1(:), rhs(:), du(:), prescribed(:)
-    !> The two parts of the trial solution: du_load for the load increment over the trial
-    !> time increment (scaled by r), du_residual for the out-of-balance force of the current
-    !> state (applied in full, so that equilibrium errors do not linger); rhs_residual its
-    !> right-hand side.
-    real(dp), allocatable :: du_load(:), du_residual(:), rhs_residual(:)
-    !> Equilibrium iterations: external forces at the end of the increment, nodal force
-    !> flux (the force scale, per node), the correction of one iteration.
-    real(dp), allocatable :: f_ext_end(:), flux(:), correction(:)
-    !> Degrees of freedom held in the solve: prescribed ones, those of nodes in no element,
-    !> and the dependent ones of the linear constraints (`links`).
-    logical, allocatable :: constrained(:)
-    !> The linear constraints (*EQUATION) resolved into u_D = T u_I, eliminated from every
-    !> solve (fcs_linear_constraints, (L1)-(L2); doc/theory.md 6.2).
-    type(constraint_map_t) :: links
-    type(rmin_collector_t) :: collector
-    type(phase_timer_t) :: timers
-    !> Node-to-point contact pairs, and their nodal forces (3*n_nodes).
+    !> Node-to-point contact pairs (their per-node states are in state%contact).
     type(contact_system_t) :: contact
-    real(dp), allocatable :: f_contact(:)
     !> Coordinates the contact search and elements use (current positions X + u).
     real(dp), allocatable :: x_contact(:, :)
-    !> The processes of the run and the work of this one (replicated state, distributed
-    !> work): the elements it assembles and updates (elements%mine), and the contact slaves it
-    !> assembles. Everything else (displacements, contact states) is the same on every process.
-    type(comm_t) :: comm
-    logical, allocatable :: owns_slave(:)
-    !> Nodes of the faces loaded by pressures in any step, face k
-    !> pressure_nodes(pressure_ptr(k):pressure_ptr(k+1)-1) (their load stiffness goes to rank 0).
-    integer, allocatable :: pressure_ptr(:), pressure_nodes(:)
-    !> A distributed run's pattern changed: the solver needs the whole model's ordering.
-    logical :: ordering_due = .false.
-    !> Integration points on their yield surface that the trial increment unloads (q, e):
-    !> assembled with the elastic tangent for the rest of the increment.
-    logical, allocatable :: unloading(:, :)
-    !> Nodal temperatures at the end of the trial increment (models with temperatures), and
-    !> whether temperature acts on some material (thermal load and update).
-    real(dp), allocatable :: temperature_trial(:), f_thermal(:)
-    !> The mean nodal size of the last trial's thermal load: a force scale of its own for
-    !> the out-of-balance tolerance (a freely expanding body carries no internal force).
-    real(dp) :: thermal_scale = 0.0_dp
+    !> The loads, supports and temperatures of the current step.
+    type(step_loading_t) :: loading
+    !> The sparse system, its solver, force and increment vectors (fcs_linear_system).
+    type(linear_system_t) :: sys
+    !> The processes of the run and the work of this one (fcs_work_share).
+    type(work_share_t) :: share
+    !> What the trial solution of the current increment found (fcs_increment_trial).
+    type(increment_trial_t) :: trial
+    type(phase_timer_t) :: timers
   end type analysis_t
 
 contains
@@ -137,96 +117,138 @@ contains
     type(model_t), intent(in) :: model
     type(increment_record_t), intent(out) :: record
     type(error_t), allocatable, intent(out) :: err
-    type(state_t) :: start
-    real(dp) :: t0, dt, r
-    logical :: limited_by_friction, converged
+    type(increment_t) :: inc
+    logical :: limited_by_friction
     integer(i8) :: krylov_before
-    krylov_before = a%reuse%stats%krylov_iterations
+    krylov_before = a%sys%reuse%stats%krylov_iterations
     associate (step => model%steps(a%state%step))
-      call trial_time_increment(a, step, t0, dt, limited_by_friction)
-      record%trial_increment = dt
-      call external_forces(a, model, step%nlgeom, t0, t0 + dt)
-      call prescribed_increments(a, model, t0, t0 + dt)
+      call trial_time_increment(a%state, a%loading, step, inc%t0, inc%dt, limited_by_friction)
+      record%trial_increment = inc%dt
+      call external_forces(a, model, step%nlgeom, inc%t0, inc%t0 + inc%dt)
+      call prescribed_increments(a, model, inc%t0, inc%t0 + inc%dt)
       call ensure_pattern(a, model, err)
       if (allocated(err)) return
-      call trial_solution(a, model, step, t0, dt, record, err)
+      call trial_solution(a, model, step, inc%t0, inc%dt, record, err)
       if (allocated(err)) return
       call a%timers%start('r-minimum')
-      call choose_fraction(a, model, step, dt, limited_by_friction, record, r, err)
+      call choose_fraction(a, model, step, inc%dt, limited_by_friction, record, inc%r, err)
       call a%timers%stop('r-minimum')
       if (allocated(err)) return
-      start = a%state
-      do
-        a%du = a%du_residual + r * a%du_load
-        ! The increment as the R-minimum strategy chose it must keep every element valid
-        ! and every contact node within the penetration limit: if not, the deformation or
-        ! the penalty is wrong, not the increment.
-        call apply_increment(a, model, step, t0, dt, r, err, .true.)
-        if (allocated(err)) then
-          a%state = start
-          return
-        end if
-        if (a%contact%n_slaves() > 0) call a%contact%hold_states(a%state%contact)
-        call equilibrate(a, model, step, start, t0, dt, r, record, converged, err)
-        if (a%contact%n_slaves() > 0) call a%contact%release_states(a%state%contact)
-        if (.not. allocated(err) .and. converged .and. a%contact%n_slaves() > 0) &
-          call a%contact%check_gaps(model%mesh%node_id, a%state%contact, err)
-        if (allocated(err)) then
-          a%state = start
-          return
-        end if
-        ! Iterations that do not converge cut the increment (NO EQUILIBRIUM=STOP), or the
-        ! increment is taken as the static-explicit scheme takes it, without iterations, its
-        ! out-of-balance force carried into the next (NO EQUILIBRIUM=CARRY: an unstable slip
-        ! event has no equilibrium to cut towards).
-        if (converged) exit
-        if (step%rmin%carry_unbalanced) then
-          a%state = start
-          a%du = a%du_residual + r * a%du_load
-          call apply_increment(a, model, step, t0, dt, r, err, .true.)
-          if (.not. allocated(err)) call out_of_balance(a, model, step, record, err)
-          if (allocated(err)) then
-            a%state = start
-            return
-          end if
-          record%carried = .true.
-          exit
-        end if
-        call cut_increment(a, model, step, start, dt, record, r, err)
-        if (allocated(err)) return
-      end do
-      record%r = r
-      record%n_events_taken = count_taken(a, r)
-      record%krylov_iterations = int(a%reuse%stats%krylov_iterations - krylov_before)
-      a%state%residual_norm = record%residual_ratio
-      a%state%increment = a%state%increment + 1
-      a%state%force_scale = a%state%force_scale + (record%force_scale - a%state%force_scale) / &
-                            a%state%increment
-      if (record%residual_ratio >= a%state%step_worst_residual) then
-        a%state%step_worst_residual = record%residual_ratio
-        a%state%step_worst_residual_increment = a%state%increment
-      end if
-      a%state%step_increment = a%state%step_increment + 1
+      inc%start = a%state
+      call take_fraction(a, model, step, inc, record, err)
+      if (allocated(err)) return
+      record%r = inc%r
+      record%n_events_taken = count_taken(a%trial%collector, inc%r)
+      record%krylov_iterations = int(a%sys%reuse%stats%krylov_iterations - krylov_before)
+      call count_increment(a%state, record)
     end associate
   end subroutine take_increment
+
+  !> Take the fraction inc%r of the trial increment from the state inc%start, in equilibrium:
+  !> apply it, iterate to equilibrium with the contact states held, and cut it while the
+  !> iterations do not converge. Iterations that do not converge cut the increment (NO
+  !> EQUILIBRIUM=STOP), or the increment is taken as the static-explicit scheme takes it,
+  !> without iterations, its out-of-balance force carried into the next (NO
+  !> EQUILIBRIUM=CARRY: an unstable slip event has no equilibrium to cut towards). On an
+  !> error the state is inc%start.
+  subroutine take_fraction(a, model, step, inc, record, err)
+    type(analysis_t), intent(inout) :: a
+    type(model_t), intent(in) :: model
+    type(step_t), intent(in) :: step
+    type(increment_t), intent(inout) :: inc
+    type(increment_record_t), intent(inout) :: record
+    type(error_t), allocatable, intent(out) :: err
+    logical :: converged
+    do
+      a%sys%du = a%sys%du_residual + inc%r * a%sys%du_load
+      ! The increment as the R-minimum strategy chose it must keep every element valid
+      ! and every contact node within the penetration limit: if not, the deformation or
+      ! the penalty is wrong, not the increment.
+      call apply_increment(a, model, step, inc, err, predict_penetration=.true.)
+      if (.not. allocated(err)) call equilibrate_held(a, model, step, inc, record, converged, err)
+      if (allocated(err)) then
+        a%state = inc%start
+        return
+      end if
+      if (converged) exit
+      if (step%rmin%carry_unbalanced) then
+        a%state = inc%start
+        a%sys%du = a%sys%du_residual + inc%r * a%sys%du_load
+        call apply_increment(a, model, step, inc, err, predict_penetration=.true.)
+        if (.not. allocated(err)) call out_of_balance(a, model, step, record, err)
+        if (allocated(err)) then
+          a%state = inc%start
+          return
+        end if
+        record%carried = .true.
+        exit
+      end if
+      call cut_increment(a, model, step, inc, record, err)
+      if (allocated(err)) return
+    end do
+  end subroutine take_fraction
+
+  !> Equilibrium iterations (`equilibrate`) with the contact states held, then the gaps of
+  !> the converged solution checked.
+  subroutine equilibrate_held(a, model, step, inc, record, converged, err)
+    type(analysis_t), intent(inout) :: a
+    type(model_t), intent(in) :: model
+    type(step_t), intent(in) :: step
+    type(increment_t), intent(in) :: inc
+    type(increment_record_t), intent(inout) :: record
+    logical, intent(out) :: converged
+    type(error_t), allocatable, intent(out) :: err
+    if (a%contact%n_slaves() > 0) call a%contact%hold_states(a%state%contact)
+    call equilibrate(a, model, step, inc, record, converged, err)
+    if (a%contact%n_slaves() > 0) call a%contact%release_states(a%state%contact)
+    if (.not. allocated(err) .and. converged .and. a%contact%n_slaves() > 0) &
+      call a%contact%check_gaps(model%mesh%node_id, a%state%contact, err)
+  end subroutine equilibrate_held
+
+  !> The run's counters after an increment was taken: increments (of the run and of the
+  !> step), the out-of-balance force left, the mean force scale, the step's worst residual.
+  subroutine count_increment(state, record)
+    type(state_t), intent(inout) :: state
+    type(increment_record_t), intent(in) :: record
+    state%residual_norm = record%residual_ratio
+    state%increment = state%increment + 1
+    state%force_scale = state%force_scale + (record%force_scale - state%force_scale) / &
+                        state%increment
+    if (record%residual_ratio >= state%step_worst_residual) then
+      state%step_worst_residual = record%residual_ratio
+      state%step_worst_residual_increment = state%increment
+    end if
+    state%step_increment = state%step_increment + 1
+  end subroutine count_increment
+
+  !> Step time at the end of the increment: t0 + r dt (t0 + dt exactly when r = 1).
+  pure real(dp) function increment_end_time(this) result(t_end)
+    class(increment_t), intent(in) :: this
+    if (this%r >= 1.0_dp) then
+      t_end = this%t0 + this%dt
+    else
+      t_end = this%t0 + this%r * this%dt
+    end if
+  end function increment_end_time
 
   !> The trial time increment from t0: the step's maximum (its initial increment first), or
   !> less if the friction-rate limits of the last increment say so (not below the minimum),
   !> cut at the next breakpoint of the loading.
-  subroutine trial_time_increment(a, step, t0, dt, limited_by_friction)
-    type(analysis_t), intent(in) :: a
+  subroutine trial_time_increment(state, loading, step, t0, dt, limited_by_friction)
+    type(state_t), intent(in) :: state
+    type(step_loading_t), intent(in) :: loading
     type(step_t), intent(in) :: step
     real(dp), intent(out) :: t0, dt
     logical, intent(out) :: limited_by_friction
-    t0 = a%state%step_time
+    t0 = state%step_time
     dt = step%max_increment
-    if (a%state%step_increment == 0) dt = step%initial_increment
+    if (state%step_increment == 0) dt = step%initial_increment
     limited_by_friction = .false.
-    if (a%state%friction_dt > 0.0_dp .and. max(a%state%friction_dt, step%min_increment) < dt) then
-      dt = max(a%state%friction_dt, step%min_increment)
+    if (state%friction_dt > 0.0_dp .and. max(state%friction_dt, step%min_increment) < dt) then
+      dt = max(state%friction_dt, step%min_increment)
       limited_by_friction = .true.
     end if
-    dt = min(dt, a%loading%next_breakpoint(t0) - t0)
+    dt = min(dt, loading%next_breakpoint(t0) - t0)
   end subroutine trial_time_increment
 
   !> Rebuild the sparse pattern when the contact elements have moved out of it (and, in a
@@ -236,9 +258,9 @@ contains
     type(model_t), intent(in) :: model
     type(error_t), allocatable, intent(out) :: err
     if (a%contact%needs_pattern()) call build_pattern(a, model)
-    if (a%ordering_due) then
+    if (a%sys%ordering_due) then
       call give_global_ordering(a, model, err)
-      call a%comm%agree_error(err)
+      call a%share%comm%agree_error(err)
     end if
   end subroutine ensure_pattern
 
@@ -252,25 +274,25 @@ contains
     type(increment_record_t), intent(inout) :: record
     type(error_t), allocatable, intent(out) :: err
     integer :: pass, n_switched
-    if (a%elements%has_states()) call reset_unloading(a)
+    if (a%elements%has_states()) call a%trial%reset_unloading(a%elements%max_points, a%state%n_elements)
     do pass = 1, MAX_STATE_PASSES
       call a%timers%start('assembly')
       call assemble_system(a, model, step, t0, dt, err)
       call a%timers%stop('assembly')
       if (allocated(err)) return
-      a%rhs_residual = a%f_ext0 + a%f_contact - a%f_int
-      call a%links%reduce_vector(a%rhs_residual)
-      where (a%constrained) a%rhs_residual = 0.0_dp
-      call impose_constraints(a, err)
+      a%sys%rhs_residual = a%sys%f_ext0 + a%sys%f_contact - a%sys%f_int
+      call a%sys%links%reduce_vector(a%sys%rhs_residual)
+      where (a%sys%constrained) a%sys%rhs_residual = 0.0_dp
+      call a%sys%constrain_trial(a%share%comm, err)
       if (allocated(err)) return
-      call solve_system(a, model%mesh%node_id, err)
-      call a%comm%agree_error(err)
+      call a%sys%solve_trial(a%timers, model%mesh%node_id, err)
+      call a%share%comm%agree_error(err)
       if (allocated(err)) return
       if (a%contact%n_slaves() == 0 .and. .not. a%elements%has_states()) exit
-      a%du = a%du_residual + a%du_load
+      a%sys%du = a%sys%du_residual + a%sys%du_load
       n_switched = 0
       if (a%contact%n_slaves() > 0) &
-        call a%contact%switch_states(a%x_contact, a%state%contact, a%du, n_switched)
+        call a%contact%switch_states(a%x_contact, a%state%contact, a%sys%du, n_switched)
       if (a%elements%has_states()) call switch_unloading(a, step%nlgeom, n_switched)
       record%n_switches = record%n_switches + n_switched
       if (n_switched == 0) exit
@@ -289,19 +311,19 @@ contains
     real(dp), intent(out) :: r
     type(error_t), allocatable, intent(out) :: err
     call collect_events(a, step, err)
-    call a%comm%agree_error(err)
+    call a%share%comm%agree_error(err)
     if (allocated(err)) return
-    call global_fraction(a, step%rmin%event_tolerance, r)
-    record%limiting = a%collector%limiting
+    call global_fraction(a%trial%collector, a%share%comm, step%rmin%event_tolerance, r)
+    record%limiting = a%trial%collector%limiting
     if (limited_by_friction .and. record%limiting%kind == EVENT_FULL_INCREMENT) &
       record%limiting = rmin_event_t(1.0_dp, a%state%friction_kind, a%state%friction_node, 0)
     if (r * dt < step%min_increment .and. r < 1.0_dp) then
-      if (a%collector%limiting%kind == EVENT_STRAIN_LIMIT .or. &
-          a%collector%limiting%kind == EVENT_ROTATION_LIMIT) then
-        call fatal_error(err, 'the ' // event_kind_name(a%collector%limiting%kind) // &
+      if (a%trial%collector%limiting%kind == EVENT_STRAIN_LIMIT .or. &
+          a%trial%collector%limiting%kind == EVENT_ROTATION_LIMIT) then
+        call fatal_error(err, 'the ' // event_kind_name(a%trial%collector%limiting%kind) // &
           ' cuts the time increment to ' // str(r * dt) // ', below the minimum ' // &
           str(step%min_increment) // ' of *STATIC (element ' // &
-          str(model%mesh%element_id(a%collector%limiting%entity)) // '): the deformation ' // &
+          str(model%mesh%element_id(a%trial%collector%limiting%entity)) // '): the deformation ' // &
           'is too fast for the time scale; lower the minimum increment or check the loading')
         return
       end if
@@ -310,141 +332,107 @@ contains
     end if
   end subroutine choose_fraction
 
-  !> Apply the increment a%du (fraction r of the trial increment over [t0, t0 + dt]) to the
-  !> state: stresses, displacements, positions, time, and the contact states decided on the
-  !> new positions. Nothing changes before every element is known to stay valid.
-  subroutine apply_increment(a, model, step, t0, dt, r, err, predict_penetration)
+  !> Apply the increment a%sys%du (fraction inc%r of the trial increment over [t0, t0 + dt])
+  !> to the state: stresses, displacements, positions, time, and the contact states decided
+  !> on the new positions. Nothing changes before every element is known to stay valid.
+  subroutine apply_increment(a, model, step, inc, err, predict_penetration)
     type(analysis_t), intent(inout) :: a
     type(model_t), intent(in) :: model
     type(step_t), intent(in) :: step
-    real(dp), intent(in) :: t0, dt, r
+    type(increment_t), intent(in) :: inc
     type(error_t), allocatable, intent(out) :: err
     !> Check the penetration the increment predicts (the first application; the iterates of
     !> the equilibrium iterations are checked on their result instead).
     logical, intent(in) :: predict_penetration
     call a%timers%start('update')
     associate (state => a%state)
-      if (step%nlgeom) call a%elements%check_geometry(state%x, a%du, err)
-      call a%comm%agree_error(err)
+      if (step%nlgeom) call a%elements%check_geometry(state%x, a%sys%du, err)
+      call a%share%comm%agree_error(err)
       if (.not. allocated(err) .and. a%contact%n_slaves() > 0 .and. predict_penetration) &
-        call a%contact%check_penetration(model%mesh%node_id, a%x_contact, state%contact, a%du, err)
+        call a%contact%check_penetration(model%mesh%node_id, a%x_contact, state%contact, a%sys%du, err)
       if (.not. allocated(err)) then
         if (allocated(state%temperature)) then
-          call end_temperatures(a, model, t0, dt, r)
-          call a%elements%update(state%x, a%du, state%elements, step%nlgeom, err, &
-                                 state%temperature, a%temperature_trial)
+          call end_temperatures(a, model, inc%end_time())
+          call a%elements%update(state%x, a%sys%du, state%elements, step%nlgeom, err, &
+                                 state%temperature, a%trial%temperature)
         else
-          call a%elements%update(state%x, a%du, state%elements, step%nlgeom, err)
+          call a%elements%update(state%x, a%sys%du, state%elements, step%nlgeom, err)
         end if
       end if
-      call a%comm%agree_error(err)
+      call a%share%comm%agree_error(err)
       if (allocated(err)) then
         call a%timers%stop('update')
         return
       end if
-      if (allocated(state%temperature)) state%temperature = a%temperature_trial
-      state%u = state%u + reshape(a%du, shape(state%u))
-      if (step%nlgeom) state%x = state%x + reshape(a%du, shape(state%x))
-      if (r >= 1.0_dp) then
-        state%step_time = t0 + dt
-      else
-        state%step_time = t0 + r * dt
-      end if
+      if (allocated(state%temperature)) state%temperature = a%trial%temperature
+      state%u = state%u + reshape(a%sys%du, shape(state%u))
+      if (step%nlgeom) state%x = state%x + reshape(a%sys%du, shape(state%x))
+      state%step_time = inc%end_time()
       call contact_positions(a, model)
       if (a%contact%n_slaves() > 0) then
-        call a%contact%update(a%x_contact, state%contact, state%step_time - t0, r)
-        call friction_step_control(a, step, state%step_time - t0)
+        call a%contact%update(a%x_contact, state%contact, state%step_time - inc%t0, inc%r)
+        call friction_step_control(a%contact, step, state%step_time - inc%t0, state)
       end if
-      state%time = state%time + (state%step_time - t0)
-      state%last_increment = state%step_time - t0
-      state%last_r = r
+      state%time = state%time + (state%step_time - inc%t0)
+      state%last_increment = state%step_time - inc%t0
+      state%last_r = inc%r
     end associate
     call a%timers%stop('update')
   end subroutine apply_increment
 
-  !> The nodal temperatures at the end of the increment of fraction r of [t0, t0 + dt], into
-  !> a%temperature_trial (the time apply_increment gives the state).
-  subroutine end_temperatures(a, model, t0, dt, r)
+  !> The nodal temperatures at step time t_end (the end of the increment), into
+  !> a%trial%temperature.
+  subroutine end_temperatures(a, model, t_end)
     type(analysis_t), intent(inout) :: a
     type(model_t), intent(in) :: model
-    real(dp), intent(in) :: t0, dt, r
-    real(dp) :: t_end
-    if (r >= 1.0_dp) then
-      t_end = t0 + dt
-    else
-      t_end = t0 + r * dt
-    end if
-    if (.not. allocated(a%temperature_trial)) allocate (a%temperature_trial(size(a%state%temperature)))
-    call a%loading%temperature_at(model%amplitudes, t_end, a%temperature_trial)
+    real(dp), intent(in) :: t_end
+    if (.not. allocated(a%trial%temperature)) allocate (a%trial%temperature(size(a%state%temperature)))
+    call a%loading%temperature_at(model%amplitudes, t_end, a%trial%temperature)
   end subroutine end_temperatures
 
   !> Equilibrium iterations on the increment just applied: while the out-of-balance force
   !> at its end exceeds the step's EQUILIBRIUM TOLERANCE, solve K dc = R with the tangent of
   !> the current iterate (prescribed values held), add dc to the increment and apply it
-  !> again from the state `start` at the start of the increment, so that stresses, contact
+  !> again from the state inc%start at the start of the increment, so that stresses, contact
   !> and friction states are decided on the corrected solution (Newton's method on the
   !> increment, as in an implicit step; the R-minimum choice of the increment keeps the
   !> state changes within it small). `converged` is false when the iterations did not reach
   !> the tolerance within MAX ITERATIONS or started to diverge: the caller cuts the increment.
-  subroutine equilibrate(a, model, step, start, t0, dt, r, record, converged, err)
+  subroutine equilibrate(a, model, step, inc, record, converged, err)
     type(analysis_t), intent(inout) :: a
     type(model_t), intent(in) :: model
     type(step_t), intent(in) :: step
-    type(state_t), intent(in) :: start
-    real(dp), intent(in) :: t0, dt, r
+    type(increment_t), intent(in) :: inc
     type(increment_record_t), intent(inout) :: record
     logical, intent(out) :: converged
     type(error_t), allocatable, intent(out) :: err
-    real(dp), allocatable :: base(:)
-    real(dp) :: norm, trial_norm, step_length, previous(2)
-    integer :: iteration, search, n_growing, n_changed
+    real(dp) :: norm, trial_norm, previous(2)
+    integer :: iteration, n_growing
     converged = .false.
     n_growing = 0
     previous = huge(1.0_dp)
     call out_of_balance(a, model, step, record, err)
     if (allocated(err)) return
-    norm = norm2(a%rhs_residual)
+    norm = norm2(a%sys%rhs_residual)
     do iteration = 1, step%rmin%max_iterations + 1
       if (record%residual_ratio <= step%rmin%equilibrium_tolerance) then
-        ! In equilibrium with the held contact states: are they still right?
-        n_changed = 0
-        if (a%contact%n_slaves() > 0) call a%contact%check_held(a%state%contact, n_changed)
-        if (n_changed == 0) then
-          converged = .true.
-          return
-        end if
-        a%state = start
-        call apply_increment(a, model, step, t0, dt, r, err, .false.)
-        if (.not. allocated(err)) call out_of_balance(a, model, step, record, err)
-        if (allocated(err)) return
-        norm = norm2(a%rhs_residual)
+        call recheck_held_states(a, model, step, inc, record, converged, err)
+        if (converged .or. allocated(err)) return
+        norm = norm2(a%sys%rhs_residual)
         n_growing = 0
         previous = huge(1.0_dp)
       end if
       if (iteration > step%rmin%max_iterations) return
       ! A correction that cannot be solved (the iterate lost the contact that supported a
       ! body: a singular tangent) is a failed iteration: the increment is cut.
-      call correction(a, model, step, t0, a%state%step_time - t0, err)
+      call correction(a, model, step, inc%t0, a%state%step_time - inc%t0, err)
       if (allocated(err)) then
         deallocate (err)
         return
       end if
       record%iterations = record%iterations + 1
-      ! Backtracking on the norm of the out-of-balance force: the contact and friction
-      ! states make the residual only piecewise smooth, and a full Newton step across a
-      ! change of state can overshoot.
-      base = a%du
-      step_length = 1.0_dp
-      do search = 1, MAX_LINE_SEARCH
-        a%du = base + step_length * a%correction
-        a%state = start
-        call apply_increment(a, model, step, t0, dt, r, err, .false.)
-        if (.not. allocated(err)) call out_of_balance(a, model, step, record, err)
-        if (allocated(err)) return
-        trial_norm = norm2(a%rhs_residual)
-        if (trial_norm < norm .or. search == MAX_LINE_SEARCH) exit
-        step_length = 0.5_dp * step_length
-      end do
+      call line_search(a, model, step, inc, record, norm, trial_norm, err)
+      if (allocated(err)) return
       if (trial_norm >= norm) then
         n_growing = n_growing + 1
         if (n_growing >= 2) return
@@ -459,8 +447,60 @@ contains
     end do
   end subroutine equilibrate
 
+  !> In equilibrium with the held contact states: are they still right? `settled` when no
+  !> held state changed; else the increment is applied again from inc%start with the changed
+  !> states and its out-of-balance force computed anew.
+  subroutine recheck_held_states(a, model, step, inc, record, settled, err)
+    type(analysis_t), intent(inout) :: a
+    type(model_t), intent(in) :: model
+    type(step_t), intent(in) :: step
+    type(increment_t), intent(in) :: inc
+    type(increment_record_t), intent(inout) :: record
+    logical, intent(out) :: settled
+    type(error_t), allocatable, intent(out) :: err
+    integer :: n_changed
+    n_changed = 0
+    if (a%contact%n_slaves() > 0) call a%contact%check_held(a%state%contact, n_changed)
+    settled = n_changed == 0
+    if (settled) return
+    a%state = inc%start
+    call apply_increment(a, model, step, inc, err, predict_penetration=.false.)
+    if (.not. allocated(err)) call out_of_balance(a, model, step, record, err)
+  end subroutine recheck_held_states
+
+  !> Backtracking on the norm of the out-of-balance force: the correction a%sys%correction
+  !> added to the increment with step lengths 1, 1/2, 1/4, ... (MAX_LINE_SEARCH of them),
+  !> each applied from inc%start, until |R| falls below `norm`; `trial_norm` is |R| of the
+  !> last one, which is the state left. The contact and friction states make the residual
+  !> only piecewise smooth, and a full Newton step across a change of state can overshoot.
+  subroutine line_search(a, model, step, inc, record, norm, trial_norm, err)
+    type(analysis_t), intent(inout) :: a
+    type(model_t), intent(in) :: model
+    type(step_t), intent(in) :: step
+    type(increment_t), intent(in) :: inc
+    type(increment_record_t), intent(inout) :: record
+    real(dp), intent(in) :: norm
+    real(dp), intent(out) :: trial_norm
+    type(error_t), allocatable, intent(out) :: err
+    real(dp), allocatable :: base(:)
+    real(dp) :: step_length
+    integer :: search
+    base = a%sys%du
+    step_length = 1.0_dp
+    do search = 1, MAX_LINE_SEARCH
+      a%sys%du = base + step_length * a%sys%correction
+      a%state = inc%start
+      call apply_increment(a, model, step, inc, err, predict_penetration=.false.)
+      if (.not. allocated(err)) call out_of_balance(a, model, step, record, err)
+      if (allocated(err)) return
+      trial_norm = norm2(a%sys%rhs_residual)
+      if (trial_norm < norm .or. search == MAX_LINE_SEARCH) exit
+      step_length = 0.5_dp * step_length
+    end do
+  end subroutine line_search
+
   !> The out-of-balance force R = f_ext + f_c - f_int of the current state at its time (free
-  !> degrees of freedom, into a%rhs_residual) and its size: the largest nodal |R| over the
+  !> degrees of freedom, into a%sys%rhs_residual) and its size: the largest nodal |R| over the
   !> mean nodal force flux of the elements (nodes that carry force).
   subroutine out_of_balance(a, model, step, record, err)
     type(analysis_t), intent(inout) :: a
@@ -468,47 +508,58 @@ contains
     type(step_t), intent(in) :: step
     type(increment_record_t), intent(inout) :: record
     type(error_t), allocatable, intent(out) :: err
-    real(dp) :: worst, scale, node_norm, sums(2)
-    integer :: node
     call a%timers%start('equilibrium')
-    call a%elements%assemble(a%state%x, a%state%elements, step%nlgeom, a%f_int, err, flux=a%flux)
-    call a%comm%agree_error(err)
+    call a%elements%assemble(a%state%x, a%state%elements, step%nlgeom, a%sys%f_int, err, flux=a%sys%flux)
+    call a%share%comm%agree_error(err)
     if (allocated(err)) then
       call a%timers%stop('equilibrium')
       return
     end if
-    call a%comm%sum_real(a%f_int)
-    call a%comm%sum_real(a%flux)
-    a%f_contact = 0.0_dp
-    if (a%contact%n_slaves() > 0) call a%contact%forces(a%x_contact, a%state%contact, a%f_contact)
-    call external_force_at(a, model, step%nlgeom, a%state%step_time, a%f_ext_end)
-    a%rhs_residual = a%f_ext_end + a%f_contact - a%f_int
-    call a%links%reduce_vector(a%rhs_residual)
-    where (a%constrained) a%rhs_residual = 0.0_dp
-    worst = 0.0_dp
-    record%residual_node = 0
-    do node = 1, model%mesh%n_nodes
-      node_norm = norm2(a%rhs_residual(3 * node - 2:3 * node))
-      if (node_norm > worst) then
-        worst = node_norm
-        record%residual_node = node
-        record%residual_direction = maxloc(abs(a%rhs_residual(3 * node - 2:3 * node)), 1)
-      end if
-    end do
-    sums = [sum(a%flux, mask=a%flux > 0.0_dp), real(count(a%flux > 0.0_dp), dp)]
-    record%force_scale = 0.0_dp
-    if (sums(2) > 0.0_dp) record%force_scale = sums(1) / sums(2)
-    record%force_scale = max(record%force_scale, a%thermal_scale)
-    ! The scale is never below the mean over the increments of the run so far (CalculiX
-    ! averages its force scale over the increments of a step): a body unloaded to nearly no
-    ! stress keeps a tolerance relative to the forces it carried, not to its round-off.
-    scale = max(record%force_scale, a%state%force_scale)
-    record%residual_ratio = 0.0_dp
-    if (worst > 0.0_dp) record%residual_ratio = worst / max(scale, tiny(1.0_dp))
+    call a%share%comm%sum_real(a%sys%f_int)
+    call a%share%comm%sum_real(a%sys%flux)
+    a%sys%f_contact = 0.0_dp
+    if (a%contact%n_slaves() > 0) call a%contact%forces(a%x_contact, a%state%contact, a%sys%f_contact)
+    call external_force_at(a, model, step%nlgeom, a%state%step_time, a%sys%f_ext_end)
+    a%sys%rhs_residual = a%sys%f_ext_end + a%sys%f_contact - a%sys%f_int
+    call a%sys%links%reduce_vector(a%sys%rhs_residual)
+    where (a%sys%constrained) a%sys%rhs_residual = 0.0_dp
+    call measure_residual(a%sys, a%state%force_scale, record)
     call a%timers%stop('equilibrium')
   end subroutine out_of_balance
 
-  !> One equilibrium correction: K dc = R (a%rhs_residual) with K the tangent of the current
+  !> The size of the out-of-balance force sys%rhs_residual into `record`: where its nodal
+  !> norm is largest, the force scale (the mean nodal force flux sys%flux of the nodes that
+  !> carry force, at least the thermal load's scale) and the ratio of the largest nodal norm
+  !> to that scale, or to the run's mean force scale `run_scale` when that is larger.
+  subroutine measure_residual(sys, run_scale, record)
+    type(linear_system_t), intent(in) :: sys
+    real(dp), intent(in) :: run_scale
+    type(increment_record_t), intent(inout) :: record
+    real(dp) :: worst, scale, node_norm, sums(2)
+    integer :: node
+    worst = 0.0_dp
+    record%residual_node = 0
+    do node = 1, size(sys%flux)
+      node_norm = norm2(sys%rhs_residual(3 * node - 2:3 * node))
+      if (node_norm > worst) then
+        worst = node_norm
+        record%residual_node = node
+        record%residual_direction = maxloc(abs(sys%rhs_residual(3 * node - 2:3 * node)), 1)
+      end if
+    end do
+    sums = [sum(sys%flux, mask=sys%flux > 0.0_dp), real(count(sys%flux > 0.0_dp), dp)]
+    record%force_scale = 0.0_dp
+    if (sums(2) > 0.0_dp) record%force_scale = sums(1) / sums(2)
+    record%force_scale = max(record%force_scale, sys%thermal_scale)
+    ! The scale is never below the mean over the increments of the run so far (CalculiX
+    ! averages its force scale over the increments of a step): a body unloaded to nearly no
+    ! stress keeps a tolerance relative to the forces it carried, not to its round-off.
+    scale = max(record%force_scale, run_scale)
+    record%residual_ratio = 0.0_dp
+    if (worst > 0.0_dp) record%residual_ratio = worst / max(scale, tiny(1.0_dp))
+  end subroutine measure_residual
+
+  !> One equilibrium correction: K dc = R (a%sys%rhs_residual) with K the tangent of the current
   !> state and dc = 0 on the prescribed degrees of freedom; dt is the duration of the
   !> increment (the rate term of the friction tangent).
   subroutine correction(a, model, step, t0, dt, err)
@@ -520,49 +571,45 @@ contains
     real(dp), allocatable :: residual(:)
     call ensure_pattern(a, model, err)
     if (allocated(err)) return
-    residual = a%rhs_residual
+    residual = a%sys%rhs_residual
     call a%timers%start('assembly')
     call assemble_system(a, model, step, t0, dt, err)
     call a%timers%stop('assembly')
     if (allocated(err)) return
-    a%correction = 0.0_dp
-    call constrain_system(a, a%correction, err)
+    a%sys%correction = 0.0_dp
+    call a%sys%constrain(a%share%comm, a%sys%correction, err)
     if (allocated(err)) return
-    a%rhs = merge(0.0_dp, residual, a%constrained)
-    call a%reuse%prepare(a%solver, a%matrix, a%timers, err)
-    if (.not. allocated(err)) call a%reuse%solve(a%solver, a%matrix, a%rhs, a%correction, a%timers, err)
-    if (.not. allocated(err)) call a%links%expand_vector(a%correction)
-    if (.not. allocated(err)) call check_finite(a%correction, model%mesh%node_id, err)
-    call a%comm%agree_error(err)
+    a%sys%rhs = merge(0.0_dp, residual, a%sys%constrained)
+    call a%sys%solve_correction(a%timers, model%mesh%node_id, err)
+    call a%share%comm%agree_error(err)
   end subroutine correction
 
   !> The equilibrium iterations of the increment did not converge: go back to its start and
   !> take CUT_FACTOR of it (not less than the step's minimum increment); at the minimum the
   !> run stops, naming where the out-of-balance force is largest.
-  subroutine cut_increment(a, model, step, start, dt, record, r, err)
+  subroutine cut_increment(a, model, step, inc, record, err)
     type(analysis_t), intent(inout) :: a
     type(model_t), intent(in) :: model
     type(step_t), intent(in) :: step
-    type(state_t), intent(in) :: start
-    real(dp), intent(in) :: dt
+    type(increment_t), intent(inout) :: inc
     type(increment_record_t), intent(inout) :: record
-    real(dp), intent(inout) :: r
     type(error_t), allocatable, intent(out) :: err
     character(len=1), parameter :: AXIS(3) = ['x', 'y', 'z']
-    a%state = start
-    if (record%cuts >= MAX_CUTS .or. r * dt <= step%min_increment * (1.0_dp + 1.0e-12_dp)) then
+    a%state = inc%start
+    if (record%cuts >= MAX_CUTS .or. inc%r * inc%dt <= step%min_increment * (1.0_dp + 1.0e-12_dp)) then
       call fatal_error(err, 'no equilibrium: after ' // str(record%iterations) // ' iteration(s) ' // &
-        'and ' // str(record%cuts) // ' cut(s) of the increment (to ' // str(r * dt) // &
+        'and ' // str(record%cuts) // ' cut(s) of the increment (to ' // str(inc%r * inc%dt) // &
         '), the out-of-balance force is still ' // str(record%residual_ratio) // ' of the force ' // &
         'scale (tolerance ' // str(step%rmin%equilibrium_tolerance) // '), largest at node ' // &
         str(model%mesh%node_id(max(record%residual_node, 1))) // ' in ' // &
-        AXIS(max(record%residual_direction, 1)) // distortion_note(a, model, step%nlgeom) // &
+        AXIS(max(record%residual_direction, 1)) // &
+        distortion_note(a%elements, a%state%x, model, step%nlgeom) // &
         '; check the loading and the supports, or raise EQUILIBRIUM TOLERANCE or MAX ' // &
         'ITERATIONS on *RMIN')
       return
     end if
     record%cuts = record%cuts + 1
-    r = max(r * CUT_FACTOR, step%min_increment / dt)
+    inc%r = max(inc%r * CUT_FACTOR, step%min_increment / inc%dt)
   end subroutine cut_increment
 
   !> The trial time increment for the next increment from the friction changes over the last
@@ -573,19 +620,20 @@ contains
   !> by at most a factor 2 when the changes are small, and is not limited when no node slips.
   !> Scaling an increment does not change its slip rate, so rate effects are controlled
   !> through the time increment (method notes 1.6).
-  subroutine friction_step_control(a, step, dt)
-    type(analysis_t), intent(inout) :: a
+  subroutine friction_step_control(contact, step, dt, state)
+    type(contact_system_t), intent(in) :: contact
     type(step_t), intent(in) :: step
     real(dp), intent(in) :: dt
+    type(state_t), intent(inout) :: state
     real(dp) :: limits(4), factors(4), change(4)
     integer :: i, worst, change_node(4)
     integer, parameter :: kinds(4) = [EVENT_SLIP_RATE_CHANGE, EVENT_FRICTION_CHANGE, EVENT_STATE_CHANGE, &
                                       EVENT_SLIP_INCREMENT]
-    call a%contact%friction_changes(change, change_node)
+    call contact%friction_changes(change, change_node)
     ! MAX SLIP INCREMENT is an option (0: none).
     if (step%rmin%max_slip_increment <= 0.0_dp) change(4) = 0.0_dp
     if (all(change <= 0.0_dp) .or. dt <= 0.0_dp) then
-      a%state%friction_dt = 0.0_dp
+      state%friction_dt = 0.0_dp
       return
     end if
     limits = [step%rmin%max_log_rate_change, step%rmin%max_friction_change, step%rmin%max_state_change, &
@@ -595,9 +643,9 @@ contains
       if (change(i) > 0.0_dp) factors(i) = min(2.0_dp, limits(i) / change(i))
     end do
     worst = minloc(factors, 1)
-    a%state%friction_dt = dt * factors(worst)
-    a%state%friction_kind = kinds(worst)
-    a%state%friction_node = change_node(worst)
+    state%friction_dt = dt * factors(worst)
+    state%friction_kind = kinds(worst)
+    state%friction_node = change_node(worst)
   end subroutine friction_step_control
 
   !> K + K_f + load stiffness and the internal, contact forces on the current state. Each
@@ -611,30 +659,30 @@ contains
     real(dp), intent(in) :: t0, dt
     type(error_t), allocatable, intent(out) :: err
     real(dp), allocatable :: scratch(:)
-    call a%matrix%zero()
+    call a%sys%matrix%zero()
     if (a%elements%has_states()) then
-      call a%elements%assemble(a%state%x, a%state%elements, step%nlgeom, a%f_int, err, a%matrix, &
-                               a%unloading)
+      call a%elements%assemble(a%state%x, a%state%elements, step%nlgeom, a%sys%f_int, err, a%sys%matrix, &
+                               a%trial%unloading)
     else if (allocated(a%state%temperature)) then
-      call a%elements%assemble(a%state%x, a%state%elements, step%nlgeom, a%f_int, err, a%matrix, &
+      call a%elements%assemble(a%state%x, a%state%elements, step%nlgeom, a%sys%f_int, err, a%sys%matrix, &
                                temperature=a%state%temperature)
     else
-      call a%elements%assemble(a%state%x, a%state%elements, step%nlgeom, a%f_int, err, a%matrix)
+      call a%elements%assemble(a%state%x, a%state%elements, step%nlgeom, a%sys%f_int, err, a%sys%matrix)
     end if
-    call a%comm%agree_error(err)
+    call a%share%comm%agree_error(err)
     if (allocated(err)) return
-    if (step%nlgeom .and. a%comm%is_root()) then
-      allocate (scratch(size(a%f_int)))
+    if (step%nlgeom .and. a%share%comm%is_root()) then
+      allocate (scratch(size(a%sys%f_int)))
       scratch = 0.0_dp
-      call assemble_pressures(a%elements, a%loading, model, t0, a%state%x, .true., scratch, a%matrix)
+      call assemble_pressures(a%elements, a%loading, model, t0, a%state%x, .true., scratch, a%sys%matrix)
     end if
-    a%f_contact = 0.0_dp
+    a%sys%f_contact = 0.0_dp
     if (a%contact%n_slaves() > 0) call a%contact%assemble(a%x_contact, a%state%contact, dt, &
-                                                          a%matrix, a%f_contact, err, a%owns_slave)
-    call a%comm%agree_error(err)
+                                                          a%sys%matrix, a%sys%f_contact, err, a%share%owns_slave)
+    call a%share%comm%agree_error(err)
     if (allocated(err)) return
-    call a%comm%sum_real(a%f_int)
-    call a%comm%sum_real(a%f_contact)
+    call a%share%comm%sum_real(a%sys%f_int)
+    call a%share%comm%sum_real(a%sys%f_contact)
   end subroutine assemble_system
 
   !> The nodal forces printed as RF, (3, n_nodes): at a prescribed degree of freedom the
@@ -642,7 +690,7 @@ contains
   !> applied there at the current time (CalculiX prints the internal force, which also holds
   !> that load); at a free degree of freedom, as CalculiX prints it, the internal force less
   !> the contact force, i.e. the load applied there (up to the equilibrium tolerance). Leaves
-  !> the internal and contact forces in a%f_int, a%f_contact.
+  !> the internal and contact forces in a%sys%f_int, a%sys%f_contact.
   subroutine current_reactions(a, model, reaction, err)
     type(analysis_t), intent(inout) :: a
     type(model_t), intent(in) :: model
@@ -650,16 +698,16 @@ contains
     type(error_t), allocatable, intent(out) :: err
     logical :: nlgeom
     nlgeom = model%steps(min(a%state%step, size(model%steps)))%nlgeom
-    call internal_forces(a, model, nlgeom, a%f_int, err)
+    call internal_forces(a, nlgeom, a%sys%f_int, err)
     if (allocated(err)) return
-    a%f_contact = 0.0_dp
-    if (a%contact%n_slaves() > 0) call a%contact%forces(a%x_contact, a%state%contact, a%f_contact)
-    a%f_ext_end = 0.0_dp
-    if (allocated(a%loading%bc_dof)) call external_force_at(a, model, nlgeom, a%state%step_time, a%f_ext_end)
-    where (.not. supported_dofs(a, model)) a%f_ext_end = 0.0_dp
-    reaction = reshape(a%f_int - a%f_contact - a%f_ext_end, shape(reaction))
+    a%sys%f_contact = 0.0_dp
+    if (a%contact%n_slaves() > 0) call a%contact%forces(a%x_contact, a%state%contact, a%sys%f_contact)
+    a%sys%f_ext_end = 0.0_dp
+    if (allocated(a%loading%bc_dof)) call external_force_at(a, model, nlgeom, a%state%step_time, a%sys%f_ext_end)
+    where (.not. supported_dofs(a%loading, model)) a%sys%f_ext_end = 0.0_dp
+    reaction = reshape(a%sys%f_int - a%sys%f_contact - a%sys%f_ext_end, shape(reaction))
     call local_axes_reactions(a, model, reaction)
-    call transmitted_reactions(a, model, reaction)
+    call transmitted_reactions(a%sys, model, reaction)
   end subroutine current_reactions
 
   !> At a node with local axes (*TRANSFORM) the prescribed degrees of freedom are local
@@ -674,15 +722,15 @@ contains
     integer :: node, i
     if (.not. any(model%transformed)) return
     call external_force_at(a, model, model%steps(min(a%state%step, size(model%steps)))%nlgeom, &
-                           a%state%step_time, a%f_ext_end)
+                           a%state%step_time, a%sys%f_ext_end)
     allocate (prescribed(3 * model%mesh%n_nodes))
     prescribed = .false.
     if (allocated(a%loading%bc_dof)) prescribed(a%loading%bc_dof) = .true.
     do node = 1, model%mesh%n_nodes
       if (.not. model%transformed(node)) cycle
       associate (frame => model%node_frame(:, :, node))
-        local = matmul(transpose(frame), a%f_int(3 * node - 2:3 * node) - a%f_contact(3 * node - 2:3 * node))
-        load = matmul(transpose(frame), a%f_ext_end(3 * node - 2:3 * node))
+        local = matmul(transpose(frame), a%sys%f_int(3 * node - 2:3 * node) - a%sys%f_contact(3 * node - 2:3 * node))
+        load = matmul(transpose(frame), a%sys%f_ext_end(3 * node - 2:3 * node))
         do i = 1, 3
           if (prescribed(3 * node - 3 + i)) local(i) = local(i) - load(i)
         end do
@@ -696,27 +744,27 @@ contains
   !> T^T (f_int - f_c) there (L2), less the load applied there at a prescribed degree of
   !> freedom, as CalculiX prints RF at the nodes of its RIGID MPCs (resultsforc: their
   !> constraint forces are left on those nodes).
-  subroutine transmitted_reactions(a, model, reaction)
-    type(analysis_t), intent(in) :: a
+  subroutine transmitted_reactions(sys, model, reaction)
+    type(linear_system_t), intent(in) :: sys
     type(model_t), intent(in) :: model
     real(dp), intent(inout) :: reaction(:, :)
     real(dp), allocatable :: transmitted(:)
     integer :: k, j, node
     if (.not. any(model%equations(:)%transmits)) return
-    transmitted = a%f_int - a%f_contact
-    call a%links%reduce_vector(transmitted)
+    transmitted = sys%f_int - sys%f_contact
+    call sys%links%reduce_vector(transmitted)
     do k = 1, size(model%equations)
       if (.not. model%equations(k)%transmits) cycle
       do j = 2, size(model%equations(k)%terms)
         node = model%equations(k)%terms(j)%node
-        reaction(:, node) = transmitted(3 * node - 2:3 * node) - a%f_ext_end(3 * node - 2:3 * node)
+        reaction(:, node) = transmitted(3 * node - 2:3 * node) - sys%f_ext_end(3 * node - 2:3 * node)
       end do
     end do
   end subroutine transmitted_reactions
 
   !> The degrees of freedom the current step prescribes (and those of nodes in no element).
-  function supported_dofs(a, model) result(supported)
-    type(analysis_t), intent(in) :: a
+  function supported_dofs(loading, model) result(supported)
+    type(step_loading_t), intent(in) :: loading
     type(model_t), intent(in) :: model
     logical :: supported(3 * model%mesh%n_nodes)
     integer :: node
@@ -724,19 +772,18 @@ contains
     do node = 1, model%mesh%n_nodes
       if (model%free_node(node)) supported(3 * node - 2:3 * node) = .true.
     end do
-    if (allocated(a%loading%bc_dof)) supported(a%loading%bc_dof) = .true.
+    if (allocated(loading%bc_dof)) supported(loading%bc_dof) = .true.
   end function supported_dofs
 
   !> Internal forces of the current state (all elements, summed over the processes).
-  subroutine internal_forces(a, model, nlgeom, f_int, err)
+  subroutine internal_forces(a, nlgeom, f_int, err)
     type(analysis_t), intent(in) :: a
-    type(model_t), intent(in) :: model
     logical, intent(in) :: nlgeom
     real(dp), intent(out) :: f_int(:)
     type(error_t), allocatable, intent(out) :: err
     call a%elements%assemble(a%state%x, a%state%elements, nlgeom, f_int, err)
-    call a%comm%agree_error(err)
-    if (.not. allocated(err)) call a%comm%sum_real(f_int)
+    call a%share%comm%agree_error(err)
+    if (.not. allocated(err)) call a%share%comm%sum_real(f_int)
   end subroutine internal_forces
 
   !> Make the integration-point fields complete on every process: each process holds
@@ -745,7 +792,7 @@ contains
     type(analysis_t), intent(inout) :: a
     logical, allocatable :: mine(:)
     integer :: e
-    if (a%comm%size == 1) return
+    if (a%share%comm%size == 1) return
     allocate (mine(a%state%n_elements))
     mine = .false.
     mine(a%elements%mine) = .true.
@@ -756,82 +803,32 @@ contains
         fields%strain(:, :, e) = 0.0_dp
         fields%material_state(:, :, e) = 0.0_dp
       end do
-      call a%comm%sum_real(fields%stress)
-      call a%comm%sum_real(fields%strain)
-      if (size(fields%material_state) > 0) call a%comm%sum_real(fields%material_state)
+      call a%share%comm%sum_real(fields%stress)
+      call a%share%comm%sum_real(fields%strain)
+      if (size(fields%material_state) > 0) call a%share%comm%sum_real(fields%material_state)
     end associate
   end subroutine gather_element_fields
-
-  !> Prescribed values on a system spread over processes: each eliminates the known values
-  !> from its own entries (their right-hand-side parts are summed), rank 0 puts `scale` on
-  !> the constrained diagonals, scale being the mean absolute diagonal of the free rows of
-  !> the summed matrix (approximated by the sum of the processes' diagonals).
-  subroutine impose_constraints(a, err)
-    type(analysis_t), intent(inout) :: a
-    type(error_t), allocatable, intent(out) :: err
-    real(dp), allocatable :: load(:)
-    call constrain_system(a, a%prescribed, err)
-    if (allocated(err)) return
-    if (a%links%active()) then
-      load = a%f_ext1 - a%f_ext0
-      call a%links%reduce_vector(load)
-      where (.not. a%constrained) a%rhs = a%rhs + load
-    else
-      ! The same operations, in the same order, as before the constraints: a model without
-      ! them gives the results of earlier versions bit for bit.
-      where (.not. a%constrained) a%rhs = a%rhs + a%f_ext1 - a%f_ext0
-    end if
-  end subroutine impose_constraints
-
-  !> Eliminate the dependent degrees of freedom of the linear constraints (K <- T^T K T,
-  !> fcs_linear_constraints (L2); each process its own share), then the prescribed ones
-  !> (values `values`) from the matrix: a%rhs gets the eliminated columns' contribution on
-  !> the free rows and scale * value on the constrained ones, whose diagonals become `scale`.
-  subroutine constrain_system(a, values, err)
-    type(analysis_t), intent(inout) :: a
-    real(dp), intent(in) :: values(:)
-    type(error_t), allocatable, intent(out) :: err
-    real(dp) :: total(2), scale
-    integer :: n_free
-    logical :: missing
-    call a%links%reduce_matrix(a%matrix, missing)
-    if (missing) then
-      call fatal_error(err, 'eliminating the linear constraints: the sparse pattern lacks ' // &
-                       'an entry of T^T K T (internal error: cliques not expanded)')
-      return
-    end if
-    call a%matrix%free_diagonal_sum(a%constrained, total(1), n_free)
-    total(2) = real(n_free, dp)
-    call a%comm%sum_real(total)
-    scale = 1.0_dp
-    if (total(2) > 0.0_dp) scale = total(1) / (total(2) / a%comm%size)
-    if (.not. (scale > 0.0_dp)) scale = 1.0_dp
-    a%rhs = 0.0_dp
-    call a%matrix%eliminate(a%constrained, values, a%rhs)
-    call a%comm%sum_real(a%rhs)
-    where (a%constrained) a%rhs = scale * values
-    if (a%comm%is_root()) call a%matrix%set_diagonal(a%constrained, scale)
-  end subroutine constrain_system
 
   !> The fraction of the trial increment taken, over all processes: the smallest event
   !> fraction (and its event, from the process that has it), widened to the near-simultaneous
   !> discrete events within `tolerance`, never beyond a strain or rotation limit.
-  subroutine global_fraction(a, tolerance, r)
-    type(analysis_t), intent(inout) :: a
+  subroutine global_fraction(collector, comm, tolerance, r)
+    type(rmin_collector_t), intent(inout) :: collector
+    type(comm_t), intent(in) :: comm
     real(dp), intent(in) :: tolerance
     real(dp), intent(out) :: r
     real(dp) :: r_min, band, limit
     integer :: owner, event(4)
-    r_min = a%collector%r_min
-    call a%comm%min_real(r_min, owner)
-    event = [a%collector%limiting%kind, a%collector%limiting%entity, a%collector%limiting%detail, 0]
-    call a%comm%broadcast_int(event, owner)
-    a%collector%r_min = r_min
-    a%collector%limiting = rmin_event_t(r_min, event(1), event(2), event(3))
-    band = a%collector%band_fraction(tolerance)
-    limit = a%collector%limit_fraction()
-    call a%comm%max_real(band)
-    call a%comm%min_real(limit)
+    r_min = collector%r_min
+    call comm%min_real(r_min, owner)
+    event = [collector%limiting%kind, collector%limiting%entity, collector%limiting%detail, 0]
+    call comm%broadcast_int(event, owner)
+    collector%r_min = r_min
+    collector%limiting = rmin_event_t(r_min, event(1), event(2), event(3))
+    band = collector%band_fraction(tolerance)
+    limit = collector%limit_fraction()
+    call comm%max_real(band)
+    call comm%min_real(limit)
     r = min(band, limit)
     if (event(1) == EVENT_STRAIN_LIMIT .or. event(1) == EVENT_ROTATION_LIMIT .or. &
         event(1) == EVENT_FULL_INCREMENT) r = r_min
@@ -847,19 +844,19 @@ contains
     integer :: node, n_nodes, last
     call a%elements%cliques(a%elements%mine, clique_ptr, clique_nodes)
     if (a%contact%n_slaves() > 0) call a%contact%cliques(a%state%contact, clique_ptr, clique_nodes, &
-                                                         keep_centres, a%owns_slave)
-    if (a%comm%size > 1 .and. a%comm%is_root()) then
+                                                         keep_centres, a%share%owns_slave)
+    if (a%share%comm%size > 1 .and. a%share%comm%is_root()) then
       ! Rank 0 also holds every diagonal (constrained rows) and the pressure load stiffness:
       ! a one-node clique per node, then the pressure faces (appended in one go).
       n_nodes = model%mesh%n_nodes
       last = clique_ptr(size(clique_ptr))
-      clique_nodes = [clique_nodes, [(node, node = 1, n_nodes)], a%pressure_nodes]
+      clique_nodes = [clique_nodes, [(node, node = 1, n_nodes)], a%share%pressure_nodes]
       clique_ptr = [clique_ptr, [(last + node, node = 1, n_nodes)], &
-                    last + n_nodes + a%pressure_ptr(2:) - 1]
+                    last + n_nodes + a%share%pressure_ptr(2:) - 1]
     end if
-    call a%links%expand_cliques(clique_ptr, clique_nodes)
-    call a%matrix%build(model%mesh%n_nodes, clique_ptr, clique_nodes)
-    a%ordering_due = a%comm%size > 1
+    call a%sys%links%expand_cliques(clique_ptr, clique_nodes)
+    call a%sys%matrix%build(model%mesh%n_nodes, clique_ptr, clique_nodes)
+    a%sys%ordering_due = a%share%comm%size > 1
   end subroutine build_pattern
 
   !> Distributed runs: the fill-reducing ordering of the whole model's graph (every element
@@ -876,17 +873,17 @@ contains
     integer, allocatable :: clique_ptr(:), clique_nodes(:), position(:)
     type(sparse_matrix_t) :: whole
     integer :: e
-    a%ordering_due = .false.
-    if (.not. a%comm%is_root() .or. .not. a%solver%takes_ordering()) return
+    a%sys%ordering_due = .false.
+    if (.not. a%share%comm%is_root() .or. .not. a%sys%solver%takes_ordering()) return
     call a%elements%cliques([(e, e = 1, model%mesh%n_elements)], clique_ptr, clique_nodes)
     if (a%contact%n_slaves() > 0) call a%contact%cliques(a%state%contact, clique_ptr, &
                                                          clique_nodes, keep_centres=.true.)
-    call a%links%expand_cliques(clique_ptr, clique_nodes)
+    call a%sys%links%expand_cliques(clique_ptr, clique_nodes)
     call whole%build(model%mesh%n_nodes, clique_ptr, clique_nodes)
     call metis_equation_order(whole, position, err)
     call whole%free()
     if (allocated(err)) return
-    call a%solver%set_ordering(position)
+    call a%sys%solver%set_ordering(position)
   end subroutine give_global_ordering
 
   !> Current positions X + u for the contact search and elements (also without NLGEOM:
@@ -904,18 +901,18 @@ contains
     type(model_t), intent(in) :: model
     logical, intent(in) :: nlgeom
     real(dp), intent(in) :: t0, t1
-    a%f_ext0 = 0.0_dp
-    a%f_ext1 = 0.0_dp
-    call a%loading%force_at(model%amplitudes, t0, a%f_ext0)
-    call a%loading%force_at(model%amplitudes, t1, a%f_ext1)
+    a%sys%f_ext0 = 0.0_dp
+    a%sys%f_ext1 = 0.0_dp
+    call a%loading%force_at(model%amplitudes, t0, a%sys%f_ext0)
+    call a%loading%force_at(model%amplitudes, t1, a%sys%f_ext1)
     ! Concentrated loads on nodes with local axes (*TRANSFORM) are given in those axes.
-    call a%links%to_global(a%f_ext0)
-    call a%links%to_global(a%f_ext1)
-    call assemble_pressures(a%elements, a%loading, model, t0, a%state%x, nlgeom, a%f_ext0)
-    call assemble_pressures(a%elements, a%loading, model, t1, a%state%x, nlgeom, a%f_ext1)
+    call a%sys%links%to_global(a%sys%f_ext0)
+    call a%sys%links%to_global(a%sys%f_ext1)
+    call assemble_pressures(a%elements, a%loading, model, t0, a%state%x, nlgeom, a%sys%f_ext0)
+    call assemble_pressures(a%elements, a%loading, model, t1, a%state%x, nlgeom, a%sys%f_ext1)
     if (size(a%loading%body_element) > 0) then
-      call assemble_body_loads(a%elements, a%loading, model, t0, a%state%x, nlgeom, a%f_ext0)
-      call assemble_body_loads(a%elements, a%loading, model, t1, a%state%x, nlgeom, a%f_ext1)
+      call assemble_body_loads(a%elements, a%loading, model, t0, a%state%x, nlgeom, a%sys%f_ext0)
+      call assemble_body_loads(a%elements, a%loading, model, t1, a%state%x, nlgeom, a%sys%f_ext1)
     end if
     if (allocated(a%state%temperature)) call thermal_load(a, model, nlgeom, t1)
   end subroutine external_forces
@@ -923,7 +920,7 @@ contains
   !> The thermal load of the trial increment (fcs_element_loops, thermal_forces: the
   !> temperatures going from the state's to those at step time t1) added to f_ext1, so that
   !> it enters the load part du_load of the trial solution and is scaled by r with the other
-  !> loads (doc/theory.md 2.5); the end temperatures are kept in a%temperature_trial for the
+  !> loads (doc/theory.md 2.5); the end temperatures are kept in a%trial%temperature for the
   !> events of the trial. f_ext0 and the out-of-balance force hold no thermal term: the
   !> internal forces of the updated stresses carry it.
   subroutine thermal_load(a, model, nlgeom, t1)
@@ -932,17 +929,17 @@ contains
     logical, intent(in) :: nlgeom
     real(dp), intent(in) :: t1
     type(error_t), allocatable :: err
-    if (.not. allocated(a%temperature_trial)) allocate (a%temperature_trial(size(a%state%temperature)))
-    call a%loading%temperature_at(model%amplitudes, t1, a%temperature_trial)
+    if (.not. allocated(a%trial%temperature)) allocate (a%trial%temperature(size(a%state%temperature)))
+    call a%loading%temperature_at(model%amplitudes, t1, a%trial%temperature)
     if (.not. a%elements%has_thermal()) return
-    if (.not. allocated(a%f_thermal)) allocate (a%f_thermal(size(a%f_ext1)))
+    if (.not. allocated(a%sys%f_thermal)) allocate (a%sys%f_thermal(size(a%sys%f_ext1)))
     call a%elements%thermal_forces(a%state%x, a%state%elements, nlgeom, a%state%temperature, &
-                                   a%temperature_trial, a%f_thermal, err)
+                                   a%trial%temperature, a%sys%f_thermal, err)
     ! An inverted element is reported by the assembly that follows on the same configuration.
-    if (allocated(err)) a%f_thermal = 0.0_dp
-    call a%comm%sum_real(a%f_thermal)
-    a%f_ext1 = a%f_ext1 + a%f_thermal
-    a%thermal_scale = nodal_mean_norm(a%f_thermal)
+    if (allocated(err)) a%sys%f_thermal = 0.0_dp
+    call a%share%comm%sum_real(a%sys%f_thermal)
+    a%sys%f_ext1 = a%sys%f_ext1 + a%sys%f_thermal
+    a%sys%thermal_scale = nodal_mean_norm(a%sys%f_thermal)
   end subroutine thermal_load
 
   !> Mean over the nodes with a nonzero force of the norm of the nodal force f (3 n_nodes).
@@ -973,7 +970,7 @@ contains
     real(dp), intent(out) :: f_ext(:)
     f_ext = 0.0_dp
     call a%loading%force_at(model%amplitudes, t, f_ext)
-    call a%links%to_global(f_ext)
+    call a%sys%links%to_global(f_ext)
     call assemble_pressures(a%elements, a%loading, model, t, a%state%x, nlgeom, f_ext)
     if (size(a%loading%body_element) > 0) &
       call assemble_body_loads(a%elements, a%loading, model, t, a%state%x, nlgeom, f_ext)
@@ -986,61 +983,24 @@ contains
     type(model_t), intent(in) :: model
     real(dp), intent(in) :: t0, t1
     integer :: i, dof, node, direction
-    a%constrained = .false.
-    a%prescribed = 0.0_dp
+    a%sys%constrained = .false.
+    a%sys%prescribed = 0.0_dp
     do node = 1, model%mesh%n_nodes
-      if (model%free_node(node)) a%constrained(3 * node - 2:3 * node) = .true.
+      if (model%free_node(node)) a%sys%constrained(3 * node - 2:3 * node) = .true.
     end do
-    if (a%links%active()) a%constrained = a%constrained .or. a%links%dependent
+    if (a%sys%links%active()) a%sys%constrained = a%sys%constrained .or. a%sys%links%dependent
     do i = 1, size(a%loading%bc_dof)
       dof = a%loading%bc_dof(i)
       node = (dof - 1) / 3 + 1
       direction = dof - 3 * (node - 1)
-      a%constrained(dof) = .true.
+      a%sys%constrained(dof) = .true.
       ! At a node with local axes (*TRANSFORM) the unknowns, and so the prescribed values,
       ! are the local components.
-      a%prescribed(dof) = a%loading%prescribed_target(model%amplitudes, i, t0, t1, &
-        a%links%to_local(a%state%u(:, node), node, direction), &
-        a%links%to_local(a%state%step_start_u(:, node), node, direction))
+      a%sys%prescribed(dof) = a%loading%prescribed_target(model%amplitudes, i, t0, t1, &
+        a%sys%links%to_local(a%state%u(:, node), node, direction), &
+        a%sys%links%to_local(a%state%step_start_u(:, node), node, direction))
     end do
   end subroutine prescribed_increments
-
-  !> Factorise once (or reuse the factors, `fcs_factor_reuse`) and solve for both parts of the
-  !> trial increment; a non-finite solution is an error. With reused factors the out-of-balance
-  !> part, which is added to the load part, is solved to the tolerance relative to the load
-  !> part's right-hand side.
-  subroutine solve_system(a, node_id, err)
-    type(analysis_t), intent(inout) :: a
-    integer, intent(in) :: node_id(:)
-    type(error_t), allocatable, intent(out) :: err
-    call a%reuse%prepare(a%solver, a%matrix, a%timers, err)
-    if (allocated(err)) return
-    call a%reuse%solve(a%solver, a%matrix, a%rhs, a%du_load, a%timers, err)
-    if (.not. allocated(err)) &
-      call a%reuse%solve(a%solver, a%matrix, a%rhs_residual, a%du_residual, a%timers, err, &
-                         reference_norm=norm2(a%rhs))
-    if (allocated(err)) return
-    call a%links%expand_vector(a%du_load)
-    call a%links%expand_vector(a%du_residual)
-    call check_finite(a%du_load, node_id, err)
-    if (.not. allocated(err)) call check_finite(a%du_residual, node_id, err)
-  end subroutine solve_system
-
-  subroutine check_finite(du, node_id, err)
-    real(dp), intent(in) :: du(:)
-    integer, intent(in) :: node_id(:)
-    type(error_t), allocatable, intent(out) :: err
-    integer :: i
-    do i = 1, size(du)
-      if (.not. (abs(du(i)) <= huge(1.0_dp))) then
-        call fatal_error(err, 'the solution is not finite (NaN or Inf) at node ' // &
-          str(node_id((i - 1) / 3 + 1)) // ', direction ' // str(i - 3 * ((i - 1) / 3)) // &
-          ': a load or prescribed value overflows, or the system is badly conditioned (a ' // &
-          'penalty stiffness far larger than the material stiffness)')
-        return
-      end if
-    end do
-  end subroutine check_finite
 
   !> Offer every event and limit of the trial increment to the collector: the contact
   !> events, then the element limits and events (fcs_element_loops).
@@ -1048,30 +1008,23 @@ contains
     type(analysis_t), intent(inout) :: a
     type(step_t), intent(in) :: step
     type(error_t), allocatable, intent(out) :: err
-    call a%collector%reset()
-    if (a%contact%n_slaves() > 0) call a%contact%events(a%x_contact, a%state%contact, a%du_residual, &
-                                                        a%du_load, a%collector)
-    if (allocated(a%state%temperature) .and. allocated(a%temperature_trial)) then
-      call a%elements%collect_events(a%state%x, a%du_load, a%du_residual, a%state%elements, &
+    call a%trial%collector%reset()
+    if (a%contact%n_slaves() > 0) call a%contact%events(a%x_contact, a%state%contact, a%sys%du_residual, &
+                                                        a%sys%du_load, a%trial%collector)
+    if (allocated(a%state%temperature) .and. allocated(a%trial%temperature)) then
+      call a%elements%collect_events(a%state%x, a%sys%du_load, a%sys%du_residual, a%state%elements, &
         step%nlgeom, event_limits_t(step%rmin%max_strain_increment, &
-        step%rmin%max_rotation_increment, step%rmin%max_plastic_strain_increment), a%collector, &
-        err, a%state%temperature, a%temperature_trial)
+        step%rmin%max_rotation_increment, step%rmin%max_plastic_strain_increment), a%trial%collector, &
+        err, a%state%temperature, a%trial%temperature)
     else
-      call a%elements%collect_events(a%state%x, a%du_load, a%du_residual, a%state%elements, &
+      call a%elements%collect_events(a%state%x, a%sys%du_load, a%sys%du_residual, a%state%elements, &
         step%nlgeom, event_limits_t(step%rmin%max_strain_increment, &
-        step%rmin%max_rotation_increment, step%rmin%max_plastic_strain_increment), a%collector, err)
+        step%rmin%max_rotation_increment, step%rmin%max_plastic_strain_increment), a%trial%collector, err)
     end if
   end subroutine collect_events
 
-  !> No point unloads at the start of an increment.
-  subroutine reset_unloading(a)
-    type(analysis_t), intent(inout) :: a
-    if (.not. allocated(a%unloading)) allocate (a%unloading(a%elements%max_points, a%state%n_elements))
-    a%unloading = .false.
-  end subroutine reset_unloading
-
   !> Elastic unloading as a state switch (doc/theory.md 6.3; Yamada, Yoshimura & Sakurai
-  !> 1968): every point on its yield surface that the trial increment a%du moves inwards
+  !> 1968): every point on its yield surface that the trial increment a%sys%du moves inwards
   !> takes the elastic tangent for the rest of the increment (fcs_element_loops,
   !> count_unloading); `n_switched` grows by the number of new such points over all processes
   !> (the increment is then solved again).
@@ -1080,8 +1033,8 @@ contains
     logical, intent(in) :: nlgeom
     integer, intent(inout) :: n_switched
     real(dp) :: count(1)
-    count = a%elements%count_unloading(a%state%x, a%du, a%state%elements, nlgeom, a%unloading)
-    call a%comm%sum_real(count)
+    count = a%elements%count_unloading(a%state%x, a%sys%du, a%state%elements, nlgeom, a%trial%unloading)
+    call a%share%comm%sum_real(count)
     n_switched = n_switched + nint(count(1))
   end subroutine switch_unloading
 
@@ -1093,8 +1046,10 @@ contains
   !> For the message of an increment without equilibrium: the most distorted element of
   !> the current configuration when it is nearly inverted (its Jacobian determinant varies by
   !> more than a factor 20 over its integration points), else nothing.
-  function distortion_note(a, model, nlgeom) result(note)
-    type(analysis_t), intent(in) :: a
+  function distortion_note(elements, x, model, nlgeom) result(note)
+    type(element_loops_t), intent(in) :: elements
+    !> Current coordinates (3, n_nodes).
+    real(dp), intent(in) :: x(:, :)
     type(model_t), intent(in) :: model
     logical, intent(in) :: nlgeom
     character(len=:), allocatable :: note
@@ -1102,7 +1057,7 @@ contains
     integer :: worst_element
     note = ''
     if (.not. nlgeom) return
-    call a%elements%most_distorted(a%state%x, worst_element, worst)
+    call elements%most_distorted(x, worst_element, worst)
     if (worst_element == 0 .or. worst >= 0.05_dp) return
     note = '; element ' // str(model%mesh%element_id(worst_element)) // ' is nearly inverted ' // &
       '(its Jacobian determinant varies by a factor ' // str(1.0_dp / max(worst, tiny(1.0_dp))) // &
@@ -1110,16 +1065,16 @@ contains
   end function distortion_note
 
   !> How many discrete events fall within the increment taken (near-simultaneous ones).
-  integer function count_taken(a, r) result(n)
-    type(analysis_t), intent(in) :: a
+  integer function count_taken(collector, r) result(n)
+    type(rmin_collector_t), intent(in) :: collector
     real(dp), intent(in) :: r
     integer :: i
     n = 0
-    do i = 1, a%collector%n_events
-      if (a%collector%events(i)%kind == EVENT_STRAIN_LIMIT .or. &
-          a%collector%events(i)%kind == EVENT_ROTATION_LIMIT .or. &
-          a%collector%events(i)%kind == EVENT_PLASTIC_STRAIN_LIMIT) cycle
-      if (a%collector%events(i)%r <= r) n = n + 1
+    do i = 1, collector%n_events
+      if (collector%events(i)%kind == EVENT_STRAIN_LIMIT .or. &
+          collector%events(i)%kind == EVENT_ROTATION_LIMIT .or. &
+          collector%events(i)%kind == EVENT_PLASTIC_STRAIN_LIMIT) cycle
+      if (collector%events(i)%r <= r) n = n + 1
     end do
   end function count_taken
 
