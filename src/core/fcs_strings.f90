@@ -4,7 +4,7 @@ module fcs_strings
   implicit none
   private
   public :: string_t, to_upper, to_lower, collapse_spaces, split_fields
-  public :: parse_real, parse_int, is_number_text, str, join_strings
+  public :: parse_real, parse_int, is_number_text, str, join_strings, name_index
   public :: dirname, basename, join_path, path_stem, file_exists, replace_all
 
   !> A variable-length string, for arrays of strings.
@@ -297,6 +297,19 @@ contains
     out = merge('yes', 'no ', value)
     out = trim(out)
   end function str_logical
+
+  !> Index of `name` among `names` (case and surrounding blanks ignored), 0 if it is not there:
+  !> the look-up of the factories' registries (friction laws, materials, solvers).
+  pure integer function name_index(names, name) result(index)
+    type(string_t), intent(in) :: names(:)
+    character(len=*), intent(in) :: name
+    character(len=:), allocatable :: wanted
+    wanted = to_upper(trim(adjustl(name)))
+    do index = 1, size(names)
+      if (to_upper(trim(adjustl(names(index)%s))) == wanted) return
+    end do
+    index = 0
+  end function name_index
 
   !> Join strings with a separator.
   pure function join_strings(items, separator) result(out)

@@ -22,7 +22,7 @@
 module fcs_friction_factory
   use fcs_kinds, only: dp
   use fcs_error, only: error_t, input_error, fatal_error
-  use fcs_strings, only: string_t, str, join_strings, to_upper, split_fields
+  use fcs_strings, only: string_t, str, join_strings, to_upper, split_fields, name_index
   use fcs_diagnostics, only: source_loc_t
   use fcs_friction_law, only: friction_law_t
   use fcs_coulomb, only: coulomb_t
@@ -265,12 +265,7 @@ contains
   pure integer function registry_find(this, name) result(index)
     class(friction_registry_t), intent(in) :: this
     character(len=*), intent(in) :: name
-    if (allocated(this%laws)) then
-      do index = 1, size(this%laws)
-        if (this%laws(index)%name == name) return
-      end do
-    end if
-    index = 0
+    index = name_index(this%names(), name)
   end function registry_find
 
   !> The law names in registry order.

@@ -21,7 +21,7 @@ module fcs_material_factory
   use fcs_von_mises, only: von_mises_t
   use fcs_drucker_prager, only: drucker_prager_t
   use fcs_hardening_table, only: hardening_table_t, constant_table
-  use fcs_strings, only: to_lower, to_upper, string_t, join_strings
+  use fcs_strings, only: to_lower, to_upper, string_t, join_strings, name_index
   implicit none
   private
   public :: create_material, plastic_def_t, HARDENING_NAMES, DP_HARDENING_TYPES
@@ -200,12 +200,7 @@ contains
   pure integer function registry_find(this, name) result(index)
     class(material_registry_t), intent(in) :: this
     character(len=*), intent(in) :: name
-    character(len=:), allocatable :: wanted
-    wanted = to_upper(trim(adjustl(name)))
-    do index = 1, this%size()
-      if (to_upper(this%models(index)%name) == wanted) return
-    end do
-    index = 0
+    index = name_index(this%names(), name)
   end function registry_find
 
   !> The model names in registry order.

@@ -9,7 +9,7 @@
 !> `registry%register` (the unit test registers a test-only dense solver that way).
 module fcs_solver_factory
   use fcs_error, only: error_t, input_error, fatal_error
-  use fcs_strings, only: string_t, to_upper, join_strings
+  use fcs_strings, only: string_t, to_upper, join_strings, name_index
   use fcs_linear_solver, only: linear_solver_t
   use fcs_skyline, only: skyline_solver_t
   use fcs_umfpack, only: umfpack_solver_t
@@ -165,12 +165,7 @@ contains
   pure integer function registry_find(this, name) result(index)
     class(solver_registry_t), intent(in) :: this
     character(len=*), intent(in) :: name
-    character(len=:), allocatable :: wanted
-    wanted = to_upper(trim(adjustl(name)))
-    do index = 1, this%size()
-      if (to_upper(this%solvers(index)%name) == wanted) return
-    end do
-    index = 0
+    index = name_index(this%names(), name)
   end function registry_find
 
   !> The solver names in registry order.
