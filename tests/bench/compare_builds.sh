@@ -31,7 +31,9 @@ for bin in "$before" "$after"; do
   [ -x "$bin" ] || { echo "compare_builds.sh: $bin is not an executable" >&2; exit 2; }
 done
 command -v gmsh >/dev/null 2>&1 || { echo "compare_builds.sh: gmsh is not installed" >&2; exit 2; }
-[ -x /usr/bin/time ] || { echo "compare_builds.sh: GNU time (Debian package time) is not installed" >&2; exit 2; }
+# GNU time (Debian package time) measures each run; installed when missing and root, as
+# make bench does.
+sh "$here/tools/ensure_packages.sh" time || exit 1
 work=${COMPARE_WORK:-$(mktemp -d "${TMPDIR:-/tmp}/fcs3d-compare.XXXXXX")}
 mkdir -p "$work/inputs" || exit 1
 work=$(cd "$work" && pwd)
