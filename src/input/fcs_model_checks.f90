@@ -316,11 +316,20 @@ contains
         do j = 1, size(master%element)
           e = master%element(j)
           call element_volume_and_face_area(model, e, master%face(j), volume, area)
-          thickness = thickness + volume / area
-          face_size = face_size + sqrt(area)
+          ! A degenerate master element (reported by check_jacobians) adds nothing.
+          if (area > 0.0_dp .and. volume > 0.0_dp) then
+            thickness = thickness + volume / area
+            face_size = face_size + sqrt(area)
+          end if
           s = model%element_section(e)
           if (s > 0) modulus = modulus + model%materials(model%sections(s)%material)%youngs_modulus
         end do
+        if (thickness <= 0.0_dp) then
+          call diag%report(pair%loc, 'contact pair ' // pair%name // ': every element under ' // &
+            'its master surface is degenerate (zero face area or volume), so no penalty ' // &
+            'can be derived from it')
+          cycle
+        end if
         pair%master_thickness = thickness / size(master%element)
         pair%master_modulus = modulus / size(master%element)
         pair%normal_stiffness = DEFAULT_PENALTY_FACTOR * pair%master_modulus / pair%master_thickness
