@@ -1,11 +1,11 @@
 !> The command line of fcs3d: options, help text, and what main should do.
 module fcs_command_line
   use, intrinsic :: iso_fortran_env, only: output_unit
-  use fcs_error, only: error_t, input_error
+  use fcs_error, only: error_t, input_error, fatal_error
   use fcs_run_options, only: run_options_t
   use fcs_solver_factory, only: is_linear_solver, linear_solver_names_text, DEFAULT_LINEAR_SOLVER
   use fcs_kinds, only: dp
-  use fcs_strings, only: to_upper, basename, path_stem, join_path, parse_real
+  use fcs_strings, only: to_upper, basename, path_stem, join_path, parse_real, str
   use fcs_version, only: FCS3D_IDENTITY
   use fcs_files, only: directory_exists
   implicit none
@@ -39,7 +39,7 @@ contains
       arg = argument(i)
       select case (arg)
       case ('-h', '--help')
-        call print_help()
+        call print_help(err)
         action = ACTION_DONE
         return
       case ('--version')
@@ -164,7 +164,8 @@ contains
     call get_command_argument(i, arg)
   end function argument
 
-  subroutine print_help()
+  subroutine print_help(err)
+    type(error_t), allocatable, intent(out) :: err
     character(len=*), parameter :: lines(*) = [character(len=100) :: &
       'fcs3d - frictional contact systems in 3D (static-explicit, R-minimum, node-to-point contact)', &
       '', &
@@ -197,16 +198,33 @@ contains
       'environment: OPENBLAS_NUM_THREADS (default 1: fcs3d sets it and restarts itself).', &
       '', &
       'documentation: doc/user_guide.md, doc/deck_reference.md, doc/theory.md']
-    integer :: i
+    integer :: i, status
     do i = 1, size(lines)
-      write (output_unit, '(a)') trim(lines(i))
+      call help_line(trim(lines(i)), err)
+      if (allocated(err)) return
       ! The solver names come from the solver factory's registry.
       if (index(lines(i), '  --check ') == 1) then
-        write (output_unit, '(a)') '  --solver NAME         linear solver: ' // &
-          linear_solver_names_text() // ' (default ' // DEFAULT_LINEAR_SOLVER // ';'
-        write (output_unit, '(a)') '                        MUMPS in a parallel run)'
+        call help_line('  --solver NAME         linear solver: ' // linear_solver_names_text() // &
+                       ' (default ' // DEFAULT_LINEAR_SOLVER // ';', err)
+        if (.not. allocated(err)) &
+          call help_line('                        MUMPS in a parallel run)', err)
+        if (allocated(err)) return
       end if
     end do
+    flush (output_unit, iostat=status)
+    if (status /= 0) call fatal_error(err, 'writing the help text to standard output failed ' // &
+                                      '(iostat ' // str(status) // ')')
   end subroutine print_help
+
+  !> One line of the help text on standard output; a failed write (a closed pipe, a full
+  !> disk behind a redirection) is a run failure.
+  subroutine help_line(text, err)
+    character(len=*), intent(in) :: text
+    type(error_t), allocatable, intent(inout) :: err
+    integer :: status
+    write (output_unit, '(a)', iostat=status) text
+    if (status /= 0) call fatal_error(err, 'writing the help text to standard output failed ' // &
+                                      '(iostat ' // str(status) // ')')
+  end subroutine help_line
 
 end module fcs_command_line
