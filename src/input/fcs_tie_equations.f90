@@ -18,7 +18,7 @@ module fcs_tie_equations
   use fcs_kinds, only: dp
   use fcs_error, only: error_t
   use fcs_diagnostics, only: diagnostics_t
-  use fcs_mesh, only: mesh_t, SURFACE_FACES
+  use fcs_mesh, only: mesh_t
   use fcs_model, only: model_t
   use fcs_contact_pair, only: contact_pair_def_t
   use fcs_contact_areas, only: surface_face_nodes
@@ -109,7 +109,7 @@ contains
       call diag%report(pair%loc, '*TIE ' // pair%name // ': ' // err%message)
       return
     end if
-    slaves = slave_nodes(model%mesh, pair%slave_surface)
+    slaves = model%mesh%surface_node_list(pair%slave_surface)
     allocate (added(3 * size(slaves)))
     n_added = 0
     n_far = 0
@@ -163,25 +163,6 @@ contains
     equation%loc = pair%loc
     equation%origin = '*TIE ' // pair%name
   end function tie_equation
-
-  !> The nodes of surface k: its nodes (node-based) or those of its faces, each once.
-  function slave_nodes(mesh, k) result(nodes)
-    type(mesh_t), intent(in) :: mesh
-    integer, intent(in) :: k
-    integer, allocatable :: nodes(:)
-    logical, allocatable :: in_surface(:)
-    integer :: f
-    if (mesh%surfaces(k)%kind /= SURFACE_FACES) then
-      nodes = mesh%surfaces(k)%nodes
-      return
-    end if
-    allocate (in_surface(mesh%n_nodes))
-    in_surface = .false.
-    do f = 1, size(mesh%surfaces(k)%element)
-      in_surface(mesh%face_nodes(mesh%surfaces(k)%element(f), mesh%surfaces(k)%face(f))) = .true.
-    end do
-    nodes = pack([(f, f = 1, mesh%n_nodes)], in_surface)
-  end function slave_nodes
 
   !> The point of the master faces closest to xs: the projection onto each face, clamped to
   !> it; face = 0 when none lies within `tolerance`.
