@@ -56,6 +56,13 @@ module fcs_linear_constraints
     !> rotation nodes): RF there is the force the constraint transmits, (T^T f_int) at them,
     !> as CalculiX prints it for its RIGID MPCs.
     logical :: transmits = .false.
+    !> With `transmits`, the first term at such a node (the later ones are too): 2 for a
+    !> rigid body, the last for MEANROT (its angle node; the members are in the structure).
+    integer :: first_transmitting = 2
+    !> The current linearisation of a nonlinear constraint (fcs_nonlinear_constraints): its
+    !> coefficients change with the geometry, so its terms are kept when a coefficient is
+    !> zero, and the map's structure (and the sparse pattern built from it) stays the same.
+    logical :: nonlinear = .false.
   end type linear_equation_t
 
   !> The constraints resolved into u_D = T_DI u_I (L1 after the cascade): for dependent
@@ -83,6 +90,8 @@ module fcs_linear_constraints
     !> For node a, the nodes of the unknowns its affected degrees of freedom stand for:
     !> links(link_ptr(a):link_ptr(a+1)-1).
     integer, allocatable :: link_ptr(:), links(:)
+    !> Rows of nonlinear constraints (their zero terms are kept).
+    logical, allocatable :: row_nonlinear(:)
   contains
     procedure :: init => map_init
     procedure :: free => map_free
@@ -160,6 +169,10 @@ contains
       if (allocated(err)) return
     end do
     call flatten()
+    allocate (this%row_nonlinear(size(equations)))
+    do i = 1, size(equations)
+      this%row_nonlinear(i) = equations(i)%nonlinear
+    end do
     allocate (this%frame(3, 3, n_nodes), this%transformed(n_nodes))
     this%frame = 0.0_dp
     do k = 1, 3
@@ -208,7 +221,7 @@ contains
           values = [values, c * rows(e)%values]
         end do
       end associate
-      call merge_terms(dofs, values, rows(i))
+      call merge_terms(dofs, values, rows(i), equations(i)%nonlinear)
       state(i) = RESOLVED
     end subroutine resolve
 
@@ -299,6 +312,7 @@ contains
     type(row_t) :: merged
     type(row_t), allocatable :: lists(:)
     integer :: i, node, direction, a, slot, r, n, k
+    logical :: kept
     allocate (this%affected(this%n_dofs))
     this%affected = this%dependent
     do node = 1, size(this%transformed)
@@ -311,6 +325,7 @@ contains
       node = (i - 1) / DOFS_PER_NODE + 1
       direction = i - DOFS_PER_NODE * (node - 1)
       allocate (dofs(0), values(0))
+      kept = .false.
       if (this%transformed(node)) then
         do a = 1, 3
           if (this%frame(direction, a, node) == 0.0_dp) cycle
@@ -327,10 +342,11 @@ contains
         end do
       else
         r = this%row_of(i)
+        kept = this%row_nonlinear(r)
         dofs = this%independent(this%row_ptr(r):this%row_ptr(r + 1) - 1)
         values = this%coefficient(this%row_ptr(r):this%row_ptr(r + 1) - 1)
       end if
-      call merge_terms(dofs, values, merged)
+      call merge_terms(dofs, values, merged, kept)
       lists(k) = merged
       deallocate (dofs, values)
     end do
@@ -347,11 +363,13 @@ contains
     end do
   end subroutine global_targets
 
-  !> Sum the values of repeated degrees of freedom; drop terms that cancel exactly.
-  subroutine merge_terms(dofs, values, row)
+  !> Sum the values of repeated degrees of freedom; drop terms that cancel exactly (unless
+  !> `keep`: the row of a nonlinear constraint, whose zero coefficients may not stay zero).
+  subroutine merge_terms(dofs, values, row, keep)
     integer, intent(in) :: dofs(:)
     real(dp), intent(in) :: values(:)
     type(row_t), intent(out) :: row
+    logical, intent(in) :: keep
     integer :: k, j, n
     allocate (row%dofs(size(dofs)), row%values(size(dofs)))
     n = 0
@@ -366,6 +384,11 @@ contains
       row%dofs(n) = dofs(k)
       row%values(n) = values(k)
     end do outer
+    if (keep) then
+      row%dofs = row%dofs(1:n)
+      row%values = row%values(1:n)
+      return
+    end if
     row%dofs = pack(row%dofs(1:n), row%values(1:n) /= 0.0_dp)
     row%values = pack(row%values(1:n), row%values(1:n) /= 0.0_dp)
   end subroutine merge_terms
@@ -387,6 +410,7 @@ contains
     if (allocated(this%factors)) deallocate (this%factors)
     if (allocated(this%frame)) deallocate (this%frame)
     if (allocated(this%transformed)) deallocate (this%transformed)
+    if (allocated(this%row_nonlinear)) deallocate (this%row_nonlinear)
     this%n_dofs = 0
   end subroutine map_free
 

@@ -12,6 +12,9 @@ module fcs_build_constraints
                              resolve_elements
   use fcs_model, only: model_t, transform_def_t
   use fcs_linear_constraints, only: constraint_term_t, linear_equation_t
+  use fcs_nonlinear_constraints, only: nonlinear_constraint_t, constraint_gradient, &
+                                       CONSTRAINT_PLANE, CONSTRAINT_STRAIGHT, CONSTRAINT_RIGID, &
+                                       CONSTRAINT_MEAN_ROTATION
   use fcs_strings, only: str, to_upper, parse_int
   implicit none
   private
@@ -146,10 +149,10 @@ contains
     logical :: ok, from_set
     from_set = .false.
     kind = to_upper(card%lines(1)%fields(1)%s)
-    if (kind /= 'PLANE' .and. kind /= 'STRAIGHT') then
+    if (kind /= 'PLANE' .and. kind /= 'STRAIGHT' .and. kind /= 'MEANROT') then
       call diag%report(card%lines(1)%loc, '*MPC: "' // card%lines(1)%fields(1)%s // '" is not ' // &
-        'available; expected PLANE or STRAIGHT (BEAM, MEANROT and user MPCs are CalculiX''s ' // &
-        'nonlinear MPCs, not linearised by fcs3d)')
+        'available; expected PLANE, STRAIGHT or MEANROT (BEAM, DIST and user MPCs are not ' // &
+        'implemented in fcs3d)')
       return
     end if
     allocate (nodes(0))
@@ -186,9 +189,13 @@ contains
         end do
       end associate
     end do
-    call diag%warn(card%loc, '*MPC ' // kind // ': CalculiX treats it as a nonlinear MPC and ' // &
-      'turns NLGEOM on; fcs3d linearises it in the initial configuration and keeps each ' // &
-      'step''s NLGEOM (exact for small rotations of the ' // &
+    if (kind == 'MEANROT') then
+      call mean_rotation_equation(card, model, nodes, diag)
+      return
+    end if
+    call diag%warn(card%loc, '*MPC ' // kind // ': CalculiX turns NLGEOM on for it; fcs3d ' // &
+      'keeps each step''s NLGEOM: nonlinear in steps with NLGEOM, linearised in the initial ' // &
+      'configuration in the others (exact for small rotations of the ' // &
       merge('plane', 'line ', kind == 'PLANE') // ')')
     ! fcs3d's node sets are sorted, not in the order of the deck, which CalculiX takes the
     ! defining nodes from: when the list starts with a set, the defining nodes are chosen
@@ -264,7 +271,8 @@ contains
       cc = cross(r, e1)
       ca = -(n + cb + cc)
       call add_equation(model, card, '*MPC PLANE', [p, nodes(1), nodes(2), nodes(3)], &
-                        reshape([n, ca, cb, cc], [3, 4]), diag)
+                        reshape([n, ca, cb, cc], [3, 4]), spread(spread(.true., 1, 3), 2, 4), &
+                        diag, CONSTRAINT_PLANE)
     end do
   end subroutine plane_equations
 
@@ -278,6 +286,7 @@ contains
     integer, intent(in) :: nodes(:)
     type(diagnostics_t), intent(inout) :: diag
     real(dp) :: e(3), s, c(3, 3), weight(3)
+    logical :: kept(3, 3)
     integer :: k, p, i, j
     if (size(nodes) < 3) then
       call diag%report(card%lines(1)%loc, '*MPC STRAIGHT: expected the two nodes defining the ' // &
@@ -301,24 +310,34 @@ contains
         c = 0.0_dp
         c(i, :) = weight * e(j)
         c(j, :) = -weight * e(i)
-        call add_equation(model, card, '*MPC STRAIGHT', [p, nodes(1), nodes(2)], c, diag)
+        kept = .false.
+        kept([i, j], :) = .true.
+        call add_equation(model, card, '*MPC STRAIGHT', [p, nodes(1), nodes(2)], c, kept, diag, &
+                          CONSTRAINT_STRAIGHT, i, j)
       end do
     end do
   end subroutine straight_equations
 
-  !> One equation sum_a coefficients(:, a) . u_{nodes(a)} = 0 (zero coefficients left out).
-  !> Its dependent term is the component of u_{nodes(1)} with the largest |coefficient| that
-  !> is not already dependent in an earlier equation, else the largest such term of the other
-  !> nodes (as CalculiX picks the dependent term of its nonlinear MPCs among the free ones);
-  !> when every term is dependent already, the equation is redundant: an input error.
-  subroutine add_equation(model, card, origin, nodes, coefficients, diag)
+  !> One equation sum_a coefficients(:, a) . u_{nodes(a)} = 0; a term with a zero coefficient
+  !> is left out unless `kept` (the terms of a nonlinear constraint, whose coefficients change
+  !> with the geometry). Its dependent term is the component of u_{nodes(1)} with the largest
+  !> |coefficient| that is not already dependent in an earlier equation, else the largest
+  !> such term of the other nodes (as CalculiX picks the dependent term of its nonlinear MPCs
+  !> among the free ones); when every term is dependent already, the equation is redundant:
+  !> an input error. With `kind`, the equation is the linearisation of that nonlinear
+  !> constraint (fcs_nonlinear_constraints; `direction`, `along` its STRAIGHT directions).
+  subroutine add_equation(model, card, origin, nodes, coefficients, kept, diag, kind, direction, along)
     type(model_t), intent(inout) :: model
     type(card_t), intent(in) :: card
     character(len=*), intent(in) :: origin
     integer, intent(in) :: nodes(:)
     real(dp), intent(in) :: coefficients(:, :)
+    logical, intent(in) :: kept(:, :)
     type(diagnostics_t), intent(inout) :: diag
+    integer, intent(in) :: kind
+    integer, intent(in), optional :: direction, along
     type(linear_equation_t) :: equation
+    type(nonlinear_constraint_t) :: constraint
     real(dp) :: best
     integer :: a, d, first_node, first_dof
     first_node = 0
@@ -345,14 +364,89 @@ contains
     do a = 1, size(nodes)
       do d = 1, 3
         if (a == first_node .and. d == first_dof) cycle
-        if (coefficients(d, a) == 0.0_dp) cycle
+        if (coefficients(d, a) == 0.0_dp .and. .not. kept(d, a)) cycle
         equation%terms = [equation%terms, constraint_term_t(nodes(a), d, coefficients(d, a))]
       end do
     end do
     equation%loc = card%lines(1)%loc
     equation%origin = origin
+    if (kind == CONSTRAINT_MEAN_ROTATION) then
+      ! RF at the angle node is the moment the constraint transmits (CalculiX prints it).
+      equation%transmits = .true.
+      equation%first_transmitting = size(equation%terms)
+    end if
     model%equations = [model%equations, equation]
+    constraint%kind = kind
+    constraint%nodes = nodes
+    constraint%equation = size(model%equations)
+    if (present(direction)) constraint%direction = direction
+    if (present(along)) constraint%along = along
+    if (kind == CONSTRAINT_MEAN_ROTATION) constraint%vector = model%mesh%x(:, nodes(size(nodes))) / &
+                                                            norm2(model%mesh%x(:, nodes(size(nodes))))
+    model%nonlinear_constraints = [model%nonlinear_constraints, constraint]
   end subroutine add_equation
+
+  !> MEANROT: the member nodes, each listed three times (once per direction), then the angle
+  !> node m, whose coordinates are the axis and whose first displacement is the mean rotation
+  !> about it, radians (ccx manual, *MPC; umpc_mean_rot.f): (N4) of fcs_nonlinear_constraints,
+  !> linearised at the initial configuration for steps without NLGEOM (CalculiX does not turn
+  !> NLGEOM on for it).
+  subroutine mean_rotation_equation(card, model, nodes, diag)
+    type(card_t), intent(in) :: card
+    type(model_t), intent(inout) :: model
+    integer, intent(in) :: nodes(:)
+    type(diagnostics_t), intent(inout) :: diag
+    type(nonlinear_constraint_t) :: probe
+    integer, allocatable :: members(:)
+    real(dp), allocatable :: u(:, :), gradient(:, :)
+    logical, allocatable :: kept(:, :)
+    real(dp) :: g
+    integer :: k, n, angle_node
+    n = (size(nodes) - 1) / 3
+    if (size(nodes) < 7 .or. mod(size(nodes) - 1, 3) /= 0) then
+      call diag%report(card%lines(1)%loc, '*MPC MEANROT: expected each member node three ' // &
+        'times (once per direction), at least two members, then the node whose coordinates ' // &
+        'give the axis and whose first degree of freedom is the angle (' // str(size(nodes)) // &
+        ' nodes)')
+      return
+    end if
+    members = [(nodes(3 * k - 2), k = 1, n)]
+    do k = 1, n
+      if (nodes(3 * k - 1) /= members(k) .or. nodes(3 * k) /= members(k)) then
+        call diag%report(card%lines(1)%loc, '*MPC MEANROT: member ' // str(k) // ' (node ' // &
+          str(model%mesh%node_id(members(k))) // ') must be listed three times in a row, once ' // &
+          'per direction, as CalculiX requires')
+        return
+      end if
+    end do
+    angle_node = nodes(size(nodes))
+    if (any(members == angle_node)) then
+      call diag%report(card%lines(1)%loc, '*MPC MEANROT: the last node (' // &
+        str(model%mesh%node_id(angle_node)) // ', the axis and angle) may not be a member')
+      return
+    end if
+    if (norm2(model%mesh%x(:, angle_node)) <= 0.0_dp) then
+      call diag%report(card%lines(1)%loc, '*MPC MEANROT: the coordinates of the last node (' // &
+        str(model%mesh%node_id(angle_node)) // ') are the rotation axis and must not be zero')
+      return
+    end if
+    probe%kind = CONSTRAINT_MEAN_ROTATION
+    probe%nodes = [members, angle_node]
+    probe%vector = model%mesh%x(:, angle_node) / norm2(model%mesh%x(:, angle_node))
+    allocate (u(3, model%mesh%n_nodes))
+    u = 0.0_dp
+    call constraint_gradient(probe, model%mesh%x, u, g, gradient)
+    if (count(any(gradient(:, 1:n) /= 0.0_dp, dim=1)) < 1) then
+      call diag%report(card%lines(1)%loc, '*MPC MEANROT: every member lies on the axis ' // &
+        'through their centroid: no rotation about it can be measured')
+      return
+    end if
+    allocate (kept(3, n + 1))
+    kept = .true.
+    kept(2:3, n + 1) = .false.
+    call add_equation(model, card, '*MPC MEANROT', probe%nodes, gradient, kept, diag, &
+                      CONSTRAINT_MEAN_ROTATION)
+  end subroutine mean_rotation_equation
 
   !> True when (node, direction) is the dependent term of an equation of the model so far.
   logical function is_dependent(model, node, direction)
@@ -422,13 +516,17 @@ contains
       do i = 1, 3
         i1 = mod(i, 3) + 1
         i2 = mod(i + 1, 3) + 1
-        ! (theta x r)_i = theta_i1 r_i2 - theta_i2 r_i1
+        ! (theta x r)_i = theta_i1 r_i2 - theta_i2 r_i1; theta_i's term, zero here, is that
+        ! of the nonlinear constraint (N3) under NLGEOM.
         equation%terms = [constraint_term_t(p, i, 1.0_dp), constraint_term_t(ref, i, -1.0_dp), &
-                          constraint_term_t(rot, i1, -r(i2)), constraint_term_t(rot, i2, r(i1))]
+                          constraint_term_t(rot, i1, -r(i2)), constraint_term_t(rot, i2, r(i1)), &
+                          constraint_term_t(rot, i, 0.0_dp)]
         equation%loc = card%loc
         equation%origin = '*RIGID BODY'
         equation%transmits = .true.
         model%equations = [model%equations, equation]
+        model%nonlinear_constraints = [model%nonlinear_constraints, nonlinear_constraint_t( &
+          CONSTRAINT_RIGID, size(model%equations), [p, ref, rot], i, 0, r)]
       end do
     end do
   end subroutine handle_rigid_body

@@ -13,6 +13,7 @@ module fcs_model
   use fcs_contact_pair, only: contact_pair_def_t
   use fcs_element_catalogue, only: element_catalogue_t
   use fcs_linear_constraints, only: linear_equation_t
+  use fcs_nonlinear_constraints, only: nonlinear_constraint_t
   implicit none
   private
   public :: model_t, material_def_t, section_t, amplitude_t, time_points_t, dof_condition_t
@@ -346,6 +347,13 @@ module fcs_model
     type(linear_equation_t), allocatable :: equations(:)
     !> Rotation nodes of *RIGID BODY: their three degrees of freedom are rotations [rad].
     integer, allocatable :: rotation_nodes(:)
+    !> The nonlinear constraints (*MPC PLANE, STRAIGHT, MEANROT, *RIGID BODY), each owning an
+    !> equation of `equations` (its linearisation); kept when a step has NLGEOM
+    !> (fcs_nonlinear_constraints, doc/theory.md 6.2.3), emptied otherwise.
+    type(nonlinear_constraint_t), allocatable :: nonlinear_constraints(:)
+    !> Degrees of freedom of nodes in no element that no equation names (the unused
+    !> directions of a MEANROT angle node): held at zero, as free_node's.
+    logical, allocatable :: idle_dof(:)
     !> *TRANSFORM cards, and the local axes they give the nodes (resolved after the last
     !> card): node_frame(:, a, node) is local axis a in global components; `transformed`
     !> marks the nodes that have local axes (*BOUNDARY, *CLOAD, *EQUATION terms and the

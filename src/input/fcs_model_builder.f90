@@ -178,7 +178,8 @@ contains
     call model%mesh%init(mesh_kinds(model%element_kinds))
     allocate (model%materials(0), model%sections(0), model%amplitudes(0), &
               model%time_points(0), model%steps(0), model%interactions(0), model%equations(0), &
-              model%rotation_nodes(0), model%transforms(0), model%orientations(0), model%contact_pairs(0), &
+              model%rotation_nodes(0), model%nonlinear_constraints(0), model%transforms(0), &
+              model%orientations(0), model%contact_pairs(0), &
               model%histories(0), model%warnings(0))
   end subroutine init_model
 

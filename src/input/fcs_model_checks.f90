@@ -130,12 +130,13 @@ contains
   !> *BOUNDARY: CalculiX stops on that too ("*ERROR in cascade: the DOF corresponding to node
   !> N in direction d is detected on the dependent side of a MPC and a SPC").
   subroutine check_constraints(model, diag)
-    type(model_t), intent(in) :: model
+    type(model_t), intent(inout) :: model
     type(diagnostics_t), intent(inout) :: diag
     type(constraint_map_t) :: map
     type(error_t), allocatable :: err
     integer :: k, i, d, r
     if (size(model%equations) == 0) return
+    call settle_nonlinear_constraints(model, diag)
     call check_rotation_nodes(model, diag)
     do k = 1, size(model%equations)
       if (model%equations(k)%origin == '*EQUATION') cycle
@@ -166,6 +167,43 @@ contains
       end do
     end do
   end subroutine check_constraints
+
+  !> With NLGEOM in a step the nonlinear constraints (*MPC PLANE, STRAIGHT, MEANROT, *RIGID
+  !> BODY) follow the geometry (fcs_nonlinear_constraints): their equations keep their zero
+  !> terms; without, they stay the linearisations built from the initial configuration. A
+  !> linear equation may not name the dependent term of a nonlinear one (its elimination is
+  !> exact for linear terms only).
+  subroutine settle_nonlinear_constraints(model, diag)
+    type(model_t), intent(inout) :: model
+    type(diagnostics_t), intent(inout) :: diag
+    logical, allocatable :: dependent(:)
+    integer :: k, j
+    if (.not. any(model%steps(:)%nlgeom)) then
+      model%nonlinear_constraints = model%nonlinear_constraints(1:0)
+      return
+    end if
+    allocate (dependent(3 * model%mesh%n_nodes))
+    dependent = .false.
+    do k = 1, size(model%nonlinear_constraints)
+      associate (equation => model%equations(model%nonlinear_constraints(k)%equation))
+        equation%nonlinear = .true.
+        dependent(3 * (equation%terms(1)%node - 1) + equation%terms(1)%dof) = .true.
+      end associate
+    end do
+    do k = 1, size(model%equations)
+      if (model%equations(k)%nonlinear) cycle
+      associate (terms => model%equations(k)%terms)
+        do j = 2, size(terms)
+          if (.not. dependent(3 * (terms(j)%node - 1) + terms(j)%dof)) cycle
+          call diag%report(model%equations(k)%loc, model%equations(k)%origin // ': node ' // &
+            str(model%mesh%node_id(terms(j)%node)) // ', direction ' // str(terms(j)%dof) // &
+            ' is the dependent term of a nonlinear constraint (*MPC or *RIGID BODY under ' // &
+            'NLGEOM); fcs3d does not chain a linear equation onto it: make another term dependent')
+          return
+        end do
+      end associate
+    end do
+  end subroutine settle_nonlinear_constraints
 
   !> The rotation node of a *RIGID BODY holds rotations: it may not be a node of an element.
   subroutine check_rotation_nodes(model, diag)

@@ -80,6 +80,30 @@ contains
     do e = 1, size(model%equations)
       model%free_node(model%equations(e)%terms(:)%node) = .false.
     end do
+    ! A node in no element that an equation names has unknowns only in the directions it
+    ! names (the other two of a MEANROT angle node would be singular rows).
+    allocate (model%idle_dof(3 * model%mesh%n_nodes))
+    model%idle_dof = .true.
+    do e = 1, model%mesh%n_elements
+      associate (nodes => model%mesh%element_nodes(e))
+        model%idle_dof(3 * nodes - 2) = .false.
+        model%idle_dof(3 * nodes - 1) = .false.
+        model%idle_dof(3 * nodes) = .false.
+      end associate
+    end do
+    do e = 1, size(model%equations)
+      associate (terms => model%equations(e)%terms)
+        model%idle_dof(3 * (terms(:)%node - 1) + terms(:)%dof) = .false.
+      end associate
+    end do
+    model%idle_dof = model%idle_dof .and. .not. spread_nodes(model%free_node)
+  contains
+    !> The three degrees of freedom of every node marked.
+    pure function spread_nodes(mark) result(dofs)
+      logical, intent(in) :: mark(:)
+      logical :: dofs(3 * size(mark))
+      dofs = reshape(spread(mark, 1, 3), [3 * size(mark)])
+    end function spread_nodes
   end subroutine mark_free_nodes
 
   subroutine check_loads_on_free_nodes(model, diag)

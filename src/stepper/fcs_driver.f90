@@ -251,6 +251,8 @@ contains
       call a%sys%links%init(model%equations, model%mesh%n_nodes, model%mesh%node_id, err, &
                             model%node_frame, model%transformed)
       if (allocated(err)) return
+      if (size(model%nonlinear_constraints) > 0) call a%sys%nonlinear%init( &
+        model%nonlinear_constraints, model%equations, model%mesh%x(:, 1:model%mesh%n_nodes))
       call build_pattern(a, model)
       call setup_solver(a%sys, a%share%comm, model, err)
       if (allocated(err)) return

@@ -10,6 +10,7 @@ module fcs_linear_system
   use fcs_linear_solver, only: linear_solver_t
   use fcs_factor_reuse, only: factor_reuse_t
   use fcs_linear_constraints, only: constraint_map_t
+  use fcs_nonlinear_constraints, only: nonlinear_set_t
   use fcs_timer, only: phase_timer_t
   use fcs_comm, only: comm_t
   use fcs_strings, only: str
@@ -26,6 +27,9 @@ module fcs_linear_system
     !> The linear constraints (*EQUATION) resolved into u_D = T u_I, eliminated from every
     !> solve (fcs_linear_constraints, (L1)-(L2); doc/theory.md 6.2).
     type(constraint_map_t) :: links
+    !> The nonlinear constraints of NLGEOM steps (fcs_nonlinear_constraints): `links` is
+    !> rebuilt from their linearisation at every state the stepper computes forces on.
+    type(nonlinear_set_t) :: nonlinear
     !> A distributed run's pattern changed: the solver needs the whole model's ordering.
     logical :: ordering_due = .false.
     !> Internal and contact forces of the last assembly; external forces at the start (f_ext0)

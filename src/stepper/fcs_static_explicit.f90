@@ -122,6 +122,8 @@ contains
     integer(i8) :: krylov_before
     krylov_before = a%sys%reuse%stats%krylov_iterations
     associate (step => model%steps(a%state%step))
+      call follow_constraints(a, model, step%nlgeom, err)
+      if (allocated(err)) return
       call trial_time_increment(a%state, a%loading, step, inc%t0, inc%dt, limited_by_friction)
       record%trial_increment = inc%dt
       call external_forces(a, model, step%nlgeom, inc%t0, inc%t0 + inc%dt)
@@ -346,6 +348,9 @@ contains
     logical, intent(in) :: predict_penetration
     call a%timers%start('update')
     associate (state => a%state)
+      ! Nonlinear constraints hold exactly at the end of the increment (doc/theory.md 6.2.3).
+      if (step%nlgeom .and. a%sys%nonlinear%active()) &
+        call a%sys%nonlinear%project(model%mesh%x, state%u, a%sys%du)
       if (step%nlgeom) call a%elements%check_geometry(state%x, a%sys%du, err)
       call a%share%comm%agree_error(err)
       if (.not. allocated(err) .and. a%contact%n_slaves() > 0 .and. predict_penetration) &
@@ -377,8 +382,22 @@ contains
       state%last_increment = state%step_time - inc%t0
       state%last_r = inc%r
     end associate
+    call follow_constraints(a, model, step%nlgeom, err)
     call a%timers%stop('update')
   end subroutine apply_increment
+
+  !> Under NLGEOM, the elimination of the nonlinear constraints linearised at the current
+  !> state (fcs_nonlinear_constraints; doc/theory.md 6.2.3), so that the tangent and the
+  !> out-of-balance force of this state are reduced with the constraints' tangent space here.
+  subroutine follow_constraints(a, model, nlgeom, err)
+    type(analysis_t), intent(inout) :: a
+    type(model_t), intent(in) :: model
+    logical, intent(in) :: nlgeom
+    type(error_t), allocatable, intent(out) :: err
+    if (.not. (nlgeom .and. a%sys%nonlinear%active())) return
+    call a%sys%nonlinear%relinearise(model%mesh%x, a%state%u, a%sys%links, model%mesh%n_nodes, &
+                                     model%mesh%node_id, model%node_frame, model%transformed, err)
+  end subroutine follow_constraints
 
   !> The nodal temperatures at step time t_end (the end of the increment), into
   !> a%trial%temperature.
@@ -755,7 +774,7 @@ contains
     call sys%links%reduce_vector(transmitted)
     do k = 1, size(model%equations)
       if (.not. model%equations(k)%transmits) cycle
-      do j = 2, size(model%equations(k)%terms)
+      do j = model%equations(k)%first_transmitting, size(model%equations(k)%terms)
         node = model%equations(k)%terms(j)%node
         reaction(:, node) = transmitted(3 * node - 2:3 * node) - sys%f_ext_end(3 * node - 2:3 * node)
       end do
@@ -772,6 +791,7 @@ contains
     do node = 1, model%mesh%n_nodes
       if (model%free_node(node)) supported(3 * node - 2:3 * node) = .true.
     end do
+    supported = supported .or. model%idle_dof
     if (allocated(loading%bc_dof)) supported(loading%bc_dof) = .true.
   end function supported_dofs
 
@@ -988,6 +1008,7 @@ contains
     do node = 1, model%mesh%n_nodes
       if (model%free_node(node)) a%sys%constrained(3 * node - 2:3 * node) = .true.
     end do
+    a%sys%constrained = a%sys%constrained .or. model%idle_dof
     if (a%sys%links%active()) a%sys%constrained = a%sys%constrained .or. a%sys%links%dependent
     do i = 1, size(a%loading%bc_dof)
       dof = a%loading%bc_dof(i)
