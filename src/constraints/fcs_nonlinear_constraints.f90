@@ -23,7 +23,8 @@
 !> inhomogeneous term instead; the converged states are the same).
 module fcs_nonlinear_constraints
   use fcs_kinds, only: dp
-  use fcs_error, only: error_t
+  use fcs_error, only: error_t, fatal_error
+  use fcs_diagnostics, only: format_location
   use fcs_linear_constraints, only: linear_equation_t, constraint_map_t
   implicit none
   private
@@ -37,6 +38,10 @@ module fcs_nonlinear_constraints
   !> PROJECTION_TOLERANCE times the model's size ends them.
   integer, parameter :: MAX_SWEEPS = 30
   real(dp), parameter :: PROJECTION_TOLERANCE = 1.0e-14_dp
+  !> The dependent term of a constraint must keep at least this fraction of the largest
+  !> coefficient at its node (a PLANE or STRAIGHT turned by about 90 degrees loses it: ccx
+  !> then moves the dependent term to another direction, fcs3d stops).
+  real(dp), parameter :: DEPENDENT_FRACTION = 1.0e-2_dp
 
   !> One nonlinear constraint: its kind, its nodes (PLANE p, a, b, c; STRAIGHT p, a, b;
   !> RIGID p, ref, rot; MEANROT the members, then the angle node), the equation of the
@@ -114,6 +119,16 @@ contains
           do t = 1, size(terms)
             terms(t)%coefficient = gradient(terms(t)%dof, findloc(c%nodes, terms(t)%node, 1))
           end do
+          if (abs(terms(1)%coefficient) < DEPENDENT_FRACTION * &
+              maxval(abs(gradient(:, findloc(c%nodes, terms(1)%node, 1))))) then
+            call fatal_error(err, format_location(this%equations(c%equation)%loc, &
+              this%equations(c%equation)%origin // ': the coefficient of its dependent term ' // &
+              '(direction ' // achar(iachar('0') + terms(1)%dof) // ') has nearly vanished with ' // &
+              'the rotation of the constraint; fcs3d keeps the dependent term of a nonlinear ' // &
+              'constraint fixed (CalculiX moves it to another direction): rotations of a PLANE ' // &
+              'or STRAIGHT MPC near 90 degrees are not supported'))
+            return
+          end if
         end associate
       end associate
     end do
