@@ -1,9 +1,11 @@
 !> Handlers of the constraint keywords: *EQUATION (linear equations between displacement
-!> components), *MPC (PLANE, STRAIGHT) and *RIGID BODY, the last two linearised in the
-!> initial configuration into linear equations. All are stored in model%equations as
+!> components), *MPC (PLANE, STRAIGHT, MEANROT) and *RIGID BODY, the last two linearised in
+!> the initial configuration into linear equations and, for steps with NLGEOM, recorded as
+!> nonlinear constraints owning those equations (model%nonlinear_constraints,
+!> fcs_nonlinear_constraints). All equations are stored in model%equations as
 !> fcs_linear_constraints' plain data. Their resolution (dependent degrees of freedom,
 !> cascades) is checked when the model is finished (fcs_model_checks), their elimination
-!> done by the stepper (doc/theory.md, 6.2 and 6.2.1).
+!> done by the stepper (doc/theory.md, 6.2, 6.2.1 and 6.2.3).
 module fcs_build_constraints
   use fcs_kinds, only: dp
   use fcs_deck_lexer, only: card_t, data_line_t
@@ -137,8 +139,8 @@ contains
   !> manual, *MPC). PLANE (the nodes after
   !> the first three stay in the plane of the first three) and STRAIGHT (the nodes after the
   !> first two stay on their line) are linearised in the initial configuration (doc/theory.md
-  !> 6.2.1); CalculiX's are nonlinear, and it turns NLGEOM on for them: fcs3d keeps each step's
-  !> NLGEOM (a warning says so).
+  !> 6.2.1) and nonlinear in steps with NLGEOM (6.2.3); CalculiX turns NLGEOM on for them:
+  !> fcs3d keeps each step's NLGEOM (a warning says so). MEANROT: `mean_rotation_equation`.
   subroutine handle_mpc(card, model, diag)
     type(card_t), intent(in) :: card
     type(model_t), intent(inout) :: model

@@ -383,20 +383,26 @@ contains
          '(1..3), coefficient, at most four terms per line.', &
          [p_none()], data_required=.true.), &
       kw('MPC', CONTEXT_MODEL, 'CalculiX', 'Multi-point constraints PLANE (the nodes after ' // &
-         'the first three stay in the plane of the first three) and STRAIGHT (the nodes after ' // &
-         'the first two stay on their line), linearised in the initial configuration into ' // &
-         'linear equations (doc/theory.md 6.2.1): exact for small rotations of the plane or ' // &
-         'line. CalculiX''s are nonlinear and turn NLGEOM on; fcs3d keeps each step''s NLGEOM ' // &
-         '(a warning says so). BEAM, MEANROT and user MPCs are refused.', &
-         'MPC name (PLANE or STRAIGHT) and up to 15 nodes, then further lines of up to 16 ' // &
-         'nodes; zero entries are skipped.', [p_none()], data_required=.true.), &
+         'the first three stay in the plane of the first three), STRAIGHT (the nodes after ' // &
+         'the first two stay on their line) and MEANROT (the mean rotation of the member ' // &
+         'nodes about an axis is the first displacement of the last node, whose coordinates ' // &
+         'give the axis). In steps with NLGEOM they are nonlinear, as CalculiX''s, and hold ' // &
+         'exactly at the end of every increment (doc/theory.md 6.2.3); otherwise they are ' // &
+         'linearised in the initial configuration (6.2.1: exact for small rotations). ' // &
+         'CalculiX turns NLGEOM on for PLANE and STRAIGHT; fcs3d keeps each step''s NLGEOM ' // &
+         '(a warning says so). RF at the MEANROT node is the moment it transmits. BEAM, DIST ' // &
+         'and user MPCs are refused.', &
+         'MPC name (PLANE, STRAIGHT or MEANROT) and up to 15 nodes, then further lines of up ' // &
+         'to 16 nodes; zero entries are skipped. MEANROT: each member node three times in a ' // &
+         'row, then the axis node.', [p_none()], data_required=.true.), &
       kw('RIGID BODY', CONTEXT_MODEL, 'CalculiX', 'The nodes of a set move rigidly with a ' // &
          'reference node (translation) and a rotation node (whose three degrees of freedom ' // &
-         'are the rotation about x, y, z, radians: *BOUNDARY and *CLOAD on it prescribe ' // &
-         'rotations and apply moments), linearised in the initial configuration: u_p = u_ref ' // &
-         '+ theta x (x_p - x_ref), exact for small rotations (CalculiX''s rigid body is ' // &
-         'nonlinear). RF at the reference and rotation nodes is the force and moment the body ' // &
-         'transmits, as CalculiX prints them.', '', &
+         'are the rotation vector w, radians: *BOUNDARY and *CLOAD on it prescribe ' // &
+         'rotations and apply moments). In steps with NLGEOM the motion is CalculiX''s ' // &
+         'finite rotation, x_p = x_ref + C(w) (X_p - X_ref) with Rodrigues'' C (doc/theory.md ' // &
+         '6.2.3); otherwise it is linearised in the initial configuration, u_p = u_ref + w x ' // &
+         '(X_p - X_ref), exact for small rotations. RF at the reference and rotation nodes is ' // &
+         'the force and moment the body transmits, as CalculiX prints them.', '', &
          [p('NSET', PARAM_NAME, description='The nodes of the body (or ELSET).'), &
           p('ELSET', PARAM_NAME, description='The elements whose nodes form the body (or NSET).'), &
           p('REF NODE', PARAM_INTEGER, required=.true., description='Reference node (its ' // &
