@@ -191,7 +191,7 @@ def face_all_nodes(conn, label):
     return out
 
 
-def check(job, hc, tolerance, table_row):
+def check(job, hc, tolerance, table_row, kind='C3D20R'):
     checker = cc.Checker()
     times, forces = cc.totals(cc.read_dat(job + '.dat'), 'CAP_TOP')
     frame = [f for f in cc.contact_frames(job + '.h5', hertz.PAIR) if f['step'] == 1][-1]
@@ -208,16 +208,16 @@ def check(job, hc, tolerance, table_row):
     inner = closed & (np.abs(x) < 0.8 * x_last)
     slope, intercept = np.polyfit(x[inner] ** 2, p[inner] ** 2, 1)
     p0_fit, a_fit = np.sqrt(intercept), np.sqrt(-intercept / slope)
-    print('Hertz (C3D20R, hc %g): P\' = %.6g, a = %.5f, p0 = %.5f; %d closed nodes per layer, '
-          '%d open nodes between them' % (hc, load, a, p0, closed.sum(), inside_open))
+    print('Hertz (%s, hc %g): P\' = %.6g, a = %.5f, p0 = %.5f; %d closed nodes per layer, '
+          '%d open nodes between them' % (kind, hc, load, a, p0, closed.sum(), inside_open))
     checker.relative('peak nodal pressure p_max vs p0', p[closed].max(), p0, tolerance)
     checker.relative('fitted p0', p0_fit, p0, tolerance)
     checker.relative('fitted half-width a', a_fit, a, tolerance)
     checker.check(x_last - 0.5 * hc <= a <= x_open + 0.5 * hc, 'contact edge: outermost closed '
                   'node %.4f, first open node past it %.4f, theory a = %.4f' % (x_last, x_open, a))
-    print('summary hertz C3D20R hc %g: a/hc %.2f, p_max/p0 - 1 = %+.4f, p0_fit/p0 - 1 = %+.4f, '
+    print('summary hertz %s hc %g: a/hc %.2f, p_max/p0 - 1 = %+.4f, p0_fit/p0 - 1 = %+.4f, '
           'a_fit/a - 1 = %+.4f, edge bracket [%.4f, %.4f] vs a %.4f'
-          % (hc, a / hc, p[closed].max() / p0 - 1, p0_fit / p0 - 1, a_fit / a - 1, x_last, x_open, a))
+          % (kind, hc, a / hc, p[closed].max() / p0 - 1, p0_fit / p0 - 1, a_fit / a - 1, x_last, x_open, a))
     if table_row:
         with open(table_row, 'w') as out:
             out.write(repr(dict(hc=hc, a=a, p0=p0, p_max=p[closed].max(), p0_fit=p0_fit,
