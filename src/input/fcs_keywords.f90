@@ -458,7 +458,10 @@ contains
           p('TIME', PARAM_CHOICE, default='STEP TIME', choices=[s('STEP TIME'), s('TOTAL TIME')], &
             description='Whether times are measured from the start of each step or of the analysis.'), &
           p('DEFINITION', PARAM_CHOICE, default='TABULAR', choices=[s('TABULAR')], &
-            description='Only tabular amplitudes are available.')], data_required=.true.), &
+            description='Only tabular amplitudes are available.'), &
+          p('USER', PARAM_FLAG, description='A user amplitude (CalculiX''s subroutine ' // &
+            'uamplitude): only the one CalculiX ships is available, NAME=QUADRATIC, a(t) = t^2 ' // &
+            '(no data lines).')]), &
       kw('STEP', CONTEXT_MODEL, 'CalculiX', 'Start a step (a loading stage).', '', &
          [p('AMPLITUDE', PARAM_CHOICE, default='RAMP', choices=[s('RAMP')], &
             description='How loads without *AMPLITUDE change over the step: RAMP, linearly ' // &
