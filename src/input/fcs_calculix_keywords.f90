@@ -15,6 +15,7 @@
 !> strings of Debian's ccx 2.20 binary, blanks removed.
 module fcs_calculix_keywords
   use fcs_strings, only: to_upper
+  use fcs_keywords, only: without_blanks
   implicit none
   private
   public :: is_calculix_keyword
@@ -54,7 +55,7 @@ contains
     character(len=*), intent(in) :: keyword
     character(len=:), allocatable :: name
     integer :: i, n
-    name = squeezed(to_upper(keyword))
+    name = without_blanks(to_upper(keyword))
     known = .false.
     do i = 1, size(CALCULIX_KEYWORDS)
       n = len_trim(CALCULIX_KEYWORDS(i))
@@ -65,14 +66,4 @@ contains
       end if
     end do
   end function is_calculix_keyword
-
-  pure function squeezed(text) result(out)
-    character(len=*), intent(in) :: text
-    character(len=:), allocatable :: out
-    integer :: i
-    out = ''
-    do i = 1, len(text)
-      if (text(i:i) /= ' ') out = out // text(i:i)
-    end do
-  end function squeezed
 end module fcs_calculix_keywords

@@ -14,6 +14,7 @@ module fcs_keywords
   implicit none
   private
   public :: keyword_spec_t, param_spec_t, keyword_table, find_keyword, find_param_spec, same_name
+  public :: without_blanks
   public :: PARAM_FLAG, PARAM_TEXT, PARAM_NAME, PARAM_REAL, PARAM_INTEGER, PARAM_CHOICE, PARAM_FILE
   public :: PARAM_IGNORED, friction_keyword_params
   public :: CONTEXT_MODEL, CONTEXT_STEP, CONTEXT_ANY, param_kind_name, context_name

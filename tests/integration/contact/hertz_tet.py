@@ -79,23 +79,13 @@ def make_deck(path, mesh, hc):
         for tri in ((0, 1, 2), (0, 2, 3)):
             for tet in wedge_tets([base[i] for i in tri], [top[i] for i in tri]):
                 tets.append((positive(tet, nodes), entity))
-    next_tag = max(nodes) + 1
+    next_tag = [max(nodes) + 1]
     mid = {}
     elements = []
     for number, (corners, entity) in enumerate(tets, start=1):
         conn = list(corners)
         for a, b in TET10_EDGES:
-            key = tuple(sorted((corners[a], corners[b])))
-            if key not in mid:
-                x = 0.5 * (nodes[key[0]] + nodes[key[1]])
-                if hq.on_arc(nodes[key[0]]) and hq.on_arc(nodes[key[1]]):
-                    centre = np.array([0.0, hertz.RADIUS])
-                    d = x[:2] - centre
-                    x = np.array([*(centre + hertz.RADIUS * d / np.linalg.norm(d)), x[2]])
-                nodes[next_tag] = x
-                mid[key] = next_tag
-                next_tag += 1
-            conn.append(mid[key])
+            conn.append(hq.mid_node(nodes, mid, corners[a], corners[b], next_tag))
         elements.append((number, conn, entity))
     lines = ['*HEADING', 'Cylinder on a block, plane strain, C3D10, hc = %g '
              '(tests/integration/contact/hertz_tet.py)' % hc, '*NODE, NSET=ALL_NODES']
@@ -103,47 +93,9 @@ def make_deck(path, mesh, hc):
     lines += ['%d, %.15g, %.15g, %.15g' % (tag, *nodes[tag]) for tag in used]
     lines.append('*ELEMENT, TYPE=C3D10, ELSET=ALL_ELEMENTS')
     lines += ['%d, %s' % (tag, ', '.join(str(n) for n in conn)) for tag, conn, _ in elements]
-    for (dim, tag), name in sorted(names.items()):
-        if dim != 3:
-            continue
-        members = [e for e in elements if tag in physicals.get((3, e[2]), [])]
-        lines += cc.elset_cards(name, [e[0] for e in members])
-        lines += cc.nset_cards(name, sorted({n for e in members for n in e[1]}))
-    node_elements = {}
-    for e in elements:
-        for n in e[1][:4]:
-            node_elements.setdefault(n, []).append(e)
-    for (dim, tag), name in sorted(names.items()):
-        if dim != 2:
-            continue
-        faces, face_nodes = {}, set()
-        for quad, entity in quads:
-            if tag not in physicals.get((2, entity), []):
-                continue
-            corners = set(quad)
-            found = 0
-            for e in {id(e): e for n in quad for e in node_elements[n]}.values():
-                label = face_of(e[1], corners)
-                if label:
-                    faces.setdefault(label, []).append(e[0])
-                    face_nodes.update(face_all_nodes(e[1], label))
-                    found += 1
-            if found != 2:
-                cc.fail('quadrangle %s of %s: %d tetrahedron faces on it, expected 2'
-                        % (quad, name, found))
-        for label, ids in sorted(faces.items()):
-            lines += cc.elset_cards('%s_%s' % (name, label), sorted(set(ids)))
-        lines.append('*SURFACE, NAME=%s, TYPE=ELEMENT' % name)
-        lines += ['%s_%s, %s' % (name, label, label) for label in sorted(faces)]
-        lines += cc.nset_cards(name, sorted(face_nodes))
-    lines += ['*ELSET, ELSET=BODIES', 'CAP, BLOCK']
-    lines += cc.material_cards('MAT', 'BODIES', hertz.YOUNG, hertz.POISSON)
-    lines += cc.interaction_cards('INTERFACE', 10.0 * hertz.YOUNG / hc)
-    lines += ['*CONTACT PAIR, INTERACTION=INTERFACE, TYPE=NODE TO SURFACE', 'CAP_BOTTOM, BLOCK_TOP']
-    lines += ['*STEP', '*STATIC', '1., 1.', '*BOUNDARY', 'CAP, 3, 3', 'BLOCK, 3, 3',
-              'BLOCK_BOTTOM, 1, 2', 'CAP_TOP, 1, 1', 'CAP_TOP, 2, 2, %.12g' % -hertz.APPROACH,
-              '*NODE PRINT, NSET=CAP_TOP, TOTALS=ONLY', 'RF', '*CONTACT PRINT', 'CSTR',
-              '*CONTACT FILE', 'CSTR', '*END STEP']
+    # Each quadrangle of gmsh's surfaces is cut by a diagonal into two tetrahedron faces.
+    lines += hq.group_cards(names, physicals, elements, quads, 4, face_of, face_all_nodes, 2)
+    lines += hq.model_cards(hc)
     cc.write_deck(path, lines)
 
 
