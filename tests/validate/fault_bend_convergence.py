@@ -171,7 +171,16 @@ def main():
              '(fault_bend.geo). Relative differences: (finer - coarser) / finer.' % (
                  os.path.relpath(os.path.abspath(args.deck), study.ROOT), 'edited copy with a '
                  'segment-slip *HISTORY added' + (', end time changed' if args.end else ''),
-                 expected_end), ''] + run_lines(runs, factors, meshes, seconds) + [''] + md
+                 expected_end), '',
+             'Written by `tests/validate/fault_bend_convergence.py --factors %s` (`sh tests/validate/'
+             'fault_bend_convergence.sh`). First slip: first increment of stage 2 with a slipping '
+             'node of the frictional pair (history CSV), counted from the start of stage 2 (%g s). '
+             'System-size event: a catalogued event on at least half of the slave nodes of the '
+             'fault; nucleation: first slip -> onset of the first one; later onsets are counted '
+             'from the first slip. Stress drop: the catalog\'s mean stress drop of the event. '
+             'E_n is fcs3d\'s default 10 E/h, so it grows as the mesh is refined.' % (
+                 args.factors, runs[0]['stage_1_end']), ''] + \
+        run_lines(runs, factors, meshes, seconds) + [''] + md
     met = [k for k, v in verdicts.items() if v == 'yes']
     missed = [k for k, v in verdicts.items() if v == 'no']
     lines += ['', 'Two finest meshes within %g %%: %s; not within: %s; not measurable '

@@ -3,15 +3,20 @@
 
 --set ensemble (default): the same deck and mesh, run with different linear solvers (MUMPS,
 UMFPACK, SKYLINE: --solver), BLAS/OpenMP thread counts (OPENBLAS_NUM_THREADS and
-OMP_NUM_THREADS 1 or 2), factor reuse (--reuse-tolerance 1e-10: the tangent solved by GMRES
-with an earlier tangent's factors to a relative residual of 1e-10) and, with an MPI build
-(bin/fcs3d-mpi and mpirun), MUMPS distributed over 2 processes. These change the round-off of
-each solve, nothing else.
+OMP_NUM_THREADS 1 or 2), with and without factor reuse (the deck's *SOLVER, REUSE TOLERANCE
+solves a tangent by GMRES with an earlier tangent's factors to a relative residual of 1e-10;
+--reuse-tolerance 0 factorises every tangent) and, with an MPI build (bin/fcs3d-mpi and mpirun),
+MUMPS distributed over 2 processes. These change the round-off of each solve, nothing else.
+(MUMPS's ordering is not varied: fcs3d gives MUMPS its own METIS ordering, with no option to
+change it.)
 
---set anchors: the deck as it is against the same deck with the static friction level of the
-rate-dependent law set to mu_s = MU0 (VC = V0: the floor at the reference velocity, so mu(VC)
-= 0.60), with event times measured from the first slip (which removes the unknown duration of
-stage 1 and the level the first slip depends on).
+--set anchors (issue 19, item 4): the paper's literal law (fault_bend_paper_law.inp,
+d(phi)/dt = 0) with its floor below VC = 1e-6 mm/s (static level mu(VC) = 0.7036) against the
+same deck with the floor at the reference velocity (VC = V0: static level mu_s = MU0 = 0.60),
+and the reference deck (Ruina's slip law), with event times measured from the first slip
+(which removes the unknown duration of stage 1 and the static level the first slip depends
+on). fcs3d has no option for the literal reading of eq. (3) (V including the elastic stick
+part of the relative velocity), so that reading is not run.
 
 For each run (fault_bend_study.measure, and post/fault_bend_zones.py for the verdicts of the
 paper's statements 1-6) it records:
@@ -62,10 +67,10 @@ ENSEMBLE = {
     'umfpack_t1': ('UMFPACK, 1 thread', '--solver UMFPACK', ONE, 1),
     'umfpack_t2': ('UMFPACK, 2 threads', '--solver UMFPACK', TWO, 1),
     'skyline': ('SKYLINE, 1 thread', '--solver SKYLINE', ONE, 1),
-    'mumps_reuse': ('MUMPS, factor reuse (GMRES to 1e-10)', '--solver MUMPS '
-                    '--reuse-tolerance 1e-10', ONE, 1),
-    'umfpack_reuse': ('UMFPACK, factor reuse (GMRES to 1e-10)', '--solver UMFPACK '
-                      '--reuse-tolerance 1e-10', ONE, 1),
+    'mumps_noreuse': ('MUMPS, no factor reuse (every tangent factorised)', '--solver MUMPS '
+                      '--reuse-tolerance 0', ONE, 1),
+    'umfpack_noreuse': ('UMFPACK, no factor reuse', '--solver UMFPACK --reuse-tolerance 0',
+                        ONE, 1),
     'mumps_mpi2': ('MUMPS distributed on 2 MPI processes, 1 thread each', '--solver MUMPS',
                    ONE, 2),
     'mumps_mpi2_t2': ('MUMPS distributed on 2 MPI processes, 2 threads each', '--solver MUMPS',
@@ -84,10 +89,15 @@ def static_level_at_reference(text):
     return text[:m.start()] + line + text[m.end():]
 
 
+PAPER_LAW = os.path.join(study.ROOT, 'input', 'fault_bend', 'fault_bend_paper_law.inp')
 ANCHORS = {
-    # name: (description, deck edit)
-    'floor': ('the deck as it is (static level: its regularisation)', lambda t: t),
-    'mu_s_0.60': ('static level mu_s = MU0 (VC = V0)', static_level_at_reference),
+    # name: (description, deck, deck edit)
+    'paper_law_floor': ("the paper's law, d(phi)/dt = 0, floor below VC = 1e-6 mm/s "
+                        '(mu_s = 0.7036): fault_bend_paper_law.inp', PAPER_LAW, lambda t: t),
+    'paper_law_mu_s_0.60': ("the paper's law with the floor at VC = V0 (mu_s = MU0 = 0.60)",
+                            PAPER_LAW, static_level_at_reference),
+    'ruina_slip_law': ("Ruina's slip law, L = 1e-3 mm, radiation damping: fault_bend.inp (the "
+                       'reference deck)', study.DECK, lambda t: t),
 }
 
 
@@ -185,8 +195,29 @@ STATEMENT_ROWS = (
 )
 
 
-def write_tables(names, members, rows, out, stem, set_name):
-    md = ['| run | what differs | first slip [s] | nucleation [s] | system-size events: onset '
+def header(set_name, deck, gmsh):
+    what = ('an ensemble of runs of one deck and mesh that differ in round-off only (solver, '
+            'threads, factor reuse, MPI processes)' if set_name == 'ensemble' else
+            'the static-friction anchors of the paper\'s law and the reference deck, event times '
+            'measured from the first slip')
+    return ['Written by `tests/validate/fault_bend_ensemble.py --set %s` (`sh tests/validate/'
+            'fault_bend_ensemble.sh`): %s. Deck: `%s` with a *HISTORY of the mean displacement of '
+            'the sides of D-E and E-F added (output only); mesh: %s. Times are total times '
+            '(stage 1 ends at 10 s).' % (set_name, what, deck, '`%s`' % gmsh if gmsh else
+                                         'the .geo defaults'), '',
+            'Definitions: first slip = first increment of stage 2 with a slipping node of the '
+            'frictional pair (history CSV); system-size event = catalogued event on at least half '
+            'of its slave nodes; nucleation = first slip -> onset of the first system-size event. '
+            'Statements: nucleation holds if it lasts at least %g s; arrest if an event '
+            'nucleating on D-E over at least half of its nodes slips E-F by less than %g times '
+            'its mean slip on D-E; restart if, after that, an event nucleates on E-F over at least '
+            'half of its nodes with more slip on E-F than on D-E; zones 1-6 are the verdicts of '
+            '`post/fault_bend_zones.py` (its rules are printed in its report, `zones.md` in each '
+            'run directory).' % (NUCLEATION_SECONDS, ARREST_RATIO), '']
+
+
+def write_tables(names, members, rows, out, stem, set_name, preamble=()):
+    md = list(preamble) + ['| run | what differs | first slip [s] | nucleation [s] | system-size events: onset '
           '[s] (since the first slip) | events (system-size) | same increments as | '
           'increments | wall [s] | CPU [s] |', '|---|---|---:|---:|---|---|---|---:|---:|---:|']
     seen = {}
@@ -257,7 +288,8 @@ def main():
     parser.add_argument('--fcs3d', required=True)
     parser.add_argument('--work', required=True)
     parser.add_argument('--out', default=None)
-    parser.add_argument('--deck', default=study.DECK)
+    parser.add_argument('--deck', default=study.DECK, help='the deck of the ensemble (the '
+                        'anchors have theirs)')
     parser.add_argument('--set', choices=('ensemble', 'anchors'), default='ensemble')
     parser.add_argument('--only', default=None)
     parser.add_argument('--end', type=float, default=None)
@@ -285,9 +317,18 @@ def main():
             members = {k: v for k, v in members.items() if v[3] == 1}
         texts = {name: text for name in members}
     else:
-        members = {name: (d, '--solver MUMPS', ONE, 1) for name, (d, _) in ANCHORS.items()}
-        texts = {name: ANCHORS[name][1](text) for name in members}
+        members = {name: (d, '', ONE, 1) for name, (d, _, _) in ANCHORS.items()}
+        texts = {}
+        for name, (_, deck, edit) in ANCHORS.items():
+            anchor = open(deck).read()
+            if args.end is not None:
+                anchor = study.with_end_time(anchor, args.end)
+            texts[name] = edit(study.with_segment_history(anchor))
     names = args.only.split(',') if args.only else list(members)
+    unknown = [n for n in names if n not in members]
+    if unknown:
+        print('left out (not a member of this set or no MPI build): ' + ', '.join(unknown))
+        names = [n for n in names if n in members]
     if not args.summarise_only:
         with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
             jobs = [pool.submit(run_member, n, members, fcs3d, work, texts[n], args.gmsh,
@@ -312,7 +353,10 @@ def main():
         rows[name] = {'m': m, 'statements': s, 'digest': increments_digest(directory),
                       'wall': wall, 'cpu': cpu}
     stem = 'fault_bend_ensemble' if args.set == 'ensemble' else 'fault_bend_anchors'
-    write_tables(names, members, rows, args.out, stem, args.set)
+    deck = os.path.relpath(os.path.abspath(args.deck), study.ROOT) if args.set == 'ensemble' \
+        else ', '.join(sorted({os.path.relpath(d, study.ROOT) for _, d, _ in ANCHORS.values()}))
+    write_tables(names, members, rows, args.out, stem, args.set,
+                 header(args.set, deck, args.gmsh))
     expected_end = study.end_time(text)
     failed = [n for n in names if rows[n]['m']['status'] != 0 or
               abs((rows[n]['m']['end_time'] or -1) - expected_end) > 1e-6]
