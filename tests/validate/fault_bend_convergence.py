@@ -43,6 +43,8 @@ def factor_label(factor):
         return 'h'
     if abs(factor - math.sqrt(2)) < 1e-3:
         return 'h/sqrt 2'
+    if abs(factor - 1 / math.sqrt(2)) < 1e-3:
+        return 'h sqrt 2'
     return 'h/%g' % factor
 
 
