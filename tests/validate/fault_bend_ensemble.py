@@ -152,10 +152,12 @@ def statements(m):
         return out
     arrested = [e for e in with_slip if e['segment'] == 'DE' and e['nodes'] >= 0.5 * nodes['DE']
                 and e['slip_DE'] > 0 and e['slip_EF'] < ARREST_RATIO * e['slip_DE']]
+    shown = arrested or [e for e in with_slip if e['segment'] == 'DE' and
+                         e['nodes'] >= 0.5 * nodes['DE'] and e['slip_DE'] > 0]
     out['arrest'] = ('yes' if arrested else 'no', ', '.join(
-        '%.2f s (%d nodes, E-F/D-E slip %.2f)' % (e['onset'], e['nodes'],
+        '%.3f s (%d nodes, E-F/D-E slip %.2f)' % (e['onset'], e['nodes'],
                                                   e['slip_EF'] / e['slip_DE'])
-        for e in arrested[:3]) or 'none')
+        for e in shown[:3]) or 'no event over half of D-E nucleates on it')
     if not arrested:
         out['restart'] = ('-', 'no arrested event')
         return out
@@ -227,7 +229,7 @@ def write_tables(names, members, rows, out, stem, set_name, preamble=()):
         same = seen.get(r['digest'], '') if r['digest'] else ''
         if r['digest'] and r['digest'] not in seen:
             seen[r['digest']] = name
-        onsets = ', '.join('%.2f (%s)' % (e['onset'], fmt(e['onset'] - m['first_slip']))
+        onsets = ', '.join('%.3f (%s)' % (e['onset'], fmt(e['onset'] - m['first_slip'], 3))
                            for e in m['big'][:3]) or '-'
         md.append('| %s | %s | %s | %s | %s | %d (%d) | %s | %s | %s | %s |' % (
             name, members[name][0], fmt(m['first_slip']), fmt(m['nucleation']), onsets,
@@ -262,7 +264,7 @@ def write_tables(names, members, rows, out, stem, set_name, preamble=()):
         values = [get(rows[n]['m']) for n in complete]
         values = [v for v in values if v is not None]
         if values:
-            md.append('| %s | %.2f | %.2f | %.2f | %d |' % (label, min(values), max(values),
+            md.append('| %s | %.3f | %.3f | %.3f | %d |' % (label, min(values), max(values),
                                                              max(values) - min(values),
                                                              len(values)))
         else:
