@@ -40,6 +40,9 @@ What check asserts (the job's <job>_strip.csv history, <job>_events.csv catalog 
     event's onset and the nucleation duration agree within 1 %, and the event's mean stress
     drop within 5 % (the increment control limits slip per increment, a first-order error in
     xi; the measured differences are listed in tests/integration/friction_nucleation.sh).
+
+*RMIN limits as in input/fault_bend/fault_bend.inp: MAX STATE CHANGE = 2 and MAX FRICTION
+CHANGE = 0.05, so that MAX SLIP INCREMENT governs inside the event.
 """
 import argparse
 import math
@@ -106,12 +109,13 @@ def make_deck(path, xi):
               '*SURFACE INTERACTION, NAME=FAULT', FRICTION,
               '*CONTACT PAIR, INTERACTION=FAULT, NAME=%s' % PAIR, 'SLAVE, MASTER',
               '*HISTORY, NAME=%s, FREQUENCY=1' % HISTORY, 'CONTACT, %s' % PAIR,
-              '*EVENT CATALOG, SLIP RATE=%g' % (10.0 * V_LOAD),
+              '*EVENT CATALOG, SLIP RATE=%g, MIN SLIP=%g' % (10.0 * V_LOAD, DC),
               '*BOUNDARY', 'BASE_NODES, 1, 3', 'STRIP_NODES, 2, 2',
               '*STEP, NAME=PRESS', '*STATIC', '0.1, 1.', '*BOUNDARY', 'DRIVEN, 1, 1',
               '*DSLOAD', 'LOADED, P, %g' % SIGMA_N, '*END STEP',
               '*STEP, NAME=PUSH', '*STATIC', '0.1, %g, 1e-7, 1.' % PERIOD,
-              '*RMIN, MAX SLIP INCREMENT=%g, EQUILIBRIUM TOLERANCE=%g' % (xi, EQUILIBRIUM),
+              '*RMIN, MAX SLIP INCREMENT=%g, MAX STATE CHANGE=2, MAX FRICTION CHANGE=0.05, '
+              'EQUILIBRIUM TOLERANCE=%g' % (xi, EQUILIBRIUM),
               '*BOUNDARY, TYPE=VELOCITY', 'DRIVEN, 1, 1, %g' % V_LOAD, '*END STEP']
     with open(path, 'w') as out:
         out.write('\n'.join(lines) + '\n')
