@@ -39,9 +39,11 @@
 // recombination) and extruded through the thickness in `layers` layers of hexahedra.
 // Along the fault the node spacing is uniform on each segment, at most h_fault on the upper
 // (slave) side and at most h_fault * lower_fault_factor on the lower (master) side (an even
-// number of elements per segment). With the default lower_fault_factor = 1.25 the fault nodes
-// of the two sides match only at C, D, E, F, G and where the two divisions happen to agree;
-// with lower_fault_factor = 1 they all coincide in position (still distinct nodes). Away from
+// number of elements per segment). With the default lower_fault_factor = 1 the fault nodes of
+// the two sides coincide in position (still distinct nodes): matching fault nodes, which pass
+// the contact patch test (issue 19; doc/validation/fault_bend.md, section 8.5). With
+// lower_fault_factor = 1.25 (the default before issue 19) they match only at C, D, E, F, G and
+// where the two divisions happen to agree. Away from
 // the fault the in-plane size grows linearly from h_fault to h_far over the distance h_grading.
 // gmsh warns "Full-quad recombination only compatible with transfinite meshes if those are
 // performed first" once per fault and boundary curve: expected, the mesh is checked by
@@ -87,7 +89,7 @@ If (!Exists(h_fault))
   h_fault = 10;           // mm, in-plane element size along the fault (upper side)
 EndIf
 If (!Exists(lower_fault_factor))
-  lower_fault_factor = 1.25; // lower (master) side spacing / upper (slave) side spacing
+  lower_fault_factor = 1;  // lower (master) side spacing / upper (slave) side spacing
 EndIf
 If (!Exists(h_far))
   h_far = 25;             // mm, in-plane element size far from the fault

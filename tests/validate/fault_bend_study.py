@@ -30,6 +30,9 @@ import time
 
 ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..'))
 DECK = os.path.join(ROOT, 'input', 'fault_bend', 'fault_bend.inp')
+GEO = os.path.join(ROOT, 'input', 'fault_bend', 'fault_bend.geo')
+sys.path.insert(0, os.path.join(ROOT, 'post'))
+import fault_profile  # noqa: E402  (post/: the trace of the .geo, numpy only)
 PAPER_FIRST_SLIP = 228.7
 DEFAULT_EN = None  # read from the default run's echo
 
@@ -84,20 +87,98 @@ VARIANTS = {
 }
 
 
+# ---------------------------------------------------------------- runs (shared with
+# fault_bend_convergence.py and fault_bend_ensemble.py)
+
+
+def mesh_options(values):
+    """gmsh options "-setnumber NAME VALUE ..." of a {name: value} dict (in its order)."""
+    return ' '.join('-setnumber %s %s' % (k, ('%.6g' % v) if isinstance(v, float) else v)
+                    for k, v in values.items())
+
+
+def scaled_mesh(factor, geo=GEO):
+    """The -setnumber values of the .geo's default mesh refined by `factor`: h_fault and h_far
+    divided by it, the number of layers through the thickness multiplied by it (rounded)."""
+    d = fault_profile.geo_defaults(geo)
+    return {'h_fault': d['h_fault'] / factor, 'h_far': d['h_far'] / factor,
+            'layers': max(1, int(round(d['layers'] * factor)))}
+
+
+def static_lines(text):
+    """[(start, end) of the data line] of every *STATIC card of a deck, in order."""
+    return [(m.start(1), m.end(1)) for m in
+            re.finditer(r'^\*STATIC[^\n]*\n(?:\*\*[^\n]*\n)*([^\n*][^\n]*)$', text, re.M)]
+
+
+def with_end_time(text, end):
+    """The deck with its last step shortened (or lengthened) to end at total time `end`: the
+    period of the last *STATIC line becomes `end` minus the earlier steps' periods."""
+    lines = static_lines(text)
+    if not lines:
+        raise ValueError('the deck has no *STATIC data line')
+    periods = [float(text[a:b].split(',')[1]) for a, b in lines]
+    period = end - sum(periods[:-1])
+    if period <= 0:
+        raise ValueError('end time %g is before the last step starts' % end)
+    a, b = lines[-1]
+    fields = [f.strip() for f in text[a:b].split(',')]
+    fields[1] = '%g.' % period if period == int(period) else '%g' % period
+    return text[:a] + ', '.join(fields) + text[b:]
+
+
+def end_time(text):
+    """Total time at the end of the deck's last step (the sum of the *STATIC periods)."""
+    return sum(float(text[a:b].split(',')[1]) for a, b in static_lines(text))
+
+
+#: Node sets whose mean displacement the segment history records (the .geo's groups).
+SEGMENT_SETS = ('DE_UPPER', 'DE_LOWER', 'EF_UPPER', 'EF_LOWER')
+
+
+def with_segment_history(text):
+    """The deck with a *HISTORY of the mean displacement of the two sides of D-E and of E-F at
+    every increment (<job>_segments.csv): output only, the solution is unchanged. It gives
+    each event's mean slip on D-E and on E-F (segment_slip)."""
+    card = ('** added by tests/validate/fault_bend_study.py: mean displacement of the sides of '
+            'D-E and E-F\n*HISTORY, NAME=SEGMENTS, FREQUENCY=1\n' +
+            ''.join('NSET, %s, U\n' % name for name in SEGMENT_SETS))
+    k = re.search(r'^\*STEP', text, re.M)
+    if k is None:
+        raise ValueError('the deck has no *STEP')
+    return text[:k.start()] + card + text[k.start():]
+
+
+def run_case(directory, fcs3d, deck_text, gmsh='', options='-q', env=None):
+    """Mesh and run one case in `directory` through tools/run_default.sh (the deck written
+    there as case.inp). Returns (exit status, wall seconds, CPU seconds of the run and its
+    children)."""
+    os.makedirs(directory, exist_ok=True)
+    deck = os.path.join(directory, 'case.inp')
+    with open(deck, 'w') as f:
+        f.write(deck_text)
+    environment = dict(os.environ, FAULT_BEND_DIR=directory, FAULT_BEND_DECK=deck,
+                       FAULT_BEND_GMSH=gmsh, FCS3D_OPTIONS=options)
+    environment.update(env or {})
+    started = time.time()
+    with open(os.path.join(directory, 'case.out'), 'w') as out:
+        process = subprocess.Popen(['nice', '-n', '10', 'sh',
+                                    os.path.join(ROOT, 'tools', 'run_default.sh'), fcs3d],
+                                   env=environment, stdout=out, stderr=subprocess.STDOUT)
+        _, status, usage = os.wait4(process.pid, 0)
+        process.returncode = os.waitstatus_to_exitcode(status)
+    seconds = time.time() - started
+    cpu = usage.ru_utime + usage.ru_stime
+    with open(os.path.join(directory, 'case.time'), 'w') as f:
+        f.write('wall %.1f cpu %.1f status %d\n' % (seconds, cpu, process.returncode))
+    return process.returncode, seconds, cpu
+
+
 def run_variant(name, fcs3d, work):
     description, gmsh, edit = VARIANTS[name]
     directory = os.path.join(work, name)
-    os.makedirs(directory, exist_ok=True)
-    deck = os.path.join(directory, 'study.inp')
-    with open(deck, 'w') as f:
-        f.write(edit(open(DECK).read(), DEFAULT_EN))
-    env = dict(os.environ, FAULT_BEND_DIR=directory, FAULT_BEND_DECK=deck,
-               FAULT_BEND_GMSH=gmsh, FCS3D_OPTIONS='-q')
-    started = time.time()
-    with open(os.path.join(directory, 'study.out'), 'w') as out:
-        status = subprocess.call(['sh', os.path.join(ROOT, 'tools', 'run_default.sh'), fcs3d],
-                                 env=env, stdout=out, stderr=subprocess.STDOUT)
-    return name, status, time.time() - started
+    status, seconds, _ = run_case(directory, fcs3d, edit(open(DECK).read(), DEFAULT_EN), gmsh)
+    return name, status, seconds
 
 
 def read_csv(path):
@@ -105,40 +186,144 @@ def read_csv(path):
         return list(csv.DictReader(f))
 
 
-def summarise(name, status, work):
-    directory = os.path.join(work, name)
-    row = {'name': name, 'description': VARIANTS[name][0], 'status': status}
-    log = open(os.path.join(directory, 'fault_bend.log')).read() \
-        if os.path.exists(os.path.join(directory, 'fault_bend.log')) else ''
-    m = re.search(r'^done: (\d+) increment\(s\), time ([\d.]+), wall (.*?), peak memory ([\d.]+) MiB',
-                  log, re.M)
+LOG_DONE = re.compile(r'^done: (\d+) increment\(s\), time ([\d.eE+-]+), wall (.*?), peak memory '
+                      r'([\d.]+) MiB', re.M)
+LOG_STEP_END = re.compile(r'^end of step (\d+) .*? at time ([\d.eE+-]+) after', re.M)
+LOG_STICK_SLIP = re.compile(r'^inc \d+ step (\d+) time (\S+) .*? limit stick->slip(?: node '
+                            r'(\d+))?', re.M)
+LOG_STEP_START = re.compile(r'^step (\d+) \(', re.M)
+LOG_MESH = re.compile(r'^model: (\d+) nodes, (\d+) elements .*?, (\d+) degrees of freedom', re.M)
+
+
+def segment_slip(rows, t0, t1):
+    """{'DE': mean slip, 'EF': mean slip} [mm] between the last sample at or before t0 and the
+    first at or after t1 of the segment history (with_segment_history): the norm of the
+    change of the mean upper-minus-lower displacement of each segment's nodes."""
+    before = [r for r in rows if r['time'] <= t0 + 1e-12]
+    after = [r for r in rows if r['time'] >= t1 - 1e-12]
+    if not before or not after:
+        return None
+    a, b = before[-1], after[0]
+    out = {}
+    for seg in ('DE', 'EF'):
+        d = [(b[seg + '_UPPER_U%d' % k] - b[seg + '_LOWER_U%d' % k]) -
+             (a[seg + '_UPPER_U%d' % k] - a[seg + '_LOWER_U%d' % k]) for k in (1, 2, 3)]
+        out[seg] = sum(x * x for x in d) ** 0.5
+    return out
+
+
+def measure(directory, job='fault_bend'):
+    """What the run in `directory` shows, from its own outputs (log, history CSVs, event
+    catalog, mesh_options.txt). Times are total times. Keys:
+      status          0 when the log has its "done:" line
+      increments, end_time, wall, nodes, elements, dof, E_n, E_t, stage_1_end
+      first_slip      first history row after stage 1 with a slipping node of a frictional
+                      pair; first_slip_log, first_slip_node: the first increment of the last
+                      step limited by stick->slip in the log
+      slaves          slave nodes of the frictional pairs (stick + slip + open)
+      half_slip_time  first history row with at least half of them slipping at once
+      events          [{onset, end, nodes, stress_drop, peak_rate, segment, position,
+                      slip_DE, slip_EF}] (segment: of the hypocentre, along the trace;
+                      slip_*: mean slip of each segment during the event, when the run has the
+                      segment history)
+      big             the events on at least half of the slave nodes ("system-size")
+      nucleation      onset of the first system-size event minus first_slip
+    """
+    path = lambda name: os.path.join(directory, name)  # noqa: E731
+    row = {'directory': directory}
+    log = open(path(job + '.log')).read() if os.path.exists(path(job + '.log')) else ''
+    m = LOG_DONE.search(log)
+    row['status'] = 0 if m else 1
     row['increments'] = int(m.group(1)) if m else None
     row['end_time'] = float(m.group(2)) if m else None
     row['wall'] = m.group(3) if m else None
-    m = re.search(r'E_n = ([\d.eE+-]+), E_t = ([\d.eE+-]+)', open(
-        os.path.join(directory, 'fault_bend.echo')).read()) if os.path.exists(
-        os.path.join(directory, 'fault_bend.echo')) else None
-    row['E_n'] = float(m.group(1)) if m else None
-    row['E_t'] = float(m.group(2)) if m else None
-    history = os.path.join(directory, 'fault_bend_fault.csv')
-    row['first_slip'] = None
-    n_slaves = None
-    if os.path.exists(history):
-        rows = read_csv(history)
-        for r in rows:
-            n_slaves = float(r['DF_STICK']) + float(r['DF_SLIP']) + float(r['DF_OPEN'])
-            if float(r['time']) > 10.0 and float(r['DF_SLIP']) > 0:
-                row['first_slip'] = float(r['time'])
-                break
-    events_path = os.path.join(directory, 'fault_bend_events.csv')
-    events = read_csv(events_path) if os.path.exists(events_path) else []
-    events = [e for e in events if e['pair'].strip() == '1']
-    row['events'] = len(events)
-    row['first_event'] = float(events[0]['onset']) if events else None
-    big = [e for e in events if n_slaves and int(e['nodes']) >= 0.5 * n_slaves]
-    row['big_events'] = [float(e['onset']) for e in big]
-    row['big_drop'] = (sum(float(e['stress_drop']) for e in big) / len(big)) if big else None
-    row['slaves'] = int(n_slaves) if n_slaves else None
+    m = LOG_MESH.search(log)
+    row['nodes'], row['elements'], row['dof'] = (int(m.group(k)) for k in (1, 2, 3)) if m \
+        else (None, None, None)
+    ends = {int(k): float(t) for k, t in LOG_STEP_END.findall(log)}
+    steps = {int(k) for k in LOG_STEP_START.findall(log)}
+    # Stage 1 (pressure) ends with step 1 of a deck of two or more steps.
+    row['stage_1_end'] = ends.get(1, 0.0) if len(steps) > 1 else 0.0
+    row['first_slip_log'] = row['first_slip_node'] = None
+    for step, t, node in LOG_STICK_SLIP.findall(log):
+        if int(step) > 1 and float(t) > row['stage_1_end']:
+            row['first_slip_log'], row['first_slip_node'] = float(t), node or None
+            break
+    echo = open(path(job + '.echo')).read() if os.path.exists(path(job + '.echo')) else ''
+    m = re.search(r'E_n = ([\d.eE+-]+), E_t = ([\d.eE+-]+)', echo)
+    row['E_n'], row['E_t'] = (float(m.group(1)), float(m.group(2))) if m else (None, None)
+    history = read_csv(path(job + '_fault.csv')) if os.path.exists(path(job + '_fault.csv')) \
+        else []
+    pairs = sorted({c[:-len('_STICK')] for c in (history[0] if history else {})
+                    if c.endswith('_STICK')})
+    counts = {p: max(float(r[p + '_STICK']) + float(r[p + '_SLIP']) + float(r[p + '_OPEN'])
+                     for r in history) for p in pairs}
+    # The *CONTACT PAIR names of the deck (a *TIE's nodes count as stick in the history).
+    deck = open(path(job + '.inp')).read() if os.path.exists(path(job + '.inp')) else ''
+    declared = {n.upper() for n in re.findall(r'^\*CONTACT PAIR\b[^\n]*\bNAME\s*=\s*([^,\s]+)',
+                                              deck, re.M | re.I)}
+    frictional = [p for p in pairs if counts[p] > 0 and (not declared or p.upper() in declared)]
+    row['slaves'] = int(sum(counts[p] for p in frictional)) if frictional else None
+    row['first_slip'] = row['half_slip_time'] = None
+    for r in history:
+        t = float(r['time'])
+        if t <= row['stage_1_end'] + 1e-9:
+            continue
+        slipping = sum(float(r[p + '_SLIP']) for p in frictional)
+        if slipping > 0 and row['first_slip'] is None:
+            row['first_slip'] = t
+        if row['slaves'] and slipping >= 0.5 * row['slaves']:
+            row['half_slip_time'] = t
+            break
+    trace = None
+    if os.path.exists(path('fault_bend.geo')):
+        options = []
+        if os.path.exists(path('mesh_options.txt')):
+            words = open(path('mesh_options.txt')).read().split()
+            options = [(words[i + 1], words[i + 2]) for i in range(len(words) - 2)
+                       if words[i] == '-setnumber']
+        trace = fault_profile.FaultTrace.from_parameters(
+            fault_profile.parameters(path('fault_bend.geo'), options))
+    segments = []
+    if os.path.exists(path(job + '_segments.csv')):
+        segments = [{k: float(v) for k, v in r.items()} for r in read_csv(path(job + '_segments.csv'))]
+    events = []
+    catalog = read_csv(path(job + '_events.csv')) if os.path.exists(path(job + '_events.csv')) \
+        else []
+    for e in catalog:
+        event = {'onset': float(e['onset']), 'end': float(e['end']), 'nodes': int(e['nodes']),
+                 'stress_drop': float(e['stress_drop']), 'peak_rate': float(e['peak_slip_rate']),
+                 'segment': None, 'position': None, 'slip_DE': None, 'slip_EF': None}
+        if trace is not None:
+            position, segment, _ = trace.along([[float(e['x']), float(e['y'])]])
+            event['segment'], event['position'] = str(segment[0]), float(position[0])
+        slip = segment_slip(segments, event['onset'], event['end']) if segments else None
+        if slip:
+            event['slip_DE'], event['slip_EF'] = slip['DE'], slip['EF']
+        events.append(event)
+    row['events'] = events
+    row['segment_nodes'] = None
+    if trace is not None and row['slaves']:
+        de, ef = trace.lengths['DE'], trace.lengths['EF']
+        row['segment_nodes'] = {'DE': row['slaves'] * de / (de + ef),
+                                'EF': row['slaves'] * ef / (de + ef)}
+    row['big'] = [e for e in events if row['slaves'] and e['nodes'] >= 0.5 * row['slaves']]
+    row['nucleation'] = (row['big'][0]['onset'] - row['first_slip']) \
+        if row['big'] and row['first_slip'] is not None else None
+    return row
+
+
+def summarise(name, status, work):
+    m = measure(os.path.join(work, name))
+    row = {'name': name, 'description': VARIANTS[name][0], 'status': status}
+    for key in ('increments', 'end_time', 'wall', 'E_n', 'E_t', 'first_slip'):
+        row[key] = m[key]
+    row['events'] = len(m['events'])
+    row['first_event'] = m['events'][0]['onset'] if m['events'] else None
+    row['big_events'] = [e['onset'] for e in m['big']]
+    row['big_drop'] = (sum(e['stress_drop'] for e in m['big']) / len(m['big'])) if m['big'] \
+        else None
+    row['slaves'] = m['slaves']
     return row
 
 
