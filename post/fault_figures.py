@@ -30,6 +30,7 @@ Figures (PNG, <prefix>_*.png in --out):
 """
 
 import os
+import re
 
 import numpy as np
 import matplotlib
@@ -424,7 +425,7 @@ def figure_model(run, arguments, summary):
     fig.suptitle("The fault-bend model (Figure 1 analogue): mesh, supports, loaded faces, "
                  "fault trace", fontsize=10)
     path = save(fig, run, arguments, "model", dpi=MAP_DPI)
-    summary.append("Figure 1: " + "; ".join(notes) + f"; segments {lengths}")
+    summary.append("Figure 1: " + "; ".join(merge_notes(notes)) + f"; segments {lengths}")
     return [path]
 
 
@@ -563,8 +564,9 @@ def figure_mises_own_scales(run, times, arguments, summary):
         vmax = max(float(np.percentile(v, 99.5)) for _, v in later)
         width = max(vmax - vmin, 1e-30)
         summary.append(f"  consecutive later maps on the common scale {vmin:.2f} .. "
-                       f"{vmax:.2f} MPa (mises_fig3): frames, largest |change| and 95th "
-                       "percentile of |change| as a share of the scale")
+                       f"{vmax:.2f} MPa (mises_fig3): range of each map; between consecutive maps (frame "
+                       "indices), the largest |change| and the 95th percentile of |change| as "
+                       "shares of the scale")
         for t0, v0 in later:
             summary.append(f"    t = {t0:g} s: values {v0.min():.2f} .. {v0.max():.2f} MPa span "
                            f"{100 * (v0.max() - v0.min()) / width:.1f} % of the common scale, "
@@ -810,6 +812,10 @@ def bracketing_frames(times, onset, end):
 
 
 def figure_event_maps(run, arguments, summary):
+    stale = re.compile(re.escape(arguments.prefix) + r"_event\d+\.png$")
+    for name in os.listdir(arguments.out):
+        if stale.match(name):               # maps of an earlier run's events
+            os.remove(os.path.join(arguments.out, name))
     picked, total = large_events(run, arguments.large_event_share)
     if not picked:
         mf.message(f"event maps skipped: no event over {100 * arguments.large_event_share:g} % "

@@ -5,6 +5,7 @@ Usage:
     /usr/bin/python3 post/make_figures.py --results run/fault_bend/fault_bend.h5 --out doc/figures
         [--deck run/fault_bend/fault_bend.inp] [--geo input/fault_bend/fault_bend.geo]
         [--setnumber NAME VALUE ...] [--z Z] [--vmax MPA] [--prefix fault_bend]
+        [--large-event-share 0.5] [--compare-results OTHER.h5 [--compare-deck OTHER.inp]]
 
 Figures written to --out (PNG), each skipped with a message when the data it needs are missing:
   <prefix>_mises_fig2.png       Mises stress [MPa] on the x-y cross-section at z = Z (default
@@ -30,6 +31,15 @@ Figures written to --out (PNG), each skipped with a message when the data it nee
                                 largest slip rate, share of nodes slipping; event onsets marked.
   <prefix>_events.png           the slip-event catalog (<job>_events.csv): onsets per pair,
                                 peak slip rate, largest slip, stress drop.
+  <prefix>_model.png, _mises_paper.png, _space_time.png, _stations.png (and _stations.csv),
+  _event<k>.png, _compare.png (with --compare-results): drawn by post/fault_figures.py (see
+  its docstring): Figure 1 analogue, Mises maps with one scale per map, slip rate along the
+  trace against time, fault stations, before/after maps of each large event (at least
+  --large-event-share of the frictional slave nodes; maps of earlier runs' events in --out are
+  removed), two runs side by side.
+Every figure's footer names the run by its deck and job, the gmsh options of mesh_options.txt,
+the deck's *HEADING, the fcs3d revision that wrote the results and the results file's date,
+never by a path.
 and <prefix>_summary.txt: the numbers behind the figures (times of the frames used, first
 stick->slip event of stage 2 from the .log, B force at the paper's times).
 
