@@ -564,9 +564,9 @@ def figure_mises_own_scales(run, times, arguments, summary):
         vmax = max(float(np.percentile(v, 99.5)) for _, v in later)
         width = max(vmax - vmin, 1e-30)
         summary.append(f"  consecutive later maps on the common scale {vmin:.2f} .. "
-                       f"{vmax:.2f} MPa (mises_fig3): range of each map; between consecutive maps (frame "
-                       "indices), the largest |change| and the 95th percentile of |change| as "
-                       "shares of the scale")
+                       f"{vmax:.2f} MPa (mises_fig3): range of each map; between consecutive "
+                       "maps (frame indices), the largest |change| and the 95th percentile of "
+                       "|change| as shares of the scale")
         for t0, v0 in later:
             summary.append(f"    t = {t0:g} s: values {v0.min():.2f} .. {v0.max():.2f} MPa span "
                            f"{100 * (v0.max() - v0.min()) / width:.1f} % of the common scale, "
@@ -714,8 +714,8 @@ def figure_space_time(run, arguments, summary):
     resolution = (f"{len(times)} frames (spacing {np.median(dt):g} s median, {dt.min():g} .. "
                   f"{dt.max():g} s), {len(edges) - 1} node columns along the trace "
                   f"(spacing {np.median(spacing):.2f} mm median), {len(nodes)} slave nodes")
-    fig.suptitle(f"Slip rate along C-G against time: {resolution}; no slip rate above "
-                 f"{norm.vmin:.1e} mm/s before {quiet_until:g} s", fontsize=9.5)
+    fig.suptitle(f"Slip rate along C-G against time: {resolution}\n(no slip rate above "
+                 f"{norm.vmin:.1e} mm/s before {quiet_until:g} s)", fontsize=9.5)
     path = save(fig, run, arguments, "space_time")
     summary.append(f"space-time slip rate: {resolution}; *HISTORY: {samples} samples per pair "
                    "(largest rate of the pair only: the CSV holds no per-node data)")

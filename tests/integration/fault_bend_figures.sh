@@ -51,7 +51,8 @@ if statics != 2 or velocities == 0:
     sys.exit(1)
 open(sys.argv[2], "w").write("\n".join(lines))
 PY
-(cd run && "$FCS3D" -q fault_bend.inp > run.out 2>&1) || { echo "fcs3d failed:"; tail -5 run/run.out; exit 1; }
+(cd run && "$FCS3D" -q fault_bend.inp > run.out 2>&1) || {
+  echo "fcs3d failed:"; tail -5 run/run.out; exit 1; }
 "$py" "$root/post/make_figures.py" --results run/fault_bend.h5 --out figures \
   --compare-results run/fault_bend.h5 --dpi 60 > figures.out 2>&1 || {
   echo "make_figures.py failed:"; tail -20 figures.out; exit 1; }
