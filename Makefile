@@ -5,7 +5,7 @@
 #   make ccx-suite CalculiX's static test decks through ccx and fcs3d (table of agreement)
 #   make bench     benchmarks that print figures (not part of make test)
 #   make bench-compare BEFORE=/path/to/fcs3d   that build and this one side by side
-#   make figures   figures of the default run into doc/figures/
+#   make figures   figures of the default run into doc/figures/ (make figures-runs: runs first)
 #   make DEBUG=1 ... bounds checks and floating-point traps
 #   make MPI=1 ...   the Open MPI variant bin/fcs3d-mpi instead (MUMPS distributed)
 
@@ -80,7 +80,8 @@ $(BUILD)/fcs_version.f90: FORCE | $(BUILD)
 .PHONY: FORCE
 FORCE:
 
-.PHONY: all build run test validate ccx-suite bench bench-compare figures doc packages clean help unit-tests
+.PHONY: all build run test validate ccx-suite bench bench-compare figures figures-runs doc packages \
+        clean help unit-tests
 .DEFAULT_GOAL := all
 all: build
 build: $(BIN)
@@ -159,8 +160,24 @@ bench-compare: packages
 	@test -n "$(BEFORE)" || { echo "make bench-compare needs BEFORE=/path/to/fcs3d"; exit 2; }
 	@PYTHON=$(PYTHON) sh tests/bench/compare_builds.sh $(abspath $(BEFORE)) $(abspath $(BIN))
 
+# make figures: the figures of the default run (run/fault_bend, from make run) into doc/figures/,
+# with the flat-fault run of run/fault_bend_flat side by side if it exists, and the zone maps of
+# post/fault_bend_zones.py (its report goes to run/fault_bend/zones.md).
+# make figures-runs: both runs (make run, then the flat fault), then make figures.
+FIGURES_RUN := run/fault_bend
+FIGURES_COMPARE := run/fault_bend_flat
 figures:
-	@$(PYTHON) post/make_figures.py --results run/fault_bend/fault_bend.h5 --out doc/figures
+	@$(PYTHON) post/make_figures.py --results $(FIGURES_RUN)/fault_bend.h5 --out doc/figures \
+	  $(if $(wildcard $(FIGURES_COMPARE)/fault_bend.h5),--compare-results $(FIGURES_COMPARE)/fault_bend.h5)
+	@$(PYTHON) post/fault_bend_zones.py --results $(FIGURES_RUN)/fault_bend.h5 \
+	  --figure doc/figures/fault_bend_mises_change.png > $(FIGURES_RUN)/zones.md
+	@echo "doc/figures regenerated; the zones report is in $(FIGURES_RUN)/zones.md"
+
+figures-runs:
+	@$(MAKE) --no-print-directory run
+	@FAULT_BEND_GMSH="-setnumber bend_angle 0" FAULT_BEND_DIR=$(abspath $(FIGURES_COMPARE)) \
+	  $(MAKE) --no-print-directory run
+	@$(MAKE) --no-print-directory figures
 
 doc: build
 	@$(BIN) --list-keywords --markdown > doc/deck_reference.md

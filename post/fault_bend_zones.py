@@ -85,8 +85,8 @@ class Run:
         stem = os.path.splitext(arguments.results)[0]
         deck = arguments.deck or stem + ".inp"
         self.pairs = mf.deck_pairs(deck) if os.path.exists(deck) else {}
-        heading = mf.deck_heading(deck) if os.path.exists(deck) else ""
-        self.label = f"{heading}  [{os.path.abspath(arguments.results)}]".strip()
+        self.label = mf.run_label(r, deck if os.path.exists(deck) else None,
+                                  arguments.setnumber)
         grids = r.grid_names()
         if not self.pairs:
             self.pairs = {seg: (seg,) for seg in SEGMENTS}
@@ -605,7 +605,7 @@ def main():
     except (OSError, ValueError, KeyError) as error:
         print(f"fault_bend_zones.py: {error}", file=sys.stderr)
         return 2
-    out = [f"Results: `{os.path.abspath(arguments.results)}`; trace from {run.trace_source}.",
+    out = [f"Run: {run.label}; trace from {run.trace_source}.",
            f"Zones: within {arguments.band:g} mm of each segment (projection onto it), far "
            f"field farther than {arguments.far:g} mm from the trace; element counts " +
            ", ".join(f"{z} {int(run.zones[z].sum())}" for z in ZONES) +

@@ -5,6 +5,7 @@ Usage:
     /usr/bin/python3 post/make_figures.py --results run/fault_bend/fault_bend.h5 --out doc/figures
         [--deck run/fault_bend/fault_bend.inp] [--geo input/fault_bend/fault_bend.geo]
         [--setnumber NAME VALUE ...] [--z Z] [--vmax MPA] [--prefix fault_bend]
+        [--large-event-share 0.5] [--compare-results OTHER.h5 [--compare-deck OTHER.inp]]
 
 Figures written to --out (PNG), each skipped with a message when the data it needs are missing:
   <prefix>_mises_fig2.png       Mises stress [MPa] on the x-y cross-section at z = Z (default
@@ -30,6 +31,15 @@ Figures written to --out (PNG), each skipped with a message when the data it nee
                                 largest slip rate, share of nodes slipping; event onsets marked.
   <prefix>_events.png           the slip-event catalog (<job>_events.csv): onsets per pair,
                                 peak slip rate, largest slip, stress drop.
+  <prefix>_model.png, _mises_paper.png, _space_time.png, _stations.png (and _stations.csv),
+  _event<k>.png, _compare.png (with --compare-results): drawn by post/fault_figures.py (see
+  its docstring): Figure 1 analogue, Mises maps with one scale per map, slip rate along the
+  trace against time, fault stations, before/after maps of each large event (at least
+  --large-event-share of the frictional slave nodes; maps of earlier runs' events in --out are
+  removed), two runs side by side.
+Every figure's footer names the run by its deck and job, the gmsh options of mesh_options.txt,
+the deck's *HEADING, the fcs3d revision that wrote the results and the results file's date,
+never by a path.
 and <prefix>_summary.txt: the numbers behind the figures (times of the frames used, first
 stick->slip event of stage 2 from the .log, B force at the paper's times).
 
@@ -194,8 +204,44 @@ def deck_heading(deck):
     return ""
 
 
+def deck_ties(deck):
+    """Names of the *TIE cards of a deck (upper case)."""
+    names = set()
+    with open(deck, encoding="utf-8", errors="replace") as handle:
+        for line in handle:
+            upper = line.strip().upper()
+            if upper.startswith("*TIE"):
+                for item in upper.split(",")[1:]:
+                    if item.strip().startswith("NAME="):
+                        names.add(item.split("=", 1)[1].strip())
+    return names
+
+
+def results_creator(results):
+    """The program and revision that wrote a results file (its 'creator' attribute), without
+    the build variant: 'fcs3d 0.1.0 (git 4273c8936709-dirty)'."""
+    creator = results.file.attrs.get("creator", b"fcs3d")
+    creator = creator.decode() if isinstance(creator, bytes) else str(creator)
+    return re.sub(r",\s*(serial|mpi)[^)]*\)", ")", creator)
+
+
+def run_label(results, deck, mesh_options=()):
+    """The footer that names a run by its deck and job (never by a path of the machine that
+    made it): '<deck> (job <job>[, gmsh options]): <heading> | <creator>, run <date>'. The
+    date is the results file's modification date (UTC)."""
+    import datetime
+    job = os.path.splitext(os.path.basename(results.path))[0]
+    deck_name = os.path.basename(deck) if deck else "no deck"
+    options = " ".join(f"{name}={value}" for name, value in mesh_options)
+    date = datetime.datetime.fromtimestamp(os.path.getmtime(results.path),
+                                           datetime.timezone.utc).strftime("%Y-%m-%d")
+    heading = deck_heading(deck) if deck else ""
+    return (f"{deck_name} (job {job}{', mesh ' + options if options else ''})"
+            f"{': ' + heading if heading else ''} | {results_creator(results)}, run {date}")
+
+
 def stamp(fig, arguments):
-    """The run's label (deck heading and results file) at the foot of a figure."""
+    """The run's label (deck, job, heading, program revision, date) at the foot of a figure."""
     fig.supxlabel(arguments.label, x=0.005, ha="left", fontsize=5.5, color="0.35", wrap=True)
 
 
@@ -274,7 +320,7 @@ def fault_trace(results, pairs, arguments):
         return fault_profile.FaultTrace.from_contact_grids(grids), "the contact grids"
     p = fault_profile.parameters(arguments.geo, [(n, float(v)) for n, v in arguments.setnumber])
     return fault_profile.FaultTrace.from_parameters(p), \
-        f"{arguments.geo} with {arguments.setnumber or 'its defaults'}"
+        f"{os.path.basename(arguments.geo)} with {arguments.setnumber or 'its defaults'}"
 
 
 def segment_views(results, pairs, trace):
@@ -933,6 +979,46 @@ def figure_loading(results, tables, arguments, summary):
 # ------------------------------------------------------------------------------ main
 
 
+class Run:
+    """One run's results, deck, contact pairs, fault trace and tables, found from its results
+    file alone (deck, .geo and mesh options next to it unless given)."""
+
+    def __init__(self, results_path, deck=None, geo=None, setnumber=None, label=None):
+        self.path = results_path
+        self.results = Results(results_path)
+        here = os.path.dirname(os.path.abspath(results_path))
+        stem = os.path.splitext(results_path)[0]
+        self.job = os.path.basename(stem)
+        if geo is None:
+            local = os.path.join(here, "fault_bend.geo")
+            geo = local if os.path.exists(local) else fault_profile.DEFAULT_GEO
+        self.mesh_options = list(setnumber) if setnumber else \
+            recorded_mesh_options(os.path.join(here, "mesh_options.txt"))
+        deck = deck or stem + ".inp"
+        self.deck = deck if os.path.exists(deck) else None
+        self.pairs = deck_pairs(self.deck) if self.deck else {}
+        self.ties = deck_ties(self.deck) if self.deck else set()
+        grids = self.results.grid_names()
+        if not self.pairs:
+            self.pairs = {seg: (seg,) for seg, _, _ in fault_profile.SEGMENTS}
+            self.pairs.update(COMBINED)
+            self.ties = {"CD", "FG"}
+        self.pairs = {p: covered for p, covered in self.pairs.items()
+                      if f"contact_{p}" in grids}
+        self.label = label or run_label(self.results, self.deck, self.mesh_options)
+        self.heading = deck_heading(self.deck) if self.deck else ""
+        geometry = argparse.Namespace(geo=geo, setnumber=self.mesh_options)
+        self.trace, self.trace_source = fault_trace(self.results, self.pairs, geometry)
+        self.geo = geo
+        self.views = segment_views(self.results, self.pairs, self.trace)
+        self.tables = history_tables(results_path)
+        self.events = read_csv_table(stem + "_events.csv")
+        self.log = stem + ".log"
+
+    def close(self):
+        self.results.close()
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--results", required=True, help="fcs3d results file (.h5)")
@@ -945,74 +1031,68 @@ def main():
     parser.add_argument("--z", type=float, help="z of the section [mm] (default: mid-thickness)")
     parser.add_argument("--vmax", type=float, help="top of the Mises colour scale [MPa]")
     parser.add_argument("--prefix", default="fault_bend")
-    parser.add_argument("--label", help="text at the foot of every figure (default: the deck's "
-                        "*HEADING and the results file)")
+    parser.add_argument("--label", help="text at the foot of every figure (default: deck, job, "
+                        "*HEADING, fcs3d revision and date of the run)")
     parser.add_argument("--dpi", type=int, default=130)
+    parser.add_argument("--large-event-share", type=float, default=0.5,
+                        help="an event is large if it covers at least this share of the "
+                        "frictional fault's slave nodes (before/after maps); default 0.5")
+    parser.add_argument("--compare-results", help="a second run (e.g. the flat fault) for the "
+                        "side-by-side figure <prefix>_compare.png")
+    parser.add_argument("--compare-deck", help="its deck (default: next to its results)")
     arguments = parser.parse_args()
 
-    if not os.path.exists(arguments.results):
-        print(f"make_figures.py: {arguments.results}: no such file (run `make run` first)",
-              file=sys.stderr)
-        return 2
+    for path in [arguments.results] + ([arguments.compare_results]
+                                       if arguments.compare_results else []):
+        if not os.path.exists(path):
+            print(f"make_figures.py: {path}: no such file (run `make run` first)",
+                  file=sys.stderr)
+            return 2
     try:
-        results = Results(arguments.results)
+        run = Run(arguments.results, arguments.deck, arguments.geo, arguments.setnumber,
+                  arguments.label)
+        other = Run(arguments.compare_results, arguments.compare_deck) \
+            if arguments.compare_results else None
     except (OSError, ValueError) as error:
         print(f"make_figures.py: {error}", file=sys.stderr)
         return 2
     os.makedirs(arguments.out, exist_ok=True)
-    here = os.path.dirname(os.path.abspath(arguments.results))
-    if arguments.geo is None:
-        local = os.path.join(here, "fault_bend.geo")
-        arguments.geo = local if os.path.exists(local) else fault_profile.DEFAULT_GEO
-    if not arguments.setnumber:
-        arguments.setnumber = recorded_mesh_options(os.path.join(here, "mesh_options.txt"))
-    deck = arguments.deck or os.path.splitext(arguments.results)[0] + ".inp"
-    pairs = {}
+    results, pairs, trace, views = run.results, run.pairs, run.trace, run.views
+    arguments.label = run.label
     times = sorted(set([results.step_end(1) or STAGE_1_END] + list(PAPER_TIMES[1:])))
-    if os.path.exists(deck):
-        pairs = deck_pairs(deck)
-        listed = deck_time_points(deck, "PAPER")
-        if listed:
-            times = sorted(set([results.step_end(1) or STAGE_1_END] + listed))
-    else:
-        deck = None
-    grids = results.grid_names()
-    if not pairs:
-        pairs = {seg: (seg,) for seg, _, _ in fault_profile.SEGMENTS}
-        pairs.update(COMBINED)
-    pairs = {p: covered for p, covered in pairs.items() if f"contact_{p}" in grids}
-    if arguments.label is None:
-        heading = deck_heading(deck) if deck else ""
-        arguments.label = f"{heading}  [{os.path.abspath(arguments.results)}]".strip()
-    summary = [f"run: {arguments.label}",
-               f"results: {os.path.abspath(arguments.results)}",
-               f"deck: {os.path.abspath(deck) if deck else 'none'}",
+    listed = deck_time_points(run.deck, "PAPER") if run.deck else None
+    if listed:
+        times = sorted(set([results.step_end(1) or STAGE_1_END] + listed))
+    summary = [f"run: {run.label}",
+               f"results: {os.path.basename(run.path)}, deck: "
+               f"{os.path.basename(run.deck) if run.deck else 'none'}",
                f"frames: {len(results.frames)}, times {results.times.min():g} .. "
                f"{results.times.max():g} s"]
-    try:
-        trace, source = fault_trace(results, pairs, arguments)
-    except (OSError, ValueError) as error:
-        print(f"make_figures.py: fault trace: {error}", file=sys.stderr)
-        return 2
-    summary.append(f"trace (from {source}): " + "  ".join(
+    summary.append(f"trace (from {run.trace_source}): " + "  ".join(
         f"{k} ({v[0]:.3f}, {v[1]:.3f})" for k, v in trace.points.items()))
-    views = segment_views(results, pairs, trace)
     summary.append("segments: " + (", ".join(f"{seg} = {len(picked)} nodes of {grid}"
                                              for seg, grid, picked in views) or "none"))
-    event = first_slip_event(os.path.splitext(arguments.results)[0] + ".log")
+    event = first_slip_event(run.log)
     summary.append("first stick->slip event of stage 2 (log): " +
                    (f"t = {event[0]:.6g} s, node {event[1]}" if event else "none found"))
 
+    import fault_figures
     written = []
+    written += fault_figures.figure_model(run, arguments, summary)
     written += figure_mises(results, trace, times, arguments, summary)
+    written += fault_figures.figure_mises_own_scales(run, times, arguments, summary)
     written += figure_histories(results, views, arguments, summary)
     written += figure_stick_slip(results, views, trace, arguments, summary)
-    tables = history_tables(arguments.results)
-    written += figure_loading(results, tables, arguments, summary)
-    events = read_csv_table(os.path.splitext(arguments.results)[0] + "_events.csv")
-    written += figure_history_output(tables, events, pairs, arguments, summary)
-    written += figure_events(events, trace, arguments, summary)
-    results.close()
+    written += fault_figures.figure_space_time(run, arguments, summary)
+    written += fault_figures.figure_stations(run, arguments, summary)
+    written += fault_figures.figure_event_maps(run, arguments, summary)
+    written += figure_loading(results, run.tables, arguments, summary)
+    written += figure_history_output(run.tables, run.events, pairs, arguments, summary)
+    written += figure_events(run.events, trace, arguments, summary)
+    if other is not None:
+        written += fault_figures.figure_compare(run, other, arguments, summary)
+        other.close()
+    run.close()
     path = os.path.join(arguments.out, f"{arguments.prefix}_summary.txt")
     with open(path, "w", encoding="utf-8") as handle:
         handle.write("\n".join(summary) + "\n")
