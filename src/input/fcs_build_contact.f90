@@ -332,6 +332,7 @@ contains
     integer :: i
     pair%loc = card%loc
     pair%interaction_name = param_upper(card, 'INTERACTION')
+    pair%surface_to_surface = param_upper(card, 'TYPE') == 'SURFACE TO SURFACE'
     if (card%find_param('SMALL SLIDING') > 0) call diag%warn(card%loc, '*CONTACT PAIR: SMALL ' // &
       'SLIDING is accepted as finite sliding: fcs3d finds each slave node''s master face once ' // &
       'per increment, as CalculiX does with SMALL SLIDING, and follows the node over the ' // &
