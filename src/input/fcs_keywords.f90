@@ -346,8 +346,8 @@ contains
             description='NODE TO SURFACE: each slave node against a point of a master face, ' // &
             'with its tributary area. SURFACE TO SURFACE: each integration point of the slave ' // &
             'faces instead (area = Gauss weight x surface Jacobian, forces spread to the face''s ' // &
-            'nodes by its shape functions); a 4-node slave face covered by 4-node master faces ' // &
-            'is cut by them, other faces take their Gauss rule (doc/theory.md 4.8). The ' // &
+            'nodes by its shape functions); a 4- or 8-node slave face covered by 4- or 8-node ' // &
+            'master faces is cut by them, other faces take their Gauss rule (doc/theory.md 4.8). The ' // &
             'penalties K of *SURFACE BEHAVIOR and the stick slope of *FRICTION are per unit ' // &
             'area in both, as CalculiX''s surface-to-surface ones are. TIED pairs are ' // &
             'segment-to-segment ties either way.'), &
