@@ -33,7 +33,7 @@ module fcs_contact_pair
     character(len=:), allocatable :: interaction_name
     logical :: tied = .false.
     !> TYPE=SURFACE TO SURFACE: the slave entries are integration points of the slave faces
-    !> (doc/theory.md 4.8), not its nodes.
+    !> (doc/theory.md 4.10), not its nodes.
     logical :: surface_to_surface = .false.
     !> *TIE: slave nodes farther than this from the master are not tied (<= 0: default).
     real(dp) :: position_tolerance = 0.0_dp

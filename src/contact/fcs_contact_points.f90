@@ -1,5 +1,5 @@
 !> Slave points of a surface-to-surface contact pair (*CONTACT PAIR, TYPE=SURFACE TO SURFACE;
-!> doc/theory.md 4.8): integration points of the slave faces, each a slave "node" of the
+!> doc/theory.md 4.10): integration points of the slave faces, each a slave "node" of the
 !> node-to-point element x_s = sum_a N_a(xi_q) x_a with the tributary area
 !> A_q = w_q |a_1 x a_2|(xi_q) (Gauss weight times surface Jacobian, on the reference
 !> configuration), so that the penalties E_n, E_t per unit area turn into the point's

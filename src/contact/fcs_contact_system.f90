@@ -96,7 +96,7 @@ module fcs_contact_system
     !> The slave point of each entry: x_s = sum_a point_weight(a) x(point_nodes(a)) over
     !> a = point_ptr(s) .. point_ptr(s + 1) - 1. An entry of a node-to-surface pair is its
     !> node (weight 1); one of a surface-to-surface pair an integration point of a slave face
-    !> (its nodes and their shape functions there; fcs_contact_points, doc/theory.md 4.8),
+    !> (its nodes and their shape functions there; fcs_contact_points, doc/theory.md 4.10),
     !> whose slave_node is the face node nearest to it.
     integer, allocatable :: point_ptr(:), point_nodes(:)
     real(dp), allocatable :: point_weight(:)

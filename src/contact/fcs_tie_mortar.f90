@@ -244,7 +244,7 @@ contains
 
   !> Integration points of the overlap of slave face xs(3, 4) and master face xm(3, 4) (as
   !> mortar_face_pair: projected onto the slave mid-plane, the master polygon clipped by the
-  !> slave's), for surface-to-surface contact (doc/theory.md 4.8): the clip polygon is split
+  !> slave's), for surface-to-surface contact (doc/theory.md 4.10): the clip polygon is split
   !> into a fan of triangles from its first vertex, each integrated with the 3-point rule of
   !> degree 2 (Strang & Fix 1973), or with `quadratic` Radon's 7-point rule of degree 5 (for
   !> 8-node faces, given here by their corners: exact when their edges are straight, mid-side

@@ -347,10 +347,11 @@ contains
             'with its tributary area. SURFACE TO SURFACE: each integration point of the slave ' // &
             'faces instead (area = Gauss weight x surface Jacobian, forces spread to the face''s ' // &
             'nodes by its shape functions); a 4- or 8-node slave face covered by 4- or 8-node ' // &
-            'master faces is cut by them, other faces take their Gauss rule (doc/theory.md 4.8). The ' // &
+            'master faces is cut by them, other faces take their Gauss rule (doc/theory.md 4.10). The ' // &
             'penalties K of *SURFACE BEHAVIOR and the stick slope of *FRICTION are per unit ' // &
             'area in both, as CalculiX''s surface-to-surface ones are. TIED pairs are ' // &
-            'segment-to-segment ties either way.'), &
+            'segment-to-segment ties either way. SURFACE TO SURFACE needs an element-face ' // &
+            'slave surface and excludes *CONTACT PRINT (no table by slave node).'), &
           p('NAME', PARAM_NAME, description='Name of the pair in the log and results ' // &
             '(default: slave-master) (fcs3d extension).'), &
           p('SMALL SLIDING', PARAM_FLAG, description='CalculiX then finds each slave ' // &

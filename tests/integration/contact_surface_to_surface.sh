@@ -1,5 +1,5 @@
 #!/bin/sh
-# Surface-to-surface contact (*CONTACT PAIR, TYPE=SURFACE TO SURFACE; doc/theory.md 4.8,
+# Surface-to-surface contact (*CONTACT PAIR, TYPE=SURFACE TO SURFACE; doc/theory.md 4.10,
 # doc/validation/contact.md): the contact patch test on non-matching interfaces (C3D8 slave
 # finer and coarser than the master, C3D20 and C3D20R): s_zz = -p at every integration point
 # to 1e-6 (print), the pressure p at every slave point to 1e-8 (round-off); Coulomb sliding

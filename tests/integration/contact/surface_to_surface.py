@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Surface-to-surface contact (*CONTACT PAIR, TYPE=SURFACE TO SURFACE; doc/theory.md 4.8).
+"""Surface-to-surface contact (*CONTACT PAIR, TYPE=SURFACE TO SURFACE; doc/theory.md 4.10).
 
 Usage: surface_to_surface.py deck JOB.inp --case CASE --kind KIND [--slave N --master M]
        surface_to_surface.py check JOB --case CASE --kind KIND [--slave N --master M]
