@@ -125,6 +125,7 @@ module fcs_element_loops
     procedure :: most_distorted => loops_most_distorted
     procedure :: nodal_average => loops_nodal_average
     procedure :: point_volumes => loops_point_volumes
+    procedure :: thermal_strains => loops_thermal_strains
     procedure :: plastic_fields => loops_plastic_fields
     procedure :: cliques => loops_cliques
     procedure :: face_nodes => loops_face_nodes
@@ -1144,6 +1145,31 @@ contains
       end associate
     end do
   end function loops_point_volumes
+
+  !> The thermal strain of every integration point (Voigt, engineering shear) between the
+  !> nodal temperatures `temperature_zero` (stress free, *INITIAL CONDITIONS) and
+  !> `temperature`: CalculiX's secant form alpha(T) (T - T_Z) - alpha(T_0) (T_0 - T_Z) on the
+  !> normal components (material%thermal_strain_increment), 0 without *EXPANSION and beyond
+  !> an element's points. The mechanical strain is the total strain less this.
+  function loops_thermal_strains(this, temperature_zero, temperature) result(strain)
+    class(element_loops_t), intent(in) :: this
+    real(dp), intent(in) :: temperature_zero(:), temperature(:)
+    real(dp), allocatable :: strain(:, :, :)
+    real(dp) :: t_zero(MAX_POINTS), t_now(MAX_POINTS)
+    integer :: e, q
+    allocate (strain(6, this%max_points, this%n_elements))
+    strain = 0.0_dp
+    do e = 1, this%n_elements
+      associate (material => this%materials(this%material(e))%m)
+        if (.not. material%thermal%has_expansion()) cycle
+        call point_temperatures(this, e, temperature_zero, t_zero)
+        call point_temperatures(this, e, temperature, t_now)
+        do q = 1, this%n_points(e)
+          strain(:, q, e) = material%thermal_strain_increment(t_zero(q), t_now(q))
+        end do
+      end associate
+    end do
+  end function loops_thermal_strains
 
   !> The plastic state of every integration point, as each element's material reports it:
   !> equivalent plastic strain peeq(q, e), plastic strain(6, q, e) (Voigt, engineering shear)

@@ -116,9 +116,8 @@ contains
   end subroutine warn_output_params
 
   !> The variable names on the data lines, each checked against `allowed`.
-  !> ENER and ELSE print the elastic energy 1/2 S:E (fcs_dat_output): with a plastic material,
-  !> or with thermal strain in E, that is not the internal energy CalculiX prints, so they are
-  !> refused there.
+  !> ENER and ELSE print the elastic energy 1/2 S:(E - E_th) (fcs_dat_output): with a plastic
+  !> material that is not the internal energy CalculiX prints, so they are refused there.
   subroutine check_energy_request(card, model, request, diag)
     type(card_t), intent(in) :: card
     type(model_t), intent(in) :: model
@@ -133,13 +132,6 @@ contains
           call diag%report(card%loc, '*' // card%keyword // ': ' // request%variables(v)%s // &
             ' (internal energy) is available for elastic materials only (fcs3d prints 1/2 S:E); ' // &
             'material ' // model%materials(k)%name // ' is plastic')
-          return
-        end if
-        if (model%materials(k)%thermal%is_active()) then
-          call diag%report(card%loc, '*' // card%keyword // ': ' // request%variables(v)%s // &
-            ' (internal energy) is available without thermal strain only (fcs3d prints 1/2 S:E ' // &
-            'with the total strain E); material ' // model%materials(k)%name // ' has thermal ' // &
-            'expansion or temperature-dependent constants')
           return
         end if
       end do

@@ -628,6 +628,12 @@ contains
       return
     end if
     if (card%find_param('TIME DELAY') == 0) return
+    if (model%amplitudes(amplitude)%quadratic) then
+      call diag%report(card%loc, '*' // card%keyword // ': TIME DELAY cannot shift the user ' // &
+                       'amplitude ' // model%amplitudes(amplitude)%name)
+      ok = .false.
+      return
+    end if
     call parse_real(param_value(card, 'TIME DELAY'), delay, ok)
     if (.not. ok) return ! the keyword table has reported the value
     if (delay /= 0.0_dp) amplitude = delayed_amplitude(model, amplitude, delay)
@@ -684,6 +690,15 @@ contains
       return
     end if
     allocate (a%time(0), a%value(0))
+    if (has_flag(card, 'USER')) then
+      call user_amplitude(card, a, diag, ok)
+      if (ok) model%amplitudes = [model%amplitudes, a]
+      return
+    end if
+    if (card%n_lines == 0) then
+      call diag%report(card%loc, '*AMPLITUDE: missing data lines: pairs time, value')
+      return
+    end if
     ok = .true.
     do i = 1, card%n_lines
       associate (line => card%lines(i))
@@ -712,6 +727,30 @@ contains
     end do
     if (ok) model%amplitudes = [model%amplitudes, a]
   end subroutine handle_amplitude
+
+  !> *AMPLITUDE, USER: CalculiX calls its subroutine uamplitude, of which it ships one
+  !> amplitude, QUADRATIC, a(t) = t^2 (ccx src/uamplitude.f; any other name stops ccx with
+  !> "unknown amplitude"). fcs3d loads no user code: QUADRATIC is built in, anything else is
+  !> refused.
+  subroutine user_amplitude(card, a, diag, ok)
+    type(card_t), intent(in) :: card
+    type(amplitude_t), intent(inout) :: a
+    type(diagnostics_t), intent(inout) :: diag
+    logical, intent(out) :: ok
+    ok = a%name == 'QUADRATIC'
+    if (.not. ok) then
+      call diag%report(card%loc, '*AMPLITUDE, USER: user amplitude "' // a%name // '" needs ' // &
+        'user code, which fcs3d does not load; only the amplitude CalculiX ships with its ' // &
+        'uamplitude.f is built in: NAME=QUADRATIC, a(t) = t^2')
+      return
+    end if
+    ok = card%n_lines == 0
+    if (.not. ok) then
+      call diag%report(card%lines(1)%loc, '*AMPLITUDE, USER: a user amplitude takes no data lines')
+      return
+    end if
+    a%quadratic = .true.
+  end subroutine user_amplitude
 
   !> *TIME POINTS: increasing times, or start, end, increment with GENERATE.
   subroutine handle_time_points(card, model, diag)

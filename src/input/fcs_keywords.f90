@@ -14,6 +14,7 @@ module fcs_keywords
   implicit none
   private
   public :: keyword_spec_t, param_spec_t, keyword_table, find_keyword, find_param_spec, same_name
+  public :: without_blanks
   public :: PARAM_FLAG, PARAM_TEXT, PARAM_NAME, PARAM_REAL, PARAM_INTEGER, PARAM_CHOICE, PARAM_FILE
   public :: PARAM_IGNORED, friction_keyword_params
   public :: CONTEXT_MODEL, CONTEXT_STEP, CONTEXT_ANY, param_kind_name, context_name
@@ -468,7 +469,10 @@ contains
           p('TIME', PARAM_CHOICE, default='STEP TIME', choices=[s('STEP TIME'), s('TOTAL TIME')], &
             description='Whether times are measured from the start of each step or of the analysis.'), &
           p('DEFINITION', PARAM_CHOICE, default='TABULAR', choices=[s('TABULAR')], &
-            description='Only tabular amplitudes are available.')], data_required=.true.), &
+            description='Only tabular amplitudes are available.'), &
+          p('USER', PARAM_FLAG, description='A user amplitude (CalculiX''s subroutine ' // &
+            'uamplitude): only the one CalculiX ships is available, NAME=QUADRATIC, a(t) = t^2 ' // &
+            '(no data lines).')]), &
       kw('STEP', CONTEXT_MODEL, 'CalculiX', 'Start a step (a loading stage).', '', &
          [p('AMPLITUDE', PARAM_CHOICE, default='RAMP', choices=[s('RAMP')], &
             description='How loads without *AMPLITUDE change over the step: RAMP, linearly ' // &

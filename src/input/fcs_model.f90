@@ -108,6 +108,9 @@ module fcs_model
     real(dp), allocatable :: time(:)
     real(dp), allocatable :: value(:)
     logical :: total_time = .false.
+    !> CalculiX's user amplitude QUADRATIC (`*AMPLITUDE, NAME=QUADRATIC, USER`: the
+    !> uamplitude.f that ccx ships, a(t) = t^2); time and value are then empty.
+    logical :: quadratic = .false.
   end type amplitude_t
 
   !> A list of output times.

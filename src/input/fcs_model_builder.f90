@@ -41,6 +41,7 @@ module fcs_model_builder
   use fcs_element_loops, only: mesh_kinds
   use fcs_model_checks, only: check_model
   use fcs_deck_hash, only: hash_deck
+  use fcs_calculix_keywords, only: is_calculix_keyword
   use fcs_strings, only: string_t, to_upper, parse_int, parse_real, join_strings, str
   implicit none
   private
@@ -334,7 +335,13 @@ contains
     integer :: n_before
     n_before = diag%count
     if (k == 0) then
-      call diag%report(card%loc, unknown_keyword_message(card%keyword, table))
+      if (passed_over_as_calculix(card%keyword, table)) then
+        call diag%warn(card%loc, 'unknown keyword *' // card%keyword // ' ignored with its ' // &
+                       'data lines, as CalculiX ignores a card it cannot interpret (neither ' // &
+                       'CalculiX nor fcs3d knows it)')
+      else
+        call diag%report(card%loc, unknown_keyword_message(card%keyword, table))
+      end if
       ok = .false.
       return
     end if
@@ -473,20 +480,23 @@ contains
     end do
   end function expected_params
 
-  !> Message for an unknown keyword: a known CalculiX keyword we do not support says why;
-  !> otherwise the closest known keyword is suggested.
-  function unknown_keyword_message(keyword, table) result(text)
+  !> Whether an unknown card is passed over with a warning, as CalculiX passes over it: no
+  !> CalculiX keyword begins its name (fcs_calculix_keywords), it is no Abaqus keyword that
+  !> fcs3d refuses with a reason, and it is no near miss of a keyword fcs3d knows (a typo).
+  logical function passed_over_as_calculix(keyword, table) result(pass)
     character(len=*), intent(in) :: keyword
     type(keyword_spec_t), intent(in) :: table(:)
-    character(len=:), allocatable :: text
-    character(len=:), allocatable :: reason
-    integer :: k, best, d, best_distance
-    reason = unsupported_keyword_reason(keyword)
-    if (len(reason) > 0) then
-      text = '*' // keyword // ' is not supported by fcs3d: ' // reason
-      return
-    end if
-    text = 'unknown keyword *' // keyword
+    pass = .not. is_calculix_keyword(keyword)
+    if (pass) pass = len(unsupported_keyword_reason(keyword)) == 0
+    if (pass) pass = closest_keyword(keyword, table) == 0
+  end function passed_over_as_calculix
+
+  !> The keyword of `table` nearest to `keyword` when it is a plausible misspelling of it
+  !> (edit distance at most max(2, a third of its length)), else 0.
+  integer function closest_keyword(keyword, table) result(best)
+    character(len=*), intent(in) :: keyword
+    type(keyword_spec_t), intent(in) :: table(:)
+    integer :: k, d, best_distance
     best = 0
     best_distance = huge(1)
     do k = 1, size(table)
@@ -496,7 +506,25 @@ contains
         best = k
       end if
     end do
-    if (best > 0 .and. best_distance <= max(2, len(keyword) / 3)) then
+    if (best_distance > max(2, len(keyword) / 3)) best = 0
+  end function closest_keyword
+
+  !> Message for an unknown keyword: a known CalculiX keyword we do not support says why;
+  !> otherwise the closest known keyword is suggested.
+  function unknown_keyword_message(keyword, table) result(text)
+    character(len=*), intent(in) :: keyword
+    type(keyword_spec_t), intent(in) :: table(:)
+    character(len=:), allocatable :: text
+    character(len=:), allocatable :: reason
+    integer :: best
+    reason = unsupported_keyword_reason(keyword)
+    if (len(reason) > 0) then
+      text = '*' // keyword // ' is not supported by fcs3d: ' // reason
+      return
+    end if
+    text = 'unknown keyword *' // keyword
+    best = closest_keyword(keyword, table)
+    if (best > 0) then
       text = text // ' (did you mean *' // table(best)%name // '?)'
     else
       text = text // ' (fcs3d --list-keywords lists the keywords it knows)'
@@ -534,6 +562,20 @@ contains
              'CHANGE CONTACT TYPE'])) then
       reason = 'changing a contact interaction between steps is not available yet, except ' // &
                'its Coulomb friction (*CHANGE FRICTION)'
+    else if (is_one_of(keyword, [character(len=34) :: 'PART', 'END PART', 'INSTANCE', &
+             'END INSTANCE', 'ASSEMBLY', 'END ASSEMBLY'])) then
+      reason = 'Abaqus parts and assemblies are not read (CalculiX does not read them either): ' // &
+               'write the nodes and elements of the model as plain *NODE and *ELEMENT cards'
+    else if (is_one_of(keyword, [character(len=34) :: 'GEOSTATIC', 'SOILS', 'DIRECT CYCLIC', &
+             'MASS DIFFUSION', 'STEADY STATE TRANSPORT', 'ANNEAL', 'COUPLED THERMAL-ELECTRICAL', &
+             'STATIC RIKS'])) then
+      reason = 'this Abaqus procedure is not available; fcs3d solves quasi-static problems ' // &
+               'with *STATIC (geostatic initial stress: *INITIAL CONDITIONS, TYPE=STRESS, GEOSTATIC)'
+    else if (is_one_of(keyword, [character(len=34) :: 'PREDEFINED FIELD', 'FIELD', &
+             'PERMEABILITY', 'POROUS ELASTIC', 'CONNECTOR SECTION', 'CONNECTOR BEHAVIOR', &
+             'CONTACT', 'CONTACT INCLUSIONS', 'CONTACT PROPERTY ASSIGNMENT', 'SURFACE SMOOTHING', &
+             'KINEMATIC COUPLING', 'CONTACT CONTROLS', 'CONTROLS'])) then
+      reason = 'this Abaqus keyword is not available in fcs3d'
     else if (is_one_of(keyword, [character(len=34) :: 'NODE OUTPUT', 'ELEMENT OUTPUT', &
              'OUTPUT', 'CONTACT OUTPUT', 'SECTION PRINT', 'FACE PRINT'])) then
       reason = 'use *NODE PRINT / *EL PRINT (text) or *NODE FILE / *EL FILE (results file)'

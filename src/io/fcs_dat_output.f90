@@ -132,21 +132,28 @@ contains
 
   !> *EL PRINT: S, E, PEEQ (PE), ENER and/or ELSE at the integration points (ELSE: per element)
   !> of the request's element set; peeq(q, e) is the equivalent plastic strain; element e has
-  !> n_points(e) integration points of volume volume(q, e) (needed for ELSE only). ENER is the energy density 1/2 S:E
-  !> (engineering shears), which for an elastic material is CalculiX's internal energy density
-  !> (its integral of S:dE over the load path; exact for linear elasticity at small strain),
-  !> ELSE its integral over the element (sum of ENER x point volume), as CalculiX's "internal
-  !> energy (element, energy)"; the input refuses both with plasticity (fcs_build_output).
-  subroutine dat_el_print(this, model, request, time, stress, strain, peeq, n_points, volume, err)
+  !> n_points(e) integration points of volume volume(q, e) (needed for ELSE only). ENER is the
+  !> energy density 1/2 S:(E - E_th) (engineering shears; E_th the thermal strain, when given),
+  !> which for an elastic material is CalculiX's internal energy density (the elastic strain
+  !> energy at the current temperature's constants; exact for linear elasticity at small
+  !> strain), ELSE its integral over the element (sum of ENER x point volume), as CalculiX's
+  !> "internal energy (element, energy)"; the input refuses both with plasticity
+  !> (fcs_build_output).
+  subroutine dat_el_print(this, model, request, time, stress, strain, peeq, n_points, volume, err, &
+                          thermal_strain)
     class(dat_file_t), intent(inout) :: this
     type(model_t), intent(in) :: model
     type(output_request_t), intent(in) :: request
     real(dp), intent(in) :: time, stress(:, :, :), strain(:, :, :), peeq(:, :), volume(:, :)
     integer, intent(in) :: n_points(:)
     type(error_t), allocatable, intent(out) :: err
+    real(dp), intent(in), optional :: thermal_strain(:, :, :)
+    real(dp), allocatable :: elastic(:, :, :)
     character(len=32) :: stamp
     integer :: v
     integer, allocatable :: elements(:)
+    elastic = strain
+    if (present(thermal_strain)) elastic = strain - thermal_strain
     associate (set => model%mesh%element_sets(request%set))
       elements = set%members(argsort_integers(model%mesh%element_id(set%members)))
       do v = 1, size(request%variables)
@@ -173,11 +180,11 @@ contains
           call header(this%file, 'internal energy density (elem, integ.pnt.,energy)', &
                       set%name, time, err)
           if (.not. allocated(err)) call point_rows(this%file, model, elements, n_points, &
-            energy_density(stress, strain), err)
+            energy_density(stress, elastic), err)
         case ('ELSE')
           call header(this%file, 'internal energy (element, energy)', set%name, time, err)
           if (.not. allocated(err)) call element_energy_rows(this%file, model, elements, &
-            n_points, energy_density(stress, strain) * volume, err)
+            n_points, energy_density(stress, elastic) * volume, err)
         end select
         if (allocated(err)) return
       end do

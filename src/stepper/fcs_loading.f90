@@ -376,6 +376,10 @@ contains
     integer :: i, n
     time = t
     if (amplitude%total_time) time = t + start_time
+    if (amplitude%quadratic) then
+      a = time**2
+      return
+    end if
     n = size(amplitude%time)
     if (time <= amplitude%time(1)) then
       a = amplitude%value(1)
@@ -399,6 +403,10 @@ contains
     integer :: i, n
     time = t
     if (amplitude%total_time) time = t + start_time
+    if (amplitude%quadratic) then
+      total = time**3 / 3.0_dp
+      return
+    end if
     n = size(amplitude%time)
     total = amplitude%value(1) * min(time, amplitude%time(1))
     do i = 2, n

@@ -178,6 +178,11 @@ contains
             a%elements%to_material_axes(state%elements%stress, .false.), &
             a%elements%to_material_axes(state%elements%strain, .true.), peeq, &
             a%elements%point_counts(), volume, err)
+        else if (allocated(state%temperature) .and. allocated(model%initial_temperature)) then
+          call this%dat%el_print(model, request, state%time, state%elements%stress, &
+                                 state%elements%strain, peeq, a%elements%point_counts(), volume, err, &
+                                 a%elements%thermal_strains(model%initial_temperature, &
+                                                            state%temperature))
         else
           call this%dat%el_print(model, request, state%time, state%elements%stress, &
                                  state%elements%strain, peeq, a%elements%point_counts(), volume, err)

@@ -9,7 +9,8 @@
 # why), and two blocks tied by *TIE on non-matching meshes of 8-node quadrilateral and 6-node
 # triangular faces (tie_*.inp, written by tests/tools/tie_decks.py), and C3D20 thermal stresses
 # under a quadratic temperature field (thermal_c3d20.inp: both codes project C3D20
-# temperatures onto the trilinear basis, doc/theory.md 2.5) run unchanged through CalculiX
+# temperatures onto the trilinear basis, doc/theory.md 2.5) and ENER/ELSE with thermal strain
+# on a C3D20R block with temperature-dependent constants (thermal_energy.inp) run unchanged through CalculiX
 # (Debian's calculix-ccx: `ccx job` reads job.inp, writes job.dat) and fcs3d; tests/tools/compare_dat.py then requires every block of the two job.dat files
 # (displacements, forces, totals, stresses, strains) to agree within 1e-6 of the block's
 # largest value: the print precision of both programs (7 significant digits; the
@@ -35,5 +36,5 @@ for deck in "$here"/tests/decks/classic/*.inp; do
   "$FCS3D" -q -o fcs3d "$job.inp" || { echo "fcs3d failed on $job"; fail=1; continue; }
   "$py" "$here/tests/tools/compare_dat.py" --tolerance 1e-6 "$job.dat" "fcs3d/$job.dat" || fail=1
 done
-[ "$n" -ge 12 ] || { echo "expected at least 12 classic decks, found $n"; fail=1; }
+[ "$n" -ge 13 ] || { echo "expected at least 13 classic decks, found $n"; fail=1; }
 exit $fail

@@ -109,23 +109,13 @@ def on_arc(x):
 
 def make_deck(path, mesh, hc):
     nodes, hexes, quads, names, physicals = read_msh(mesh)
-    next_tag = max(nodes) + 1
+    next_tag = [max(nodes) + 1]
     mid = {}
     elements = []
     for tag, corners, entity in hexes:
         conn = list(corners)
         for a, b in HEX20_EDGES:
-            key = tuple(sorted((corners[a], corners[b])))
-            if key not in mid:
-                x = 0.5 * (nodes[key[0]] + nodes[key[1]])
-                if on_arc(nodes[key[0]]) and on_arc(nodes[key[1]]):
-                    centre = np.array([0.0, hertz.RADIUS])
-                    d = x[:2] - centre
-                    x = np.array([*(centre + hertz.RADIUS * d / np.linalg.norm(d)), x[2]])
-                nodes[next_tag] = x
-                mid[key] = next_tag
-                next_tag += 1
-            conn.append(mid[key])
+            conn.append(mid_node(nodes, mid, corners[a], corners[b], next_tag))
         elements.append((tag, conn, entity))
     lines = ['*HEADING', 'Cylinder on a block, plane strain, C3D20R, hc = %g '
              '(tests/integration/contact/hertz_quadratic.py)' % hc, '*NODE, NSET=ALL_NODES']
@@ -134,17 +124,42 @@ def make_deck(path, mesh, hc):
     for tag, conn, _ in elements:
         lines.append('%d, %s,' % (tag, ', '.join(str(n) for n in conn[:15])))
         lines.append(', '.join(str(n) for n in conn[15:]))
-    # Volume groups: element and node sets.
+    lines += group_cards(names, physicals, elements, quads, 8, face_of, face_all_nodes, 1)
+    lines += model_cards(hc)
+    cc.write_deck(path, lines)
+
+
+def mid_node(nodes, mid, a, b, next_tag):
+    """The mid-side node of edge (a, b), made on first use (tag next_tag[0], then advanced):
+    the mid-point, or on the circle when a and b lie on the cylinder's arc."""
+    key = tuple(sorted((a, b)))
+    if key not in mid:
+        x = 0.5 * (nodes[key[0]] + nodes[key[1]])
+        if on_arc(nodes[key[0]]) and on_arc(nodes[key[1]]):
+            centre = np.array([0.0, hertz.RADIUS])
+            d = x[:2] - centre
+            x = np.array([*(centre + hertz.RADIUS * d / np.linalg.norm(d)), x[2]])
+        nodes[next_tag[0]] = x
+        mid[key] = next_tag[0]
+        next_tag[0] += 1
+    return mid[key]
+
+
+def group_cards(names, physicals, elements, quads, n_corners, face_of, face_all_nodes,
+                faces_per_quad):
+    """The gmsh physical groups as deck cards: volumes as element and node sets; surfaces as
+    element-face surfaces (faces_per_quad element faces on each of gmsh's quadrangles, found
+    by face_of(conn, corners)) and node sets of every node of those faces."""
+    lines = []
     for (dim, tag), name in sorted(names.items()):
         if dim != 3:
             continue
         members = [e for e in elements if tag in physicals.get((3, e[2]), [])]
         lines += cc.elset_cards(name, [e[0] for e in members])
         lines += cc.nset_cards(name, sorted({n for e in members for n in e[1]}))
-    # Surface groups: element-face surfaces and node sets.
     node_elements = {}
     for e in elements:
-        for n in e[1][:8]:
+        for n in e[1][:n_corners]:
             node_elements.setdefault(n, []).append(e)
     for (dim, tag), name in sorted(names.items()):
         if dim != 2:
@@ -153,18 +168,27 @@ def make_deck(path, mesh, hc):
         for quad, entity in quads:
             if tag not in physicals.get((2, entity), []):
                 continue
-            for e in node_elements[quad[0]]:
+            found = 0
+            for e in {e[0]: e for n in quad for e in node_elements[n]}.values():
                 label = face_of(e[1], set(quad))
                 if label:
                     faces.setdefault(label, []).append(e[0])
                     face_nodes.update(face_all_nodes(e[1], label))
-                    break
+                    found += 1
+            if found != faces_per_quad:
+                cc.fail('quadrangle %s of %s: %d element faces on it, expected %d'
+                        % (quad, name, found, faces_per_quad))
         for label, ids in sorted(faces.items()):
-            lines += cc.elset_cards('%s_%s' % (name, label), ids)
+            lines += cc.elset_cards('%s_%s' % (name, label), sorted(ids))
         lines.append('*SURFACE, NAME=%s, TYPE=ELEMENT' % name)
         lines += ['%s_%s, %s' % (name, label, label) for label in sorted(faces)]
         lines += cc.nset_cards(name, sorted(face_nodes))
-    lines += ['*ELSET, ELSET=BODIES', 'CAP, BLOCK']
+    return lines
+
+
+def model_cards(hc):
+    """Material, frictionless interface (E_n = 10 E / hc), pair and the step of hertz.py."""
+    lines = ['*ELSET, ELSET=BODIES', 'CAP, BLOCK']
     lines += cc.material_cards('MAT', 'BODIES', hertz.YOUNG, hertz.POISSON)
     lines += cc.interaction_cards('INTERFACE', 10.0 * hertz.YOUNG / hc)
     lines += ['*CONTACT PAIR, INTERACTION=INTERFACE, TYPE=NODE TO SURFACE', 'CAP_BOTTOM, BLOCK_TOP']
@@ -172,7 +196,7 @@ def make_deck(path, mesh, hc):
               'BLOCK_BOTTOM, 1, 2', 'CAP_TOP, 1, 1', 'CAP_TOP, 2, 2, %.12g' % -hertz.APPROACH,
               '*NODE PRINT, NSET=CAP_TOP, TOTALS=ONLY', 'RF', '*CONTACT PRINT', 'CSTR',
               '*CONTACT FILE', 'CSTR', '*END STEP']
-    cc.write_deck(path, lines)
+    return lines
 
 
 def face_of(conn, corners):
@@ -191,7 +215,7 @@ def face_all_nodes(conn, label):
     return out
 
 
-def check(job, hc, tolerance, table_row):
+def check(job, hc, tolerance, table_row, kind='C3D20R'):
     checker = cc.Checker()
     times, forces = cc.totals(cc.read_dat(job + '.dat'), 'CAP_TOP')
     frame = [f for f in cc.contact_frames(job + '.h5', hertz.PAIR) if f['step'] == 1][-1]
@@ -208,16 +232,16 @@ def check(job, hc, tolerance, table_row):
     inner = closed & (np.abs(x) < 0.8 * x_last)
     slope, intercept = np.polyfit(x[inner] ** 2, p[inner] ** 2, 1)
     p0_fit, a_fit = np.sqrt(intercept), np.sqrt(-intercept / slope)
-    print('Hertz (C3D20R, hc %g): P\' = %.6g, a = %.5f, p0 = %.5f; %d closed nodes per layer, '
-          '%d open nodes between them' % (hc, load, a, p0, closed.sum(), inside_open))
+    print('Hertz (%s, hc %g): P\' = %.6g, a = %.5f, p0 = %.5f; %d closed nodes per layer, '
+          '%d open nodes between them' % (kind, hc, load, a, p0, closed.sum(), inside_open))
     checker.relative('peak nodal pressure p_max vs p0', p[closed].max(), p0, tolerance)
     checker.relative('fitted p0', p0_fit, p0, tolerance)
     checker.relative('fitted half-width a', a_fit, a, tolerance)
     checker.check(x_last - 0.5 * hc <= a <= x_open + 0.5 * hc, 'contact edge: outermost closed '
                   'node %.4f, first open node past it %.4f, theory a = %.4f' % (x_last, x_open, a))
-    print('summary hertz C3D20R hc %g: a/hc %.2f, p_max/p0 - 1 = %+.4f, p0_fit/p0 - 1 = %+.4f, '
+    print('summary hertz %s hc %g: a/hc %.2f, p_max/p0 - 1 = %+.4f, p0_fit/p0 - 1 = %+.4f, '
           'a_fit/a - 1 = %+.4f, edge bracket [%.4f, %.4f] vs a %.4f'
-          % (hc, a / hc, p[closed].max() / p0 - 1, p0_fit / p0 - 1, a_fit / a - 1, x_last, x_open, a))
+          % (kind, hc, a / hc, p[closed].max() / p0 - 1, p0_fit / p0 - 1, a_fit / a - 1, x_last, x_open, a))
     if table_row:
         with open(table_row, 'w') as out:
             out.write(repr(dict(hc=hc, a=a, p0=p0, p_max=p[closed].max(), p0_fit=p0_fit,
