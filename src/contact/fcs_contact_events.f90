@@ -12,7 +12,7 @@ contains
     type(contact_linear_t) :: lin
     type(segment_point_t) :: p
     real(dp) :: due_fixed(MAX_ELEMENT_DOFS), due_scaled(MAX_ELEMENT_DOFS), g_start, g_end
-    integer :: s, a, n_dof
+    integer :: s, n_dof
     integer, allocatable :: nodes(:)
     this%event_r = huge(1.0_dp)
     this%event_kind = EVENT_NONE
@@ -22,10 +22,8 @@ contains
       if (cstate%face(s) == 0 .or. cstate%status(s) == CONTACT_TIED) cycle
       nodes = element_nodes(this, s, cstate)
       n_dof = 3 * size(nodes)
-      do a = 1, size(nodes)
-        due_fixed(3 * a - 2:3 * a) = du_fixed(3 * nodes(a) - 2:3 * nodes(a))
-        due_scaled(3 * a - 2:3 * a) = du_scaled(3 * nodes(a) - 2:3 * nodes(a))
-      end do
+      call gather_increment(this, s, nodes, du_fixed, due_fixed(1:n_dof))
+      call gather_increment(this, s, nodes, du_scaled, due_scaled(1:n_dof))
       if (cstate%status(s) == CONTACT_OPEN) then
         p = segment_point(x(:, nodes(2:)), cstate%xi(:, s))
         g_start = cstate%gap(s) + relative_normal(p, due_fixed(1:n_dof))
@@ -56,7 +54,7 @@ contains
     type(contact_linear_t) :: lin
     type(segment_point_t) :: p
     real(dp) :: due(MAX_ELEMENT_DOFS), fn, dfn, ft(3), dft(3), mu, qa, qb, qc, tolerance
-    integer :: s, a, n_dof
+    integer :: s, n_dof
     integer, allocatable :: nodes(:)
     logical :: on_cone
     n_switched = 0
@@ -65,9 +63,7 @@ contains
       if (this%switches(s) >= 10) cycle
       nodes = element_nodes(this, s, cstate)
       n_dof = 3 * size(nodes)
-      do a = 1, size(nodes)
-        due(3 * a - 2:3 * a) = du(3 * nodes(a) - 2:3 * nodes(a))
-      end do
+      call gather_increment(this, s, nodes, du, due(1:n_dof))
       call linearise(this, s, x, cstate, 0.0_dp, lin)
       p = segment_point(x(:, nodes(2:)), cstate%xi(:, s))
       fn = cstate%normal_force(s)

@@ -61,6 +61,7 @@ contains
     associate (pair => this%pairs(this%slave_pair(s)))
       nodes = element_nodes(this, s, cstate)
       x5 = x(:, nodes)
+      if (pair%surface_to_surface) x5(:, 1) = slave_position(this, s, x)
       p = segment_point(x5(:, 2:), cstate%xi(:, s))
       fr = pair%law%evaluate(cstate%normal_force(s) / this%area(s), cstate%slip_rate(s), &
                              cstate%friction_state(s))
@@ -93,6 +94,54 @@ contains
   module procedure element_nodes
     nodes = [this%slave_node(s), pair_face_nodes(this%pairs(this%slave_pair(s)), cstate%face(s))]
   end procedure element_nodes
+
+  !> Documented with its interface in fcs_contact_system.
+  module procedure slave_position
+    integer :: a
+    if (.not. this%pairs(this%slave_pair(s))%surface_to_surface) then
+      xs = x(:, this%slave_node(s))
+      return
+    end if
+    xs = 0.0_dp
+    do a = this%point_ptr(s), this%point_ptr(s + 1) - 1
+      xs = xs + this%point_weight(a) * x(:, this%point_nodes(a))
+    end do
+  end procedure slave_position
+
+  !> Documented with its interface in fcs_contact_system.
+  module procedure gather_increment
+    integer :: a, i
+    do a = 1, size(nodes)
+      due(3 * a - 2:3 * a) = du(3 * nodes(a) - 2:3 * nodes(a))
+    end do
+    if (.not. this%pairs(this%slave_pair(s))%surface_to_surface) return
+    due(1:3) = 0.0_dp
+    do a = this%point_ptr(s), this%point_ptr(s + 1) - 1
+      i = this%point_nodes(a)
+      due(1:3) = due(1:3) + this%point_weight(a) * du(3 * i - 2:3 * i)
+    end do
+  end procedure gather_increment
+
+  !> Documented with its interface in fcs_contact_system.
+  module procedure expand_element
+    real(dp), allocatable :: t(:, :)
+    integer :: a, n_point, n_kernel, j
+    n_point = this%point_ptr(s + 1) - this%point_ptr(s)
+    n_kernel = 3 * size(nodes)
+    all_nodes = [this%point_nodes(this%point_ptr(s):this%point_ptr(s + 1) - 1), nodes(2:)]
+    allocate (t(n_kernel, 3 * size(all_nodes)))
+    t = 0.0_dp
+    do a = 1, n_point
+      do j = 1, 3
+        t(j, 3 * (a - 1) + j) = this%point_weight(this%point_ptr(s) + a - 1)
+      end do
+    end do
+    do j = 4, n_kernel
+      t(j, 3 * n_point + j - 3) = 1.0_dp
+    end do
+    force = matmul(lin%force(1:n_kernel), t)
+    stiffness = matmul(transpose(t), matmul(lin%stiffness(1:n_kernel, 1:n_kernel), t))
+  end procedure expand_element
 
   !> Documented with its interface in fcs_contact_system.
   module procedure relative_normal

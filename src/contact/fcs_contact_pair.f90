@@ -32,6 +32,9 @@ module fcs_contact_pair
     integer :: interaction = 0
     character(len=:), allocatable :: interaction_name
     logical :: tied = .false.
+    !> TYPE=SURFACE TO SURFACE: the slave entries are integration points of the slave faces
+    !> (doc/theory.md 4.10), not its nodes.
+    logical :: surface_to_surface = .false.
     !> *TIE: slave nodes farther than this from the master are not tied (<= 0: default).
     real(dp) :: position_tolerance = 0.0_dp
     !> Resolved penalties E_n, E_t [stress/length] and friction coefficient of this pair.
@@ -48,6 +51,8 @@ module fcs_contact_pair
   type :: contact_pair_t
     character(len=:), allocatable :: name
     logical :: tied = .false.
+    !> Slave entries are integration points of the slave faces (TYPE=SURFACE TO SURFACE).
+    logical :: surface_to_surface = .false.
     real(dp) :: normal_stiffness = 0.0_dp
     real(dp) :: stick_stiffness = 0.0_dp
     !> Radiation damping eta [stress time/length] of the pair (0: none).
@@ -91,6 +96,7 @@ contains
     integer :: f, nf, width
     pair%name = def%name
     pair%tied = def%tied
+    pair%surface_to_surface = def%surface_to_surface
     pair%normal_stiffness = def%normal_stiffness
     pair%stick_stiffness = def%stick_stiffness
     pair%position_tolerance = def%position_tolerance

@@ -26,6 +26,7 @@ module fcs_contact_system
   use fcs_contact_state, only: contact_state_t
   use fcs_contact_areas, only: slave_node_areas, surface_face_nodes
   use fcs_contact_ties, only: tie_set_t
+  use fcs_contact_points, only: slave_points_t, slave_face_points
   use fcs_friction_law, only: friction_derivatives_t
   use fcs_friction_factory, only: friction_def_t, create_friction_law
   use fcs_sparse, only: sparse_matrix_t
@@ -92,6 +93,13 @@ module fcs_contact_system
     !> For each slave entry: its node, pair, tributary area.
     integer, allocatable :: slave_node(:), slave_pair(:)
     real(dp), allocatable :: area(:)
+    !> The slave point of each entry: x_s = sum_a point_weight(a) x(point_nodes(a)) over
+    !> a = point_ptr(s) .. point_ptr(s + 1) - 1. An entry of a node-to-surface pair is its
+    !> node (weight 1); one of a surface-to-surface pair an integration point of a slave face
+    !> (its nodes and their shape functions there; fcs_contact_points, doc/theory.md 4.10),
+    !> whose slave_node is the face node nearest to it.
+    integer, allocatable :: point_ptr(:), point_nodes(:)
+    real(dp), allocatable :: point_weight(:)
     !> Face each slave's pattern clique was built around (0: none) and whether the pattern
     !> must be rebuilt before the next assembly.
     integer, allocatable :: pattern_face(:)
@@ -150,6 +158,7 @@ module fcs_contact_system
     procedure :: pair_is_tied => system_pair_is_tied
     procedure :: set_pair_friction => system_set_pair_friction
     procedure :: pair_slave_nodes => system_pair_slave_nodes
+    procedure :: pair_positions => system_pair_positions
     procedure :: held_by_tie => system_held_by_tie
     procedure :: needs_pattern => system_needs_pattern
     procedure :: friction_changes => system_friction_changes
@@ -273,6 +282,35 @@ module fcs_contact_system
       integer, allocatable :: nodes(:)
     end function element_nodes
 
+    !> Position of slave s's point on coordinates x (its node's for a node-to-surface pair).
+    pure module function slave_position(this, s, x) result(xs)
+      type(contact_system_t), intent(in) :: this
+      integer, intent(in) :: s
+      real(dp), intent(in) :: x(:, :)
+      real(dp) :: xs(3)
+    end function slave_position
+
+    !> The increments due(1:3 size(nodes)) of slave s's contact element (nodes: element_nodes)
+    !> from the nodal increments du: its slave point's (interpolated on a slave face for a
+    !> surface-to-surface pair), then its master nodes'.
+    pure module subroutine gather_increment(this, s, nodes, du, due)
+      type(contact_system_t), intent(in) :: this
+      integer, intent(in) :: s, nodes(:)
+      real(dp), intent(in) :: du(:)
+      real(dp), intent(out) :: due(:)
+    end subroutine gather_increment
+
+    !> The contact element of slave s on the mesh's nodes: `all_nodes` (its slave point's
+    !> nodes, then the master nodes), the stiffness T^T K_f T and the forces T^T R f, T the
+    !> interpolation of the slave point's displacement from its nodes' (identity for a node).
+    pure module subroutine expand_element(this, s, nodes, lin, all_nodes, stiffness, force)
+      type(contact_system_t), intent(in) :: this
+      integer, intent(in) :: s, nodes(:)
+      type(contact_linear_t), intent(in) :: lin
+      integer, allocatable, intent(out) :: all_nodes(:)
+      real(dp), allocatable, intent(out) :: stiffness(:, :), force(:)
+    end subroutine expand_element
+
     !> n.(du_s - sum N_I du_I): the gap change for nodal increments due(3 (1 + gamma)).
     pure module function relative_normal(p, due) result(change)
       type(segment_point_t), intent(in) :: p
@@ -362,11 +400,13 @@ contains
     real(dp), intent(in) :: x(:, :)
     type(contact_state_t), intent(inout) :: cstate
     type(error_t), allocatable, intent(out) :: err
-    integer :: k, n_total
+    integer :: k, n_total, i
     integer, allocatable :: slaves(:), slave_faces(:, :)
     real(dp), allocatable :: areas(:)
     logical, allocatable :: tied(:), carries(:)
-    allocate (this%pairs(size(defs)), this%slave_node(0), this%slave_pair(0), this%area(0))
+    allocate (this%pairs(size(defs)), this%slave_node(0), this%slave_pair(0), this%area(0), &
+              this%point_ptr(1), this%point_nodes(0), this%point_weight(0))
+    this%point_ptr(1) = 1
     do k = 1, size(defs)
       call pair_setup(this%pairs(k), defs(k), frictions(k), mesh, x, err)
       if (allocated(err)) return
@@ -390,6 +430,11 @@ contains
     end do
     n_total = 0
     do k = 1, size(defs)
+      if (this%pairs(k)%surface_to_surface .and. .not. this%pairs(k)%tied) then
+        call add_face_points(this, k, defs(k), mesh, x, n_total, err)
+        if (allocated(err)) return
+        cycle
+      end if
       call slave_nodes_of(mesh, defs(k), this%pairs(k), slaves)
       if (.not. this%pairs(k)%tied) then
         this%pairs(k)%n_held_by_tie = count(tied(slaves))
@@ -412,6 +457,9 @@ contains
       this%slave_node = [this%slave_node, slaves]
       this%slave_pair = [this%slave_pair, spread(k, 1, size(slaves))]
       this%area = [this%area, areas]
+      this%point_ptr = [this%point_ptr, size(this%point_nodes) + [(i, i = 1, size(slaves))] + 1]
+      this%point_nodes = [this%point_nodes, slaves]
+      this%point_weight = [this%point_weight, spread(1.0_dp, 1, size(slaves))]
     end do
     call cstate%init(n_total)
     allocate (this%pattern_face(n_total), this%event_r(n_total), this%event_kind(n_total), &
@@ -424,6 +472,36 @@ contains
     call initial_state(this, x, cstate)
     this%pattern_face = cstate%face
   end subroutine system_init
+
+  !> The entries of surface-to-surface pair k (`def`): the integration points of its slave
+  !> faces on coordinates x (fcs_contact_points), appended after the n_total entries so far.
+  subroutine add_face_points(this, k, def, mesh, x, n_total, err)
+    type(contact_system_t), intent(inout) :: this
+    integer, intent(in) :: k
+    type(contact_pair_def_t), intent(in) :: def
+    type(mesh_t), intent(in) :: mesh
+    real(dp), intent(in) :: x(:, :)
+    integer, intent(inout) :: n_total
+    type(error_t), allocatable, intent(out) :: err
+    type(slave_points_t) :: points
+    integer :: n
+    call slave_face_points(mesh, def%slave_surface, this%pairs(k)%face_nodes, x, this%pairs(k)%reach, &
+                           points, err)
+    if (allocated(err)) then
+      err%message = format_location(def%loc, '*CONTACT PAIR ' // def%name // ': ' // err%message)
+      return
+    end if
+    n = size(points%node)
+    this%pairs(k)%first = n_total + 1
+    this%pairs(k)%last = n_total + n
+    n_total = n_total + n
+    this%slave_node = [this%slave_node, points%node]
+    this%slave_pair = [this%slave_pair, spread(k, 1, n)]
+    this%area = [this%area, points%area]
+    this%point_ptr = [this%point_ptr, size(this%point_nodes) + points%ptr(2:)]
+    this%point_nodes = [this%point_nodes, points%nodes]
+    this%point_weight = [this%point_weight, points%weight]
+  end subroutine add_face_points
 
   !> The nodes a tie holds: slave nodes of a tied pair within its position tolerance of its
   !> master surface (those `initial_state` ties). A node both tied and a slave of a contact
@@ -483,7 +561,7 @@ contains
     real(dp) :: gap
     do s = 1, size(this%slave_node)
       associate (pair => this%pairs(this%slave_pair(s)))
-        call search(pair, x, x(:, this%slave_node(s)), face, p, gap)
+        call search(pair, x, slave_position(this, s, x), face, p, gap)
         cstate%face(s) = face
         cstate%status(s) = CONTACT_OPEN
         cstate%mu(s) = pair%law%mu(0.0_dp, 0.0_dp, pair%law%initial_state())
@@ -538,7 +616,7 @@ contains
         if (.not. owned(s)) cycle
       end if
       associate (pair => this%pairs(this%slave_pair(s)))
-        nodes = [this%slave_node(s)]
+        nodes = this%point_nodes(this%point_ptr(s):this%point_ptr(s + 1) - 1)
         do j = pair%neighbor_ptr(f), pair%neighbor_ptr(f + 1) - 1
           nodes = [nodes, pair_face_nodes(pair, pair%neighbors(j))]
         end do
@@ -573,7 +651,8 @@ contains
     logical, intent(in), optional :: owned(:)
     type(contact_linear_t) :: lin
     integer :: s, a, n_dof
-    integer, allocatable :: nodes(:)
+    integer, allocatable :: nodes(:), all_nodes(:)
+    real(dp), allocatable :: stiffness(:, :), force(:)
     logical :: missing
     if (owns_ties(owned)) then
       call this%ties%assemble(x - this%reference, matrix, f_contact, missing)
@@ -589,6 +668,20 @@ contains
       end if
       call linearise(this, s, x, cstate, dt, lin)
       nodes = element_nodes(this, s, cstate)
+      if (this%pairs(this%slave_pair(s))%surface_to_surface) then
+        call expand_element(this, s, nodes, lin, all_nodes, stiffness, force)
+        call matrix%add_matrix(all_nodes, stiffness, missing)
+        if (missing) then
+          call fatal_error(err, 'internal error: contact element of point ' // str(s) // &
+                           ' is not in the sparse pattern')
+          return
+        end if
+        do a = 1, size(all_nodes)
+          f_contact(3 * all_nodes(a) - 2:3 * all_nodes(a)) = f_contact(3 * all_nodes(a) - 2:3 * all_nodes(a)) + &
+            force(3 * a - 2:3 * a)
+        end do
+        cycle
+      end if
       n_dof = 3 * size(nodes)
       call matrix%add_matrix(nodes, lin%stiffness(1:n_dof, 1:n_dof), missing)
       if (missing) then
@@ -609,17 +702,22 @@ contains
   !> 0 for a node that is a slave of one pair only.
   subroutine find_twins(this)
     type(contact_system_t), intent(inout) :: this
-    integer, allocatable :: order(:)
+    integer, allocatable :: order(:), key(:)
     integer :: i, j, first, n
     n = size(this%slave_node)
     allocate (this%twin(n))
     this%twin = 0
-    order = argsort_integers(this%slave_node)
+    ! The points of surface-to-surface pairs have no twins: each its own negative key.
+    key = this%slave_node
+    do i = 1, n
+      if (this%pairs(this%slave_pair(i))%surface_to_surface) key(i) = -i
+    end do
+    order = argsort_integers(key)
     i = 1
     do while (i <= n)
       first = i
       do while (i < n)
-        if (this%slave_node(order(i + 1)) /= this%slave_node(order(first))) exit
+        if (key(order(i + 1)) /= key(order(first))) exit
         i = i + 1
       end do
       if (i > first) then
@@ -646,14 +744,12 @@ contains
     type(error_t), allocatable, intent(out) :: err
     type(segment_point_t) :: p
     real(dp) :: due(MAX_ELEMENT_DOFS), gap
-    integer :: s, a
+    integer :: s
     integer, allocatable :: nodes(:)
     do s = 1, size(this%slave_node)
       if (cstate%status(s) /= CONTACT_STICK .and. cstate%status(s) /= CONTACT_SLIP) cycle
       nodes = element_nodes(this, s, cstate)
-      do a = 1, size(nodes)
-        due(3 * a - 2:3 * a) = du(3 * nodes(a) - 2:3 * nodes(a))
-      end do
+      call gather_increment(this, s, nodes, du, due(1:3 * size(nodes)))
       p = segment_point(x(:, nodes(2:)), cstate%xi(:, s))
       gap = cstate%gap(s) + relative_normal(p, due(1:3 * size(nodes)))
       associate (pair => this%pairs(this%slave_pair(s)))
@@ -724,7 +820,7 @@ contains
     real(dp), intent(inout) :: f_contact(:)
     real(dp) :: normal(3), pressure, shear(3), f(3)
     type(segment_point_t) :: p
-    integer :: s, a
+    integer :: s, a, i
     integer, allocatable :: nodes(:)
     call this%ties%forces(x - this%reference, f_contact)
     do s = 1, size(this%slave_node)
@@ -734,7 +830,14 @@ contains
       f = (pressure * normal + shear) * this%area(s)
       nodes = element_nodes(this, s, cstate)
       p = segment_point(x(:, nodes(2:)), cstate%xi(:, s))
-      f_contact(3 * nodes(1) - 2:3 * nodes(1)) = f_contact(3 * nodes(1) - 2:3 * nodes(1)) + f
+      if (this%pairs(this%slave_pair(s))%surface_to_surface) then
+        do a = this%point_ptr(s), this%point_ptr(s + 1) - 1
+          i = this%point_nodes(a)
+          f_contact(3 * i - 2:3 * i) = f_contact(3 * i - 2:3 * i) + this%point_weight(a) * f
+        end do
+      else
+        f_contact(3 * nodes(1) - 2:3 * nodes(1)) = f_contact(3 * nodes(1) - 2:3 * nodes(1)) + f
+      end if
       do a = 2, size(nodes)
         f_contact(3 * nodes(a) - 2:3 * nodes(a)) = f_contact(3 * nodes(a) - 2:3 * nodes(a)) - &
           p%shape(a - 1) * f
@@ -853,6 +956,20 @@ contains
     integer, allocatable :: nodes(:)
     nodes = this%slave_node(this%pairs(k)%first:this%pairs(k)%last)
   end function system_pair_slave_nodes
+
+  !> Positions on coordinates x of the slave entries of pair k, in the pair's order: its slave
+  !> nodes, or the integration points of a surface-to-surface pair.
+  pure function system_pair_positions(this, k, x) result(positions)
+    class(contact_system_t), intent(in) :: this
+    integer, intent(in) :: k
+    real(dp), intent(in) :: x(:, :)
+    real(dp), allocatable :: positions(:, :)
+    integer :: s
+    allocate (positions(3, this%pairs(k)%last - this%pairs(k)%first + 1))
+    do s = this%pairs(k)%first, this%pairs(k)%last
+      positions(:, s - this%pairs(k)%first + 1) = slave_position(this, s, x)
+    end do
+  end function system_pair_positions
 
   !> Slave nodes of the surface of pair k left out of it because a tie holds them.
   pure integer function system_held_by_tie(this, k) result(n)

@@ -205,7 +205,7 @@ contains
     real(dp) :: xs(3), gap, friction(2), force(3)
     integer :: face, old_face, mode
     associate (pair => this%pairs(this%slave_pair(s)))
-      xs = x(:, this%slave_node(s))
+      xs = slave_position(this, s, x)
       old_face = cstate%face(s)
       p_old = segment_point(x(:, pair_face_nodes(pair, old_face)), cstate%xi(:, s))
       mode = hold_mode(this, s)
@@ -378,9 +378,9 @@ contains
       start_gap = cstate%gap(s)
       mode = hold_mode(this, s)
       face = 0
-      if (mode == HOLD_CLOSED) call held_point(this, s, pair, x, x(:, this%slave_node(s)), start_face, &
+      if (mode == HOLD_CLOSED) call held_point(this, s, pair, x, slave_position(this, s, x), start_face, &
                                                start_xi, face, p, gap)
-      if (face == 0) call search(pair, x, x(:, this%slave_node(s)), face, p, gap)
+      if (face == 0) call search(pair, x, slave_position(this, s, x), face, p, gap)
       call open_node(cstate, s, face, p, gap)
       if (face == 0 .or. mode == HOLD_OPEN) return
       if (mode == HOLD_CLOSED .or. gap < -GAP_TOLERANCE * pair%face_size .or. &

@@ -46,6 +46,7 @@ module fcs_tie_mortar
   public :: MORTAR_FOUND, MORTAR_NO_OVERLAP, MORTAR_TOO_FAR, MORTAR_NOT_PARALLEL, &
             MORTAR_BAD_POLYGON, MORTAR_NOT_CONVERGED, MORTAR_UNSUPPORTED_FACE, MORTAR_BAD_OPTIONS
   public :: MORTAR_MAX_DEGREE
+  public :: mortar_overlap_points, MORTAR_MAX_OVERLAP_POINTS
 
   !> Largest number of nodes of a face kind handled (4: bilinear quads).
   integer, parameter :: MORTAR_FACE_NODES_MAX = 4
@@ -101,6 +102,12 @@ module fcs_tie_mortar
   integer, parameter :: MAX_DIRECTION_POINTS = 16
   integer, parameter :: MORTAR_MAX_DEGREE = 2 * MAX_DIRECTION_POINTS - 2
   integer, parameter :: MAX_RULE_POINTS = MAX_DIRECTION_POINTS**2
+  !> Strang & Fix's 3-point rule of degree 2 on a triangle (barycentric, weights 1/3 each).
+  real(dp), parameter :: DEGREE2_POINT(3, 3) = reshape([ &
+    2.0_dp / 3, 1.0_dp / 6, 1.0_dp / 6, 1.0_dp / 6, 2.0_dp / 3, 1.0_dp / 6, &
+    1.0_dp / 6, 1.0_dp / 6, 2.0_dp / 3], [3, 3])
+  !> Most points mortar_overlap_points returns: 7 per triangle of a fan of the clip polygon.
+  integer, parameter :: MORTAR_MAX_OVERLAP_POINTS = RULE_POINTS * (MAX_POLYGON - 2)
 
   !> One face pair's coupling matrices (only the leading slave_nodes x master_nodes parts are
   !> used): d(a, b) = int N^S_a N^S_b, m(a, b) = int N^S_a N^M_b, e(a, b) = int N^M_a N^M_b
@@ -234,6 +241,78 @@ contains
     call integrate_overlap(geometry, overlap, triangle_rule(opts%degree), points, pair, status)
     if (status /= MORTAR_FOUND) pair = mortar_pair_t()
   end subroutine mortar_face_pair
+
+  !> Integration points of the overlap of slave face xs(3, 4) and master face xm(3, 4) (as
+  !> mortar_face_pair: projected onto the slave mid-plane, the master polygon clipped by the
+  !> slave's), for surface-to-surface contact (doc/theory.md 4.10): the clip polygon is split
+  !> into a fan of triangles from its first vertex, each integrated with the 3-point rule of
+  !> degree 2 (Strang & Fix 1973), or with `quadratic` Radon's 7-point rule of degree 5 (for
+  !> 8-node faces, given here by their corners: exact when their edges are straight, mid-side
+  !> nodes at mid-edge), and each plane point mapped to the slave face. xi(:, i) are
+  !> the slave natural coordinates of point i, weight(i) its area on the slave surface (rule
+  !> weight x triangle area x area factor); n_points of them (at most
+  !> MORTAR_MAX_OVERLAP_POINTS). status as mortar_face_pair; n_points = 0 unless FOUND.
+  pure subroutine mortar_overlap_points(xs, xm, max_distance, quadratic, xi, weight, n_points, status)
+    real(dp), intent(in) :: xs(:, :), xm(:, :), max_distance
+    logical, intent(in) :: quadratic
+    real(dp), intent(out) :: xi(:, :), weight(:)
+    integer, intent(out) :: n_points, status
+    type(mortar_options_t) :: opts
+    type(pair_geometry_t) :: geometry
+    type(polygon_t) :: slave_polygon, master_polygon, overlap
+    type(point_pair_t) :: points
+    type(triangle_rule_t) :: rule
+    real(dp) :: corner(2, 3), triangle_area
+    logical :: converged
+    integer :: i, q
+    n_points = 0
+    if (quadratic) then
+      rule = triangle_rule(5)
+    else
+      rule%n = 3
+      rule%point(:, 1:3) = DEGREE2_POINT
+      rule%weight(1:3) = 1.0_dp / 3.0_dp
+    end if
+    if (size(xs, 2) /= QUAD4_NODES .or. size(xm, 2) /= QUAD4_NODES) then
+      status = MORTAR_UNSUPPORTED_FACE
+      return
+    end if
+    call orientation_check(xs, xm, opts, geometry, status)
+    if (status /= MORTAR_FOUND) return
+    slave_polygon = corner_polygon(geometry%slave_corners)
+    master_polygon = corner_polygon(geometry%master_corners)
+    if (.not. (is_convex(slave_polygon) .and. is_convex(master_polygon))) then
+      status = MORTAR_BAD_POLYGON
+      return
+    end if
+    call clip_polygon(master_polygon, slave_polygon, overlap, status)
+    if (status /= MORTAR_FOUND) return
+    if (overlap%n < 3 .or. polygon_area(overlap) <= AREA_TOLERANCE * &
+        min(polygon_area(slave_polygon), polygon_area(master_polygon))) then
+      status = MORTAR_NO_OVERLAP
+      return
+    end if
+    call distance_check(geometry, overlap, max_distance, points, status)
+    if (status /= MORTAR_FOUND) return
+    status = MORTAR_NOT_CONVERGED
+    corner(:, 1) = overlap%y(:, 1)
+    do i = 2, overlap%n - 1
+      corner(:, 2) = overlap%y(:, i)
+      corner(:, 3) = overlap%y(:, i + 1)
+      triangle_area = 0.5_dp * cross2(corner(:, 2) - corner(:, 1), corner(:, 3) - corner(:, 1))
+      do q = 1, rule%n
+        call map_plane_point(geometry, matmul(corner, rule%point(:, q)), points, converged)
+        if (.not. converged) then
+          n_points = 0
+          return
+        end if
+        n_points = n_points + 1
+        xi(:, n_points) = points%slave%xi
+        weight(n_points) = rule%weight(q) * triangle_area * area_factor(points%slave, geometry%plane)
+      end do
+    end do
+    status = MORTAR_FOUND
+  end subroutine mortar_overlap_points
 
   !> The pair's geometry (slave mid-plane, corners in it), and whether the normals at the
   !> face centres are parallel enough.

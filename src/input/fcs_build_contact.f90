@@ -332,12 +332,16 @@ contains
     integer :: i
     pair%loc = card%loc
     pair%interaction_name = param_upper(card, 'INTERACTION')
+    pair%surface_to_surface = param_upper(card, 'TYPE') == 'SURFACE TO SURFACE'
     if (card%find_param('SMALL SLIDING') > 0) call diag%warn(card%loc, '*CONTACT PAIR: SMALL ' // &
       'SLIDING is accepted as finite sliding: fcs3d finds each slave node''s master face once ' // &
       'per increment, as CalculiX does with SMALL SLIDING, and follows the node over the ' // &
       'master surface from increment to increment')
     do i = 1, card%n_lines
       if (.not. pair_surfaces(card, i, model, diag, pair)) cycle
+      if (pair%surface_to_surface) then
+        if (.not. face_slave(card, i, model, diag, pair)) cycle
+      end if
       pair%name = param_upper(card, 'NAME')
       if (len(pair%name) == 0) pair%name = model%mesh%surfaces(pair%slave_surface)%name // '-' // &
                                            model%mesh%surfaces(pair%master_surface)%name
@@ -345,6 +349,27 @@ contains
       call add_pair(model, pair, card%lines(i)%loc, diag)
     end do
   end subroutine handle_contact_pair
+
+  !> The slave surface of a TYPE=SURFACE TO SURFACE pair (data line i): its element-face
+  !> definition (integration points need faces); a node-based one is refused.
+  logical function face_slave(card, i, model, diag, pair) result(ok)
+    type(card_t), intent(in) :: card
+    integer, intent(in) :: i
+    type(model_t), intent(in) :: model
+    type(diagnostics_t), intent(inout) :: diag
+    type(contact_pair_def_t), intent(inout) :: pair
+    integer :: k
+    k = model%mesh%find_surface(to_upper(card%lines(i)%fields(1)%s), SURFACE_FACES)
+    ok = model%mesh%surfaces(k)%kind == SURFACE_FACES
+    if (ok) then
+      pair%slave_surface = k
+    else
+      call diag%report(card%lines(i)%loc, '*CONTACT PAIR, TYPE=SURFACE TO SURFACE: slave ' // &
+        'surface "' // card%lines(i)%fields(1)%s // '" is node based; a surface-to-surface ' // &
+        'pair integrates over the slave faces: define it by element faces (*SURFACE, ' // &
+        'TYPE=ELEMENT) or use TYPE=NODE TO SURFACE')
+    end if
+  end function face_slave
 
   !> After the last card: the interaction of every *CONTACT PAIR, by name (a *SURFACE
   !> INTERACTION may follow the pair that names it, as CalculiX allows), and whether it ties.

@@ -50,6 +50,13 @@ contains
     case ('CONTACT PRINT', 'CONTACT FILE')
       request%kind = merge(OUTPUT_CONTACT_PRINT, OUTPUT_CONTACT_FILE, card%keyword == 'CONTACT PRINT')
       allowed = [string_t('CDIS'), string_t('CSTR'), string_t('CDISP'), string_t('CSTRESS')]
+      if (card%keyword == 'CONTACT PRINT' .and. any(model%contact_pairs%surface_to_surface)) then
+        call diag%report(card%loc, '*CONTACT PRINT: not available with a TYPE=SURFACE TO ' // &
+          'SURFACE contact pair (its slave entries are integration points of the slave faces, ' // &
+          'not nodes, so there is no table by slave node; *CONTACT FILE writes their fields ' // &
+          'at the points to the results file)')
+        return
+      end if
     case default
       request%kind = OUTPUT_EL_FILE
       allowed = [string_t('S'), string_t('E'), string_t('PEEQ'), string_t('PE')]

@@ -338,11 +338,21 @@ contains
          'does. Only Coulomb friction can be changed.', '', &
          [p('INTERACTION', PARAM_NAME, required=.true., description='The *SURFACE INTERACTION.')]), &
       kw('CONTACT PAIR', CONTEXT_MODEL, 'CalculiX', 'A node-to-point contact pair: the slave ' // &
-         'surface''s nodes against the master surface''s 4-node faces.', &
+         'surface''s nodes (or, TYPE=SURFACE TO SURFACE, the integration points of its faces) ' // &
+         'against points of the master surface''s faces.', &
          'slave surface (element-face or node based), master surface (element-face).', &
          [p('INTERACTION', PARAM_NAME, required=.true., description='The *SURFACE INTERACTION.'), &
-          p('TYPE', PARAM_CHOICE, default='NODE TO SURFACE', choices=[s('NODE TO SURFACE')], &
-            description='Only node-to-surface (node-to-point) contact is available.'), &
+          p('TYPE', PARAM_CHOICE, default='NODE TO SURFACE', choices=[s('NODE TO SURFACE'), &
+            s('SURFACE TO SURFACE')], &
+            description='NODE TO SURFACE: each slave node against a point of a master face, ' // &
+            'with its tributary area. SURFACE TO SURFACE: each integration point of the slave ' // &
+            'faces instead (area = Gauss weight x surface Jacobian, forces spread to the face''s ' // &
+            'nodes by its shape functions); a 4- or 8-node slave face covered by 4- or 8-node ' // &
+            'master faces is cut by them, other faces take their Gauss rule (doc/theory.md 4.10). The ' // &
+            'penalties K of *SURFACE BEHAVIOR and the stick slope of *FRICTION are per unit ' // &
+            'area in both, as CalculiX''s surface-to-surface ones are. TIED pairs are ' // &
+            'segment-to-segment ties either way. SURFACE TO SURFACE needs an element-face ' // &
+            'slave surface and excludes *CONTACT PRINT (no table by slave node).'), &
           p('NAME', PARAM_NAME, description='Name of the pair in the log and results ' // &
             '(default: slave-master) (fcs3d extension).'), &
           p('SMALL SLIDING', PARAM_FLAG, description='CalculiX then finds each slave ' // &

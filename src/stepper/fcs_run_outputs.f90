@@ -301,7 +301,7 @@ contains
     integer :: k, j
     do k = 1, a%contact%n_pairs()
       grid = 'contact_' // a%contact%pair_name(k)
-      call this%results%write_surface_coordinates(grid, a%x_contact(:, a%contact%pair_slave_nodes(k)), err)
+      call this%results%write_surface_coordinates(grid, a%contact%pair_positions(k, a%x_contact), err)
       if (allocated(err)) return
       fields = a%contact%pair_fields(k, a%x_contact, a%state%contact, grid)
       do j = 1, size(fields)
