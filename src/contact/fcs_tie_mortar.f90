@@ -206,7 +206,7 @@ contains
     type(mortar_options_t), intent(in), optional :: options
     type(mortar_options_t) :: opts
     type(pair_geometry_t) :: geometry
-    type(polygon_t) :: slave_polygon, master_polygon, overlap
+    type(polygon_t) :: overlap
     type(point_pair_t) :: points
     if (present(options)) opts = options
     if (opts%degree < 5 .or. opts%degree > MORTAR_MAX_DEGREE .or. opts%min_cosine <= 0.0_dp &
@@ -219,6 +219,27 @@ contains
       status = MORTAR_UNSUPPORTED_FACE
       return
     end if
+    call face_overlap(xs, xm, max_distance, opts, geometry, overlap, points, status)
+    if (status /= MORTAR_FOUND) return
+    pair%slave_nodes = QUAD4_NODES
+    pair%master_nodes = QUAD4_NODES
+    call integrate_overlap(geometry, overlap, triangle_rule(opts%degree), points, pair, status)
+    if (status /= MORTAR_FOUND) pair = mortar_pair_t()
+  end subroutine mortar_face_pair
+
+  !> The overlap of slave face xs(3, 4) and master face xm(3, 4), shared by the tie and the
+  !> surface-to-surface points: the orientation check, both faces as convex polygons on the
+  !> slave mid-plane, the master polygon clipped by the slave's, an overlap of at least
+  !> AREA_TOLERANCE of the smaller face, and the distance check. status: MORTAR_FOUND or the
+  !> reason there is no overlap to integrate.
+  pure subroutine face_overlap(xs, xm, max_distance, opts, geometry, overlap, points, status)
+    real(dp), intent(in) :: xs(:, :), xm(:, :), max_distance
+    type(mortar_options_t), intent(in) :: opts
+    type(pair_geometry_t), intent(out) :: geometry
+    type(polygon_t), intent(out) :: overlap
+    type(point_pair_t), intent(out) :: points
+    integer, intent(out) :: status
+    type(polygon_t) :: slave_polygon, master_polygon
     call orientation_check(xs, xm, opts, geometry, status)
     if (status /= MORTAR_FOUND) return
     slave_polygon = corner_polygon(geometry%slave_corners)
@@ -235,12 +256,7 @@ contains
       return
     end if
     call distance_check(geometry, overlap, max_distance, points, status)
-    if (status /= MORTAR_FOUND) return
-    pair%slave_nodes = QUAD4_NODES
-    pair%master_nodes = QUAD4_NODES
-    call integrate_overlap(geometry, overlap, triangle_rule(opts%degree), points, pair, status)
-    if (status /= MORTAR_FOUND) pair = mortar_pair_t()
-  end subroutine mortar_face_pair
+  end subroutine face_overlap
 
   !> Integration points of the overlap of slave face xs(3, 4) and master face xm(3, 4) (as
   !> mortar_face_pair: projected onto the slave mid-plane, the master polygon clipped by the
@@ -259,7 +275,7 @@ contains
     integer, intent(out) :: n_points, status
     type(mortar_options_t) :: opts
     type(pair_geometry_t) :: geometry
-    type(polygon_t) :: slave_polygon, master_polygon, overlap
+    type(polygon_t) :: overlap
     type(point_pair_t) :: points
     type(triangle_rule_t) :: rule
     real(dp) :: corner(2, 3), triangle_area
@@ -277,22 +293,7 @@ contains
       status = MORTAR_UNSUPPORTED_FACE
       return
     end if
-    call orientation_check(xs, xm, opts, geometry, status)
-    if (status /= MORTAR_FOUND) return
-    slave_polygon = corner_polygon(geometry%slave_corners)
-    master_polygon = corner_polygon(geometry%master_corners)
-    if (.not. (is_convex(slave_polygon) .and. is_convex(master_polygon))) then
-      status = MORTAR_BAD_POLYGON
-      return
-    end if
-    call clip_polygon(master_polygon, slave_polygon, overlap, status)
-    if (status /= MORTAR_FOUND) return
-    if (overlap%n < 3 .or. polygon_area(overlap) <= AREA_TOLERANCE * &
-        min(polygon_area(slave_polygon), polygon_area(master_polygon))) then
-      status = MORTAR_NO_OVERLAP
-      return
-    end if
-    call distance_check(geometry, overlap, max_distance, points, status)
+    call face_overlap(xs, xm, max_distance, opts, geometry, overlap, points, status)
     if (status /= MORTAR_FOUND) return
     status = MORTAR_NOT_CONVERGED
     corner(:, 1) = overlap%y(:, 1)
