@@ -178,7 +178,10 @@ contains
             a%elements%to_material_axes(state%elements%stress, .false.), &
             a%elements%to_material_axes(state%elements%strain, .true.), peeq, &
             a%elements%point_counts(), volume, err)
-        else if (allocated(state%temperature) .and. allocated(model%initial_temperature)) then
+        else if (allocated(state%temperature) .and. allocated(model%initial_temperature) .and. &
+                 any([(request%variables(v)%s == 'ENER' .or. request%variables(v)%s == 'ELSE', &
+                       v = 1, size(request%variables))])) then
+          ! ENER/ELSE: the energy of the mechanical strain, less the thermal strain.
           call this%dat%el_print(model, request, state%time, state%elements%stress, &
                                  state%elements%strain, peeq, a%elements%point_counts(), volume, err, &
                                  a%elements%thermal_strains(model%initial_temperature, &

@@ -249,8 +249,9 @@ def check(job, hc, tolerance, table_row, kind='C3D20R'):
     checker.finish()
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__.split('\n')[0])
+def main(make_deck=make_deck, kind='C3D20R', description=__doc__):
+    """The command line of a Hertz deck writer and checker (also hertz_tet.py's)."""
+    parser = argparse.ArgumentParser(description=description.split('\n')[0])
     sub = parser.add_subparsers(dest='command', required=True)
     d = sub.add_parser('deck')
     d.add_argument('path')
@@ -265,7 +266,7 @@ def main():
     if args.command == 'deck':
         make_deck(args.path, args.mesh, args.hc)
     else:
-        check(args.job, args.hc, args.tolerance, args.table_row)
+        check(args.job, args.hc, args.tolerance, args.table_row, kind)
 
 
 if __name__ == '__main__':

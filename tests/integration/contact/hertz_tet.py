@@ -21,7 +21,6 @@ nodes carry nothing and are not slave nodes; the pressure is read at the mid-sid
 the z = 0 layer (on the arc edges). The model, the loading and the checks are those of
 hertz_quadratic.py (frictionless, E_n = 10 E / hc, the cylinder's top moved down by 0.08).
 """
-import argparse
 import os
 import sys
 
@@ -116,24 +115,5 @@ def face_all_nodes(conn, label):
     return out
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__.split('\n')[0])
-    sub = parser.add_subparsers(dest='command', required=True)
-    d = sub.add_parser('deck')
-    d.add_argument('path')
-    d.add_argument('--mesh', required=True)
-    d.add_argument('--hc', type=float, required=True)
-    c = sub.add_parser('check')
-    c.add_argument('job')
-    c.add_argument('--hc', type=float, required=True)
-    c.add_argument('--tolerance', type=float, default=0.05)
-    c.add_argument('--table-row')
-    args = parser.parse_args()
-    if args.command == 'deck':
-        make_deck(args.path, args.mesh, args.hc)
-    else:
-        hq.check(args.job, args.hc, args.tolerance, args.table_row, kind='C3D10')
-
-
 if __name__ == '__main__':
-    main()
+    hq.main(make_deck, 'C3D10', __doc__)
