@@ -71,7 +71,8 @@ printf '%s\n' "$setnumbers" > mesh_options.txt   # read by post/make_figures.py
 
 # One BLAS/OpenMP thread unless the caller sets them: the factorisation's round-off depends
 # on the number of threads, and after the first slip event the fault-bend run amplifies
-# round-off (doc/validation/fault_bend.md, section 7), so a fixed count makes `make run`
+# round-off (doc/validation/fault_bend_paper_law.md, section 7; doc/validation/fault_bend.md,
+# section 5.2), so a fixed count makes `make run`
 # reproducible from machine to machine of one kind (and equal to the study's default run).
 # At 6,600 unknowns a second thread gains little (doc/performance.md).
 OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1}

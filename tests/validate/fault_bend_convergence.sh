@@ -7,7 +7,7 @@
 # relative differences between consecutive meshes, into doc/validation/fault_bend_convergence.md
 # and .csv. Exit 0 when every run completed and the table was written: whether the two finest
 # agree within 5 % is in the table, not in the status. About 9.5 CPU-minutes (h/sqrt 2: 6.2);
-# h/2 would take 20-30 (doc/validation/fault_bend.md, section 8.7): FAULT_BEND_FACTORS=1,1.414214,2.
+# h/2 would take 20-30 (doc/validation/fault_bend.md, section 5.1): FAULT_BEND_FACTORS=1,1.414214,2.
 set -u
 root=$(cd "$(dirname "$0")/../.." && pwd)
 command -v gmsh >/dev/null 2>&1 || { echo "gmsh not installed"; exit 77; }

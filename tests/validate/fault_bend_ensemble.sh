@@ -9,7 +9,7 @@
 # doc/validation/fault_bend_anchors.md and .csv. Exit 0 when every run completed and the tables
 # were written; the fractions are results, not checks. 9 + 3 runs of the default mesh: the
 # reference deck took 2.1-4.8 CPU-minutes per serial run and 7.6 for MUMPS on 2 processes
-# (doc/validation/fault_bend.md, section 8.7).
+# (doc/validation/fault_bend.md, section 5).
 set -u
 root=$(cd "$(dirname "$0")/../.." && pwd)
 py=${PYTHON:-/usr/bin/python3}

@@ -1,4 +1,4 @@
-"""The fault-bend study of doc/validation/fault_bend.md (issue 7): the default model of
+"""The fault-bend study of doc/validation/fault_bend_paper_law.md (issue 7): the default model of
 `make run` and variants that change one thing each (mesh, penalties, R-minimum limits, the
 low-velocity regularisation of the friction law, the flat fault, matching fault nodes). For
 each run it records, from the run's own outputs (history CSV, event catalog, log):

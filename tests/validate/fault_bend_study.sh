@@ -1,5 +1,5 @@
 #!/bin/sh
-# The fault-bend study (doc/validation/fault_bend.md, section 8): the paper's-law deck
+# The fault-bend study (doc/validation/fault_bend_paper_law.md, section 8): the paper's-law deck
 # (input/fault_bend/fault_bend_paper_law.inp, the default before issue 19, on its non-matching
 # fault mesh, lower_fault_factor 1.25) and one-change variants (mesh, E_n, E_t, R-minimum limits, minimum increment, VC, LINEAR, flat fault,
 # matching nodes), each meshed with gmsh and run to 400 s; the table goes to
