@@ -333,6 +333,22 @@ module fcs_contact_system
       real(dp) :: floor
     end function normal_force_floor
 
+    !> Slave s's pair has the exponential pressure-overclosure law (fcs_pressure_overclosure):
+    !> it carries force at positive clearance up to c0, and opens and closes by its gap
+    !> crossing c0 instead of by its normal force reaching zero.
+    pure module function exponential(this, s) result(yes)
+      type(contact_system_t), intent(in) :: this
+      integer, intent(in) :: s
+      logical :: yes
+    end function exponential
+
+    !> Clearance c0 up to which slave s's law acts (exponential law only).
+    pure module function law_reach(this, s) result(reach)
+      type(contact_system_t), intent(in) :: this
+      integer, intent(in) :: s
+      real(dp) :: reach
+    end function law_reach
+
     !> Open slave s: no forces, on `face` (0: none in reach) at point p with gap `gap`.
     module subroutine open_node(cstate, s, face, p, gap)
       type(contact_state_t), intent(inout) :: cstate
@@ -576,7 +592,7 @@ contains
           end if
           cstate%status(s) = CONTACT_TIED
           cstate%tied_gap(s) = gap
-        else if (gap <= GAP_TOLERANCE * pair%face_size) then
+        else if (initially_closed(this, s, gap)) then
           u = contact_update(p, gap, p, node_of(cstate, s, CONTACT_STICK), params_of(this, s, face, p%xi), &
                              pair%law, 0.0_dp)
           cstate%status(s) = closing_status(u%mu)
@@ -586,6 +602,19 @@ contains
       end associate
     end do
   end subroutine initial_state
+
+  !> A node at gap `gap` at the start of the run is closed: it touches (within GAP_TOLERANCE
+  !> of the master face size), or, under the exponential law, its clearance is at most c0.
+  logical function initially_closed(this, s, gap)
+    type(contact_system_t), intent(in) :: this
+    integer, intent(in) :: s
+    real(dp), intent(in) :: gap
+    if (exponential(this, s)) then
+      initially_closed = gap <= law_reach(this, s)
+    else
+      initially_closed = gap <= GAP_TOLERANCE * this%pairs(this%slave_pair(s))%face_size
+    end if
+  end function initially_closed
 
 
 

@@ -12,6 +12,7 @@ module fcs_build_contact
   use fcs_error, only: error_t
   use fcs_friction_factory, only: friction_def_t, friction_def_problems, set_friction_parameter, &
                                   friction_parameter_names
+  use fcs_pressure_overclosure, only: pressure_overclosure_t, OVERCLOSURE_EXPONENTIAL
   implicit none
   private
   public :: handle_surface_interaction, handle_surface_behavior, handle_friction
@@ -65,6 +66,10 @@ contains
     real(dp) :: slope, extra(2)
     integer :: i
     if (.not. has_interaction(card, state, diag)) return
+    if (param_upper(card, 'PRESSURE-OVERCLOSURE') == 'EXPONENTIAL') then
+      call exponential_behavior(card, model%interactions(state%interaction), diag)
+      return
+    end if
     associate (line => card%lines(1))
       if (card%n_lines /= 1 .or. size(line%fields) > 3) then
         call diag%report(line%loc, '*SURFACE BEHAVIOR: expected one line: slope K[, sigma_inf[, c0]]')
@@ -95,6 +100,46 @@ contains
       interaction%tied = param_upper(card, 'PRESSURE-OVERCLOSURE') == 'TIED'
     end associate
   end subroutine handle_surface_behavior
+
+  !> *SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=EXPONENTIAL: one line c0 [length], p0 [stress]
+  !> (CalculiX's order and checks, surfacebehaviors.f: c0 > 0, p0 >= 0; p = p0 exp(-beta g),
+  !> beta = ln(100)/c0: fcs_pressure_overclosure). CalculiX reads the first two fields of the
+  !> line and no more: later fields are ignored with a warning; p0 = 0 (no pressure at all)
+  !> is accepted with a warning.
+  subroutine exponential_behavior(card, interaction, diag)
+    type(card_t), intent(in) :: card
+    type(interaction_def_t), intent(inout) :: interaction
+    type(diagnostics_t), intent(inout) :: diag
+    real(dp) :: c0, p0
+    associate (line => card%lines(1))
+      if (card%n_lines /= 1 .or. size(line%fields) < 2) then
+        call diag%report(line%loc, '*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=EXPONENTIAL: ' // &
+          'expected one line: c0 (the clearance where the pressure is 1 % of p0), p0 (the ' // &
+          'pressure at zero clearance)')
+        return
+      end if
+      if (.not. line_real(line, 1, c0, 'c0', 'SURFACE BEHAVIOR', diag)) return
+      if (.not. line_real(line, 2, p0, 'p0', 'SURFACE BEHAVIOR', diag)) return
+      if (.not. (c0 > 0.0_dp .and. c0 <= huge(c0))) then
+        call diag%report(line%loc, '*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=EXPONENTIAL: c0 = ' // &
+          line%fields(1)%s // ' must be positive (the clearance [length] at which the pressure ' // &
+          'has fallen to 1 % of p0)')
+        return
+      end if
+      if (.not. (p0 >= 0.0_dp .and. p0 <= huge(p0))) then
+        call diag%report(line%loc, '*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=EXPONENTIAL: p0 = ' // &
+          line%fields(2)%s // ' must not be negative (the contact pressure [stress] at zero ' // &
+          'clearance)')
+        return
+      end if
+      if (p0 == 0.0_dp) call diag%warn(line%loc, '*SURFACE BEHAVIOR: p0 = 0: the interaction ' // &
+        'carries no contact pressure (accepted, as CalculiX does)')
+      if (size(line%fields) > 2) call diag%warn(line%loc, '*SURFACE BEHAVIOR, PRESSURE-' // &
+        'OVERCLOSURE=EXPONENTIAL: the fields after c0, p0 are ignored (CalculiX reads two)')
+    end associate
+    interaction%overclosure = pressure_overclosure_t(OVERCLOSURE_EXPONENTIAL, c0, p0)
+    interaction%tied = .false.
+  end subroutine exponential_behavior
 
   !> *FRICTION, LAW=...: the law and its parameters (keyword line), or for COULOMB the
   !> CalculiX data line mu[, stick slope]; the stick slope also as STICK SLOPE=. In a step,

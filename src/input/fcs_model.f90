@@ -11,6 +11,7 @@ module fcs_model
   use fcs_thermal_properties, only: thermal_properties_t
   use fcs_orientation, only: orientation_t
   use fcs_contact_pair, only: contact_pair_def_t
+  use fcs_pressure_overclosure, only: pressure_overclosure_t
   use fcs_element_catalogue, only: element_catalogue_t
   use fcs_linear_constraints, only: linear_equation_t
   use fcs_nonlinear_constraints, only: nonlinear_constraint_t
@@ -284,6 +285,8 @@ module fcs_model
     logical :: has_friction = .false.
     !> PRESSURE-OVERCLOSURE=TIED: the pairs using it never separate nor slip.
     logical :: tied = .false.
+    !> PRESSURE-OVERCLOSURE=LINEAR (normal_stiffness) or EXPONENTIAL (c0, p0).
+    type(pressure_overclosure_t) :: overclosure
     type(friction_def_t) :: friction
     !> *FRICTION, RADIATION DAMPING=: eta [stress time/length] as given (0: none), or from the
     !> elastic bodies on either side of each pair (damping_from_material: MATERIAL).
