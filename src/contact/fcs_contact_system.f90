@@ -38,6 +38,7 @@ module fcs_contact_system
   use fcs_diagnostics, only: format_location
   use fcs_archive, only: archive_t
   use fcs_field, only: field_t, field, FIELD_SURFACE
+  use fcs_pressure_overclosure, only: pressure_overclosure_t
   implicit none
   private
   public :: contact_system_t, contact_pair_def_t, pair_totals_t
@@ -157,6 +158,7 @@ module fcs_contact_system
     procedure :: pair_name => system_pair_name
     procedure :: pair_is_tied => system_pair_is_tied
     procedure :: set_pair_friction => system_set_pair_friction
+    procedure :: set_pair_behavior => system_set_pair_behavior
     procedure :: pair_slave_nodes => system_pair_slave_nodes
     procedure :: pair_positions => system_pair_positions
     procedure :: held_by_tie => system_held_by_tie
@@ -442,7 +444,7 @@ contains
         return
       end if
       call this%ties%add(slave_faces, this%pairs(k)%face_nodes, x, this%pairs(k)%normal_stiffness, &
-                         this%pairs(k)%position_tolerance)
+                         this%pairs(k)%position_tolerance, k)
     end do
     n_total = 0
     do k = 1, size(defs)
@@ -976,6 +978,37 @@ contains
       end do
     end associate
   end subroutine system_set_pair_friction
+
+  !> *CHANGE SURFACE BEHAVIOR (CalculiX's meaning): pair k takes the normal behaviour of its
+  !> interaction anew: the penalty `normal_stiffness` (when positive) and the pressure-
+  !> overclosure law `overclosure`. A tied pair whose behaviour is no longer TIED is released:
+  !> its tie stops coupling the surfaces (tie_set_t%release) and its slave entries (its slave
+  !> nodes, also for a surface-to-surface pair) become ordinary contact nodes, open, which the
+  !> next update searches and closes if they touch. Idempotent (a run resuming within a step
+  !> applies it again without effect).
+  subroutine system_set_pair_behavior(this, k, normal_stiffness, overclosure, cstate)
+    class(contact_system_t), intent(inout) :: this
+    integer, intent(in) :: k
+    real(dp), intent(in) :: normal_stiffness
+    type(pressure_overclosure_t), intent(in) :: overclosure
+    type(contact_state_t), intent(inout) :: cstate
+    type(segment_point_t) :: p
+    integer :: s
+    associate (pair => this%pairs(k))
+      if (normal_stiffness > 0.0_dp) pair%normal_stiffness = normal_stiffness
+      pair%overclosure = overclosure
+      if (pair%overclosure%is_exponential()) pair%reach = max(pair%face_size, 2.0_dp * overclosure%c0)
+      if (.not. pair%tied) return
+      pair%tied = .false.
+      call this%ties%release(k)
+      do s = pair%first, pair%last
+        if (cstate%status(s) /= CONTACT_TIED) cycle
+        p%xi = cstate%xi(:, s)
+        call open_node(cstate, s, cstate%face(s), p, cstate%gap(s))
+        cstate%tied_gap(s) = 0.0_dp
+      end do
+    end associate
+  end subroutine system_set_pair_behavior
 
   !> The node (index) of each slave entry of pair k, in the pair's order (the order of its
   !> output fields and of `pair_slip`).

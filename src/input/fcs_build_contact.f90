@@ -7,7 +7,8 @@ module fcs_build_contact
   use fcs_diagnostics, only: diagnostics_t, source_loc_t
   use fcs_builder_state, only: builder_t
   use fcs_mesh, only: SURFACE_FACES, SURFACE_NODES
-  use fcs_model, only: model_t, interaction_def_t, contact_pair_def_t, friction_change_t
+  use fcs_model, only: model_t, interaction_def_t, contact_pair_def_t, friction_change_t, &
+                       behavior_change_t
   use fcs_strings, only: to_upper, str, parse_real, string_t
   use fcs_error, only: error_t
   use fcs_friction_factory, only: friction_def_t, friction_def_problems, set_friction_parameter, &
@@ -17,6 +18,7 @@ module fcs_build_contact
   private
   public :: handle_surface_interaction, handle_surface_behavior, handle_friction
   public :: handle_contact_pair, handle_tie, resolve_pair_interactions, handle_change_friction
+  public :: handle_change_surface_behavior
 
 contains
 
@@ -61,13 +63,26 @@ contains
   subroutine handle_surface_behavior(card, model, state, diag)
     type(card_t), intent(in) :: card
     type(model_t), intent(inout) :: model
-    type(builder_t), intent(in) :: state
+    type(builder_t), intent(inout) :: state
+    type(diagnostics_t), intent(inout) :: diag
+    if (state%in_step) then
+      call handle_step_behavior(card, model, state, diag)
+      return
+    end if
+    if (.not. has_interaction(card, state, diag)) return
+    call read_behavior(card, model%interactions(state%interaction), diag)
+  end subroutine handle_surface_behavior
+
+  !> The normal behaviour of a *SURFACE BEHAVIOR card into `interaction` (left as it was
+  !> after an error).
+  subroutine read_behavior(card, interaction, diag)
+    type(card_t), intent(in) :: card
+    type(interaction_def_t), intent(inout) :: interaction
     type(diagnostics_t), intent(inout) :: diag
     real(dp) :: slope, extra(2)
     integer :: i
-    if (.not. has_interaction(card, state, diag)) return
     if (param_upper(card, 'PRESSURE-OVERCLOSURE') == 'EXPONENTIAL') then
-      call exponential_behavior(card, model%interactions(state%interaction), diag)
+      call exponential_behavior(card, interaction, diag)
       return
     end if
     associate (line => card%lines(1))
@@ -95,11 +110,74 @@ contains
         'which it makes contact elements) is ignored: every slave node that projects onto ' // &
         'the master is a contact candidate in fcs3d')
     end associate
-    associate (interaction => model%interactions(state%interaction))
-      interaction%normal_stiffness = slope
-      interaction%tied = param_upper(card, 'PRESSURE-OVERCLOSURE') == 'TIED'
-    end associate
-  end subroutine handle_surface_behavior
+    interaction%normal_stiffness = slope
+    interaction%tied = param_upper(card, 'PRESSURE-OVERCLOSURE') == 'TIED'
+    interaction%overclosure = pressure_overclosure_t()
+  end subroutine read_behavior
+
+  !> *CHANGE SURFACE BEHAVIOR, INTERACTION= (CalculiX's changesurfacebehaviors.f): the
+  !> *SURFACE BEHAVIOR that follows it gives that interaction's new normal behaviour from this
+  !> step on.
+  subroutine handle_change_surface_behavior(card, model, state, diag)
+    type(card_t), intent(in) :: card
+    type(model_t), intent(in) :: model
+    type(builder_t), intent(inout) :: state
+    type(diagnostics_t), intent(inout) :: diag
+    integer :: k
+    state%changed_behavior = 0
+    do k = 1, size(model%interactions)
+      if (model%interactions(k)%name == param_upper(card, 'INTERACTION')) state%changed_behavior = k
+    end do
+    if (state%changed_behavior == 0) then
+      call diag%report(card%loc, '*CHANGE SURFACE BEHAVIOR: interaction "' // &
+                       param_value(card, 'INTERACTION') // '" is not defined')
+      return
+    end if
+    state%behavior_loc = card%loc
+  end subroutine handle_change_surface_behavior
+
+  !> *SURFACE BEHAVIOR in a step, after *CHANGE SURFACE BEHAVIOR: the new normal behaviour of
+  !> its interaction. CalculiX takes any law; fcs3d changes LINEAR and EXPONENTIAL parameters
+  !> and laws, and releases a tie (TIED to LINEAR or EXPONENTIAL); tying an untied interaction
+  !> in a step is refused. The interaction's definition is the one of the model: what a step
+  !> changes is kept in the step (behavior_change_t) and applied when the step starts.
+  subroutine handle_step_behavior(card, model, state, diag)
+    type(card_t), intent(in) :: card
+    type(model_t), intent(in) :: model
+    type(builder_t), intent(inout) :: state
+    type(diagnostics_t), intent(inout) :: diag
+    type(interaction_def_t) :: changed
+    type(behavior_change_t) :: change
+    integer :: n_before
+    if (state%changed_behavior == 0) then
+      call diag%report(card%loc, '*SURFACE BEHAVIOR in a step must follow *CHANGE SURFACE ' // &
+                       'BEHAVIOR, INTERACTION= (or move it before the first *STEP)')
+      return
+    end if
+    change%interaction = state%changed_behavior
+    change%loc = card%loc
+    state%changed_behavior = 0
+    changed = model%interactions(change%interaction)
+    n_before = diag%count
+    call read_behavior(card, changed, diag)
+    if (diag%count > n_before) return
+    if (changed%tied .and. .not. model%interactions(change%interaction)%tied) then
+      call diag%report(card%loc, '*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=TIED in a step: ' // &
+        'interaction ' // changed%name // ' is not tied; tying surfaces in a step is not ' // &
+        'available (a tie can be released: TIED to LINEAR or EXPONENTIAL)')
+      return
+    end if
+    if (changed%tied) then
+      call diag%report(card%loc, '*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=TIED in a step: ' // &
+        'the tie of interaction ' // changed%name // ' cannot be changed (its penalty is ' // &
+        'fixed when the tie is made); release it with LINEAR or EXPONENTIAL')
+      return
+    end if
+    change%normal_stiffness = changed%normal_stiffness
+    change%overclosure = changed%overclosure
+    if (.not. allocated(state%step%behavior_changes)) allocate (state%step%behavior_changes(0))
+    state%step%behavior_changes = [state%step%behavior_changes, change]
+  end subroutine handle_step_behavior
 
   !> *SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=EXPONENTIAL: one line c0 [length], p0 [stress]
   !> (CalculiX's order and checks, surfacebehaviors.f: c0 > 0, p0 >= 0; p = p0 exp(-beta g),
@@ -139,6 +217,7 @@ contains
     end associate
     interaction%overclosure = pressure_overclosure_t(OVERCLOSURE_EXPONENTIAL, c0, p0)
     interaction%tied = .false.
+    interaction%normal_stiffness = 0.0_dp
   end subroutine exponential_behavior
 
   !> *FRICTION, LAW=...: the law and its parameters (keyword line), or for COULOMB the

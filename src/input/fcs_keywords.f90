@@ -345,6 +345,14 @@ contains
          'beyond the new cone is brought back onto it (the node slips), as a return mapping ' // &
          'does. Only Coulomb friction can be changed.', '', &
          [p('INTERACTION', PARAM_NAME, required=.true., description='The *SURFACE INTERACTION.')]), &
+      kw('CHANGE SURFACE BEHAVIOR', CONTEXT_STEP, 'CalculiX', 'Change the normal behaviour ' // &
+         'of an interaction from this step on: the *SURFACE BEHAVIOR that follows replaces it ' // &
+         '(LINEAR: new penalty; EXPONENTIAL: new c0, p0; either law may replace the other). ' // &
+         'A TIED interaction changed to LINEAR or EXPONENTIAL is released at the start of the ' // &
+         'step: its tie stops coupling the surfaces and its slave nodes become contact nodes ' // &
+         '(node to surface, also for a SURFACE TO SURFACE pair), open until they touch. ' // &
+         'Tying an untied interaction in a step is refused.', '', &
+         [p('INTERACTION', PARAM_NAME, required=.true., description='The *SURFACE INTERACTION.')]), &
       kw('CONTACT PAIR', CONTEXT_MODEL, 'CalculiX', 'A node-to-point contact pair: the slave ' // &
          'surface''s nodes (or, TYPE=SURFACE TO SURFACE, the integration points of its faces) ' // &
          'against points of the master surface''s faces.', &
