@@ -77,13 +77,13 @@ contains
   end subroutine test_projection
 
   !> Nodal forces after moving the 5 nodes by du (the stepper's update, eq. 5).
-  function forces_after(xm, xs, xi0, ft0, status, du, tied_gap, xi_guess, params) result(f)
+  function forces_after(xm, xs, xi0, ft0, status, du, tied_gap, xi_guess, element_params) result(f)
     real(dp), intent(in) :: xm(3, 4), xs(3), xi0(2), ft0(2), du(15), tied_gap
     integer, intent(in) :: status
     !> Start of the projection (default xi0).
     real(dp), intent(in), optional :: xi_guess(2)
     !> The element's parameters (default PARAMS).
-    type(contact_params_t), intent(in), optional :: params
+    type(contact_params_t), intent(in), optional :: element_params
     real(dp) :: f(15)
     real(dp) :: xm_new(3, 4), xs_new(3), gap, total(3)
     type(segment_point_t) :: p, p_old
@@ -98,9 +98,9 @@ contains
       call project_to_segment(xm_new, xs_new, xi0, p, gap, converged)
     end if
     p_old = segment_point(xm_new, xi0)
-    if (present(params)) then
+    if (present(element_params)) then
       u = contact_update(p, gap, p_old, contact_node_t(status, 0.0_dp, ft0, 0.0_dp, 0.0_dp, tied_gap), &
-                         params, COULOMB, 1.0_dp)
+                         element_params, COULOMB, 1.0_dp)
     else
       u = contact_update(p, gap, p_old, contact_node_t(status, 0.0_dp, ft0, 0.0_dp, 0.0_dp, tied_gap), &
                          PARAMS, COULOMB, 1.0_dp)
@@ -470,8 +470,8 @@ contains
     v = v - 0.5_dp
     ! The step is kept small against the decay length c0 / ln 100 of the law.
     eps = 1.0e-6_dp * c0
-    fd = (forces_after(xm, xs, p%xi, ft, status, eps * v, 0.0_dp, params=law_params) - &
-          forces_after(xm, xs, p%xi, ft, status, -eps * v, 0.0_dp, params=law_params)) / (2 * eps)
+    fd = (forces_after(xm, xs, p%xi, ft, status, eps * v, 0.0_dp, element_params=law_params) - &
+          forces_after(xm, xs, p%xi, ft, status, -eps * v, 0.0_dp, element_params=law_params)) / (2 * eps)
     scale = max(1.0_dp, maxval(abs(fd)))
     ! Central differences of a smooth map: truncation O(eps^2 beta^2), round-off ~1e-16/eps.
     call suite%close_array(matmul(lin%stiffness(1:15, 1:15), v) / scale, -fd / scale, 1.0e-6_dp, &

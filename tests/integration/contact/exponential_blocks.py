@@ -10,6 +10,13 @@ q < p0 (the law acts up to g = c0).
 
   deck FILE --load Q --p0 P0 --c0 C0   write the deck (node-to-surface pair, the upper block's
                                        bottom the slave)
+  changes FILE --load Q --p0 P0 --c0 C0 --stiffness K
+                                       the same blocks in three steps under the same load:
+                                       LINEAR penalty K, then *CHANGE SURFACE BEHAVIOR to K / 10,
+                                       then to EXPONENTIAL c0, p0
+  check-changes JOB --load Q --p0 P0 --c0 C0 --stiffness K --tolerance T
+                                       the gaps of the three steps: -q/K, -10 q/K (within T of
+                                       them, relative) and the exponential closed form
   check JOB --load Q --p0 P0 --c0 C0 --tolerance T
                                        read JOB.dat (*CONTACT PRINT: CDIS normal = gap, CSTR
                                        pressure): every slave node's pressure within T of q
@@ -43,7 +50,7 @@ def block(n, nz, height, z0, first_node, first_element):
     return nodes, ids, elements
 
 
-def write_deck(path, load, p0, c0):
+def write_deck(path, load, p0, c0, stiffness=None):
     lower_nodes, lower_ids, lower_el = block(2, 2, 1.0, 0.0, 1, 1)
     upper_nodes, upper_ids, upper_el = block(2, 1, 0.5, 1.0, 101, 101)
     lines = ["** Two blocks, exponential pressure-overclosure (tests/integration/contact/exponential_blocks.py)",
@@ -65,26 +72,40 @@ def write_deck(path, load, p0, c0):
               "*SOLID SECTION, ELSET=LOWER, MATERIAL=STEEL",
               "*SOLID SECTION, ELSET=UPPER, MATERIAL=STEEL",
               "*CONTACT PAIR, INTERACTION=SOFT, TYPE=NODE TO SURFACE", "SLAVE, MASTER",
-              "*SURFACE INTERACTION, NAME=SOFT",
-              "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=EXPONENTIAL", f"{c0}, {p0}",
-              "*FRICTION", "0.2",
+              "*SURFACE INTERACTION, NAME=SOFT"]
+    if stiffness is None:
+        lines += ["*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=EXPONENTIAL", f"{c0}, {p0}"]
+    else:
+        lines += ["*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR", f"{stiffness}"]
+    lines += ["*FRICTION", "0.2",
               "*BOUNDARY", "BASE, 3, 3", "NALL, 1, 2",
               "*STEP", "*STATIC",
               "*DLOAD", "UPPER_ALL, P2, %g" % load,
               "*CONTACT PRINT", "CDIS, CSTR", "*END STEP"]
+    if stiffness is not None:
+        lines += ["*STEP", "*STATIC", "*CHANGE SURFACE BEHAVIOR, INTERACTION=SOFT",
+                  "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR", f"{stiffness / 10}",
+                  "*CONTACT PRINT", "CDIS, CSTR", "*END STEP",
+                  "*STEP", "*STATIC", "*CHANGE SURFACE BEHAVIOR, INTERACTION=SOFT",
+                  "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=EXPONENTIAL", f"{c0}, {p0}",
+                  "*CONTACT PRINT", "CDIS, CSTR", "*END STEP"]
     with open(path, "w") as f:
         f.write("\n".join(lines) + "\n")
 
 
-def read_contact(path):
-    """Last CDIS and CSTR tables of a .dat: {node: value} of the normal columns."""
+def read_contact(path, every=False):
+    """Last CDIS and CSTR tables of a .dat: {node: value} of the normal columns (every: the
+    lists of all of them, in order)."""
     gaps, pressures, table = {}, {}, None
+    all_gaps, all_pressures = [], []
     with open(path) as f:
         for line in f:
             if "relative contact displacement" in line:
                 table, gaps = "gap", {}
+                all_gaps.append(gaps)
             elif "contact stress" in line:
                 table, pressures = "pressure", {}
+                all_pressures.append(pressures)
             elif not line.strip():
                 continue
             elif table and line.split()[0].isdigit():
@@ -92,7 +113,26 @@ def read_contact(path):
                 (gaps if table == "gap" else pressures)[int(fields[0])] = float(fields[1])
             else:
                 table = None
+    if every:
+        return all_gaps, all_pressures
     return gaps, pressures
+
+
+def check_changes(job, load, p0, c0, stiffness, tolerance):
+    """The three steps' gaps: -q/K, -10 q/K, then the exponential closed form."""
+    all_gaps, _ = read_contact(job + ".dat", every=True)
+    if len(all_gaps) != 3:
+        print(f"{job}: expected 3 contact tables (one per step), found {len(all_gaps)}")
+        return 1
+    expected = [-load / stiffness, -10.0 * load / stiffness, c0 * math.log(p0 / load) / math.log(100.0)]
+    bounds = [tolerance * abs(expected[0]), tolerance * abs(expected[1]), tolerance * c0 / math.log(100.0)]
+    fail = 0
+    for k, (gaps, g, bound) in enumerate(zip(all_gaps, expected, bounds)):
+        worst = max(abs(v - g) for v in gaps.values())
+        print(f"{job}: step {k + 1}: closed-form gap {g:.6e}, error {worst:.2e} (bound {bound:.2e})")
+        if len(gaps) != 9 or worst > bound:
+            fail = 1
+    return fail
 
 
 def check(job, load, p0, c0, tolerance):
@@ -115,13 +155,19 @@ def check(job, load, p0, c0, tolerance):
 
 def main():
     parser = argparse.ArgumentParser()
-    parser.add_argument("action", choices=["deck", "check"])
+    parser.add_argument("action", choices=["deck", "check", "changes", "check-changes"])
     parser.add_argument("name")
     parser.add_argument("--load", type=float, required=True)
     parser.add_argument("--p0", type=float, required=True)
     parser.add_argument("--c0", type=float, required=True)
     parser.add_argument("--tolerance", type=float, default=1e-3)
+    parser.add_argument("--stiffness", type=float)
     a = parser.parse_args()
+    if a.action == "changes":
+        write_deck(a.name, a.load, a.p0, a.c0, a.stiffness)
+        return 0
+    if a.action == "check-changes":
+        return check_changes(a.name, a.load, a.p0, a.c0, a.stiffness, a.tolerance)
     if a.action == "deck":
         write_deck(a.name, a.load, a.p0, a.c0)
         return 0
