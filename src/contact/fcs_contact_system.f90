@@ -4,7 +4,8 @@
 !>     its neighbours, so that sliding rarely changes the pattern);
 !>   - `assemble`: contact forces R f and tangents K_f (eqs. 8-10) of every closed node;
 !>   - `events`: the R-minimum fractions of the trial increment at which a node closes
-!>     (gap reaches 0), opens (normal force reaches 0), starts to slip (F = 0, eq. 3) or
+!>     (gap reaches 0; c0 under the exponential law), opens (normal force reaches 0; gap
+!>     reaches c0 under the exponential law, doc/theory.md 4.11), starts to slip (F = 0, eq. 3) or
 !>     leaves its master segment (a return to stick, when slip reverses or unloads, is
 !>     handled at the start of the increment by `switch_states` and a re-solve, as elastic
 !>     unloading in plasticity);

@@ -1,5 +1,6 @@
 !> Model builder, contact keywords: *SURFACE INTERACTION, *SURFACE BEHAVIOR, *FRICTION,
-!> *CONTACT PAIR, *TIE, *CHANGE FRICTION (with their CalculiX meaning; method notes 1.2-1.3).
+!> *CONTACT PAIR, *TIE, *CHANGE FRICTION, *CHANGE SURFACE BEHAVIOR (with their CalculiX
+!> meaning; method notes 1.2-1.3).
 module fcs_build_contact
   use fcs_kinds, only: dp
   use fcs_deck_lexer, only: card_t
@@ -53,7 +54,8 @@ contains
   end function has_interaction
 
   !> *SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR|TIED: slope K[, sigma_inf[, c0]], as in
-  !> CalculiX. fcs3d's penalty E_n is K: p = K max(-c, 0) (c the clearance, negative when
+  !> CalculiX; EXPONENTIAL: c0, p0 (exponential_behavior); in a step, after *CHANGE SURFACE
+  !> BEHAVIOR, the interaction's new behaviour (handle_step_behavior). fcs3d's penalty E_n is K: p = K max(-c, 0) (c the clearance, negative when
   !> penetrating) on every slave node that projects onto the master. CalculiX's node-to-face
   !> law smooths it, p = -K c (1/2 + arctan(-c/eps)/pi) with eps = pi sigma_inf / K: a tension
   !> tending to sigma_inf at large clearance, p = K (-c) - sigma_inf at large penetration (so
