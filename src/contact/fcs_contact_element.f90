@@ -5,7 +5,8 @@
 !> R = [1, -N_1, ..., -N_gamma] (eq. 8) with the segment's own shape functions.
 !>
 !> Forces on the slave node: f = f_n n + f_t, with the penalty normal force f_n = E_n A (-g)
-!> (g = n.(x_s - x_c) < 0 in penetration, A the slave node's tributary area) and the
+!> (g = n.(x_s - x_c) < 0 in penetration, A the slave node's tributary area), or with the
+!> exponential pressure-overclosure law f_n = A p0 exp(-beta g) (fcs_pressure_overclosure), and the
 !> frictional force f_t = f_m e_m kept by its components f_m in the local Cartesian frame
 !> e_m of the master segment (the paper's e_i). Friction is treated like plasticity:
 !> stick f_m = -E_t A u~_m^e (eq. 4; the force on the slave opposes its motion relative to
@@ -32,6 +33,7 @@ module fcs_contact_element
   use fcs_kinds, only: dp
   use fcs_contact_geometry, only: segment_point_t, segment_point, cross3, MAX_SEGMENT_NODES
   use fcs_friction_law, only: friction_law_t, friction_derivatives_t
+  use fcs_pressure_overclosure, only: pressure_overclosure_t
   implicit none
   private
   public :: contact_linear_t, contact_linearise, contact_update, contact_update_t
@@ -67,6 +69,9 @@ module fcs_contact_element
     !> Radiation damping eta [stress time/length] (0: none): a slipping node resists with
     !> mu f_n + eta A V.
     real(dp) :: damping = 0.0_dp
+    !> The pressure-overclosure law: LINEAR (the penalty E_n above) or EXPONENTIAL
+    !> (f_n = support A p(g), p = p0 exp(-beta g); fcs_pressure_overclosure).
+    type(pressure_overclosure_t) :: overclosure
   end type contact_params_t
 
   !> The state of one slave node at the start of an increment.
@@ -155,10 +160,17 @@ contains
     call contact_kinematics(p, gap, lin, dn, de)
     dtrial = trial_slip_derivative(p, lin%dslip, de, slip, shape_start)
     k_t = params%stick_stiffness * params%area
-    penetration = max(0.0_dp, -gap)
-    if (node%bilateral) penetration = -gap
-    lin%dfn = -params%normal_stiffness * params%area * (params%support * lin%dgap - penetration * &
-              (params%dsupport(1) * lin%dxi(1, :) + params%dsupport(2) * lin%dxi(2, :)))
+    if (params%overclosure%is_exponential()) then
+      ! f_n = support A p(g): df_n = A (support p'(g) dg + p(g) dsupport/dxi . dxi).
+      lin%dfn = params%area * (params%support * params%overclosure%slope(gap) * lin%dgap + &
+                params%overclosure%pressure(gap) * &
+                (params%dsupport(1) * lin%dxi(1, :) + params%dsupport(2) * lin%dxi(2, :)))
+    else
+      penetration = max(0.0_dp, -gap)
+      if (node%bilateral) penetration = -gap
+      lin%dfn = -params%normal_stiffness * params%area * (params%support * lin%dgap - penetration * &
+                (params%dsupport(1) * lin%dxi(1, :) + params%dsupport(2) * lin%dxi(2, :)))
+    end if
     ! A bilateral node in tension carries no friction: its normal force only.
     if (node%normal_force < 0.0_dp) then
       lin%df = outer(p%normal, lin%dfn) + node%normal_force * dn
@@ -353,7 +365,12 @@ contains
     ! A node held closed through equilibrium iterations has a bilateral normal spring (its
     ! force may turn tensile, which the iterations then undo by opening it); the cone only
     ! ever sees a compressive force.
-    signed_force = params%support * params%normal_stiffness * params%area * (-gap_new)
+    if (params%overclosure%is_exponential()) then
+      ! Exponential pressure-overclosure: compressive at any clearance the node is closed at.
+      signed_force = params%support * params%area * params%overclosure%pressure(gap_new)
+    else
+      signed_force = params%support * params%normal_stiffness * params%area * (-gap_new)
+    end if
     out%normal_force = max(0.0_dp, signed_force)
     call friction_return(out, trial, k_t, params%area, params%damping, law, node, dt)
     if (node%bilateral) out%normal_force = signed_force

@@ -28,8 +28,14 @@ contains
         p = segment_point(x(:, nodes(2:)), cstate%xi(:, s))
         g_start = cstate%gap(s) + relative_normal(p, due_fixed(1:n_dof))
         g_end = g_start + relative_normal(p, due_scaled(1:n_dof))
-        if (cstate%gap(s) > 0.0_dp .and. g_end < 0.0_dp) &
+        if (exponential(this, s)) then
+          ! The exponential law acts from the clearance c0 on: the node closes there.
+          if (cstate%gap(s) > law_reach(this, s) .and. g_end < law_reach(this, s)) &
+            call offer(this, collector, s, crossing(g_start - law_reach(this, s), &
+                       g_end - law_reach(this, s)), EVENT_CONTACT_CLOSE)
+        else if (cstate%gap(s) > 0.0_dp .and. g_end < 0.0_dp) then
           call offer(this, collector, s, crossing(g_start, g_end), EVENT_CONTACT_CLOSE)
+        end if
         cycle
       end if
       call linearise(this, s, x, cstate, 0.0_dp, lin)
@@ -72,7 +78,7 @@ contains
       ! tension separates now: closed_node_events offers no opening event below the force
       ! floor, so its penalty spring would otherwise hold the bodies together in tension for
       ! the whole increment.
-      if (fn <= normal_force_floor(this, s) .and. fn + dfn < 0.0_dp) then
+      if (.not. exponential(this, s) .and. fn <= normal_force_floor(this, s) .and. fn + dfn < 0.0_dp) then
         call open_node(cstate, s, cstate%face(s), p, cstate%gap(s))
         this%switches(s) = this%switches(s) + 1
         n_switched = n_switched + 1
@@ -129,9 +135,13 @@ contains
     associate (pair => this%pairs(this%slave_pair(s)))
       fn = cstate%normal_force(s) + dot_product(lin%dfn(1:n_dof), due_fixed)
       dfn = dot_product(lin%dfn(1:n_dof), due_scaled)
-      fn_floor = normal_force_floor(this, s)
-      if (cstate%normal_force(s) > fn_floor .and. fn + dfn < 0.0_dp) &
-        call offer(this, collector, s, crossing(fn, fn + dfn), EVENT_CONTACT_OPEN)
+      if (exponential(this, s)) then
+        call exponential_opening(this, s, p, cstate, due_fixed, due_scaled, collector)
+      else
+        fn_floor = normal_force_floor(this, s)
+        if (cstate%normal_force(s) > fn_floor .and. fn + dfn < 0.0_dp) &
+          call offer(this, collector, s, crossing(fn, fn + dfn), EVENT_CONTACT_OPEN)
+      end if
       ft = cstate%friction(1, s) * p%e(:, 1) + cstate%friction(2, s) * p%e(:, 2) + &
            matmul(lin%dft_stick(:, 1:n_dof), due_fixed)
       mu = cone_mu(this, s, cstate)
@@ -168,6 +178,24 @@ contains
       end do
     end associate
   end subroutine closed_node_events
+
+  !> Opening of a closed node under the exponential law: its gap, linear along the path
+  !> du_fixed + r du_scaled, reaches c0 (where the law stops acting; its normal force never
+  !> reaches zero).
+  subroutine exponential_opening(this, s, p, cstate, due_fixed, due_scaled, collector)
+    type(contact_system_t), intent(inout) :: this
+    integer, intent(in) :: s
+    type(segment_point_t), intent(in) :: p
+    type(contact_state_t), intent(in) :: cstate
+    real(dp), intent(in) :: due_fixed(:), due_scaled(:)
+    type(rmin_collector_t), intent(inout) :: collector
+    real(dp) :: c0, g_start, g_end
+    c0 = law_reach(this, s)
+    g_start = cstate%gap(s) + relative_normal(p, due_fixed)
+    g_end = g_start + relative_normal(p, due_scaled)
+    if (cstate%gap(s) <= c0 .and. g_end > c0) &
+      call offer(this, collector, s, crossing(g_start - c0, g_end - c0), EVENT_CONTACT_OPEN)
+  end subroutine exponential_opening
 
   !> Segment events of a node on a triangular segment along xi_start + r dxi: reaching an
   !> edge (excess 0, the hand-over to the next segment) or the end of the extension past a

@@ -44,6 +44,7 @@ contains
     params%normal_stiffness = this%pairs(this%slave_pair(s))%normal_stiffness
     params%stick_stiffness = this%pairs(this%slave_pair(s))%stick_stiffness
     params%damping = this%pairs(this%slave_pair(s))%radiation_damping
+    params%overclosure = this%pairs(this%slave_pair(s))%overclosure
     if (present(face) .and. present(xi)) call edge_support(xi, &
       this%pairs(this%slave_pair(s))%free_edge(:, face), params%support, params%dsupport, &
       face_node_count(this%pairs(this%slave_pair(s))%face_nodes(:, face)))
@@ -161,6 +162,16 @@ contains
       floor = GAP_TOLERANCE * pair%normal_stiffness * this%area(s) * pair%face_size
     end associate
   end procedure normal_force_floor
+
+  !> Documented with its interface in fcs_contact_system.
+  module procedure exponential
+    yes = this%pairs(this%slave_pair(s))%overclosure%is_exponential()
+  end procedure exponential
+
+  !> Documented with its interface in fcs_contact_system.
+  module procedure law_reach
+    reach = this%pairs(this%slave_pair(s))%overclosure%reach()
+  end procedure law_reach
 
   module procedure open_node
     cstate%status(s) = CONTACT_OPEN

@@ -16,6 +16,7 @@ module fcs_contact_pair
   use fcs_friction_law, only: friction_law_t
   use fcs_friction_factory, only: create_friction_law, friction_def_t
   use fcs_sort, only: unique_sorted
+  use fcs_pressure_overclosure, only: pressure_overclosure_t
   implicit none
   private
   public :: contact_pair_def_t, contact_pair_t, pair_setup, face_coordinates, search, follow
@@ -40,6 +41,8 @@ module fcs_contact_pair
     !> Resolved penalties E_n, E_t [stress/length] and friction coefficient of this pair.
     real(dp) :: normal_stiffness = 0.0_dp
     real(dp) :: stick_stiffness = 0.0_dp
+    !> Pressure-overclosure law (LINEAR: the penalty normal_stiffness; EXPONENTIAL: c0, p0).
+    type(pressure_overclosure_t) :: overclosure
     !> Mean thickness h of the master elements and the modulus E the defaults come from.
     real(dp) :: master_thickness = 0.0_dp
     real(dp) :: master_modulus = 0.0_dp
@@ -55,6 +58,7 @@ module fcs_contact_pair
     logical :: surface_to_surface = .false.
     real(dp) :: normal_stiffness = 0.0_dp
     real(dp) :: stick_stiffness = 0.0_dp
+    type(pressure_overclosure_t) :: overclosure
     !> Radiation damping eta [stress time/length] of the pair (0: none).
     real(dp) :: radiation_damping = 0.0_dp
     !> Mean master face size; search reach for open nodes; tie position tolerance.
@@ -99,6 +103,7 @@ contains
     pair%surface_to_surface = def%surface_to_surface
     pair%normal_stiffness = def%normal_stiffness
     pair%stick_stiffness = def%stick_stiffness
+    pair%overclosure = def%overclosure
     pair%position_tolerance = def%position_tolerance
     pair%radiation_damping = def%radiation_damping
     associate (surface => mesh%surfaces(def%master_surface))
@@ -126,6 +131,8 @@ contains
     end do
     pair%face_size = pair%face_size / nf
     pair%reach = pair%face_size
+    ! The exponential law acts up to the clearance c0: open nodes are found that far.
+    if (pair%overclosure%is_exponential()) pair%reach = max(pair%face_size, 2.0_dp * pair%overclosure%c0)
     call face_neighbours(pair, mesh%n_nodes)
     call free_edges(pair)
     call pair%grid%build(face_coordinates(pair, x), pair%reach)

@@ -4,7 +4,8 @@
 !>     its neighbours, so that sliding rarely changes the pattern);
 !>   - `assemble`: contact forces R f and tangents K_f (eqs. 8-10) of every closed node;
 !>   - `events`: the R-minimum fractions of the trial increment at which a node closes
-!>     (gap reaches 0), opens (normal force reaches 0), starts to slip (F = 0, eq. 3) or
+!>     (gap reaches 0; c0 under the exponential law), opens (normal force reaches 0; gap
+!>     reaches c0 under the exponential law, doc/theory.md 4.11), starts to slip (F = 0, eq. 3) or
 !>     leaves its master segment (a return to stick, when slip reverses or unloads, is
 !>     handled at the start of the increment by `switch_states` and a re-solve, as elastic
 !>     unloading in plasticity);
@@ -38,6 +39,7 @@ module fcs_contact_system
   use fcs_diagnostics, only: format_location
   use fcs_archive, only: archive_t
   use fcs_field, only: field_t, field, FIELD_SURFACE
+  use fcs_pressure_overclosure, only: pressure_overclosure_t
   implicit none
   private
   public :: contact_system_t, contact_pair_def_t, pair_totals_t
@@ -157,6 +159,7 @@ module fcs_contact_system
     procedure :: pair_name => system_pair_name
     procedure :: pair_is_tied => system_pair_is_tied
     procedure :: set_pair_friction => system_set_pair_friction
+    procedure :: set_pair_behavior => system_set_pair_behavior
     procedure :: pair_slave_nodes => system_pair_slave_nodes
     procedure :: pair_positions => system_pair_positions
     procedure :: held_by_tie => system_held_by_tie
@@ -333,6 +336,22 @@ module fcs_contact_system
       real(dp) :: floor
     end function normal_force_floor
 
+    !> Slave s's pair has the exponential pressure-overclosure law (fcs_pressure_overclosure):
+    !> it carries force at positive clearance up to c0, and opens and closes by its gap
+    !> crossing c0 instead of by its normal force reaching zero.
+    pure module function exponential(this, s) result(yes)
+      type(contact_system_t), intent(in) :: this
+      integer, intent(in) :: s
+      logical :: yes
+    end function exponential
+
+    !> Clearance c0 up to which slave s's law acts (exponential law only).
+    pure module function law_reach(this, s) result(reach)
+      type(contact_system_t), intent(in) :: this
+      integer, intent(in) :: s
+      real(dp) :: reach
+    end function law_reach
+
     !> Open slave s: no forces, on `face` (0: none in reach) at point p with gap `gap`.
     module subroutine open_node(cstate, s, face, p, gap)
       type(contact_state_t), intent(inout) :: cstate
@@ -426,7 +445,7 @@ contains
         return
       end if
       call this%ties%add(slave_faces, this%pairs(k)%face_nodes, x, this%pairs(k)%normal_stiffness, &
-                         this%pairs(k)%position_tolerance)
+                         this%pairs(k)%position_tolerance, k)
     end do
     n_total = 0
     do k = 1, size(defs)
@@ -576,7 +595,7 @@ contains
           end if
           cstate%status(s) = CONTACT_TIED
           cstate%tied_gap(s) = gap
-        else if (gap <= GAP_TOLERANCE * pair%face_size) then
+        else if (initially_closed(this, s, gap)) then
           u = contact_update(p, gap, p, node_of(cstate, s, CONTACT_STICK), params_of(this, s, face, p%xi), &
                              pair%law, 0.0_dp)
           cstate%status(s) = closing_status(u%mu)
@@ -586,6 +605,19 @@ contains
       end associate
     end do
   end subroutine initial_state
+
+  !> A node at gap `gap` at the start of the run is closed: it touches (within GAP_TOLERANCE
+  !> of the master face size), or, under the exponential law, its clearance is at most c0.
+  logical function initially_closed(this, s, gap)
+    type(contact_system_t), intent(in) :: this
+    integer, intent(in) :: s
+    real(dp), intent(in) :: gap
+    if (exponential(this, s)) then
+      initially_closed = gap <= law_reach(this, s)
+    else
+      initially_closed = gap <= GAP_TOLERANCE * this%pairs(this%slave_pair(s))%face_size
+    end if
+  end function initially_closed
 
 
 
@@ -947,6 +979,37 @@ contains
       end do
     end associate
   end subroutine system_set_pair_friction
+
+  !> *CHANGE SURFACE BEHAVIOR (CalculiX's meaning): pair k takes the normal behaviour of its
+  !> interaction anew: the penalty `normal_stiffness` (when positive) and the pressure-
+  !> overclosure law `overclosure`. A tied pair whose behaviour is no longer TIED is released:
+  !> its tie stops coupling the surfaces (tie_set_t%release) and its slave entries (its slave
+  !> nodes, also for a surface-to-surface pair) become ordinary contact nodes, open, which the
+  !> next update searches and closes if they touch. Idempotent (a run resuming within a step
+  !> applies it again without effect).
+  subroutine system_set_pair_behavior(this, k, normal_stiffness, overclosure, cstate)
+    class(contact_system_t), intent(inout) :: this
+    integer, intent(in) :: k
+    real(dp), intent(in) :: normal_stiffness
+    type(pressure_overclosure_t), intent(in) :: overclosure
+    type(contact_state_t), intent(inout) :: cstate
+    type(segment_point_t) :: p
+    integer :: s
+    associate (pair => this%pairs(k))
+      if (normal_stiffness > 0.0_dp) pair%normal_stiffness = normal_stiffness
+      pair%overclosure = overclosure
+      if (pair%overclosure%is_exponential()) pair%reach = max(pair%face_size, 2.0_dp * overclosure%c0)
+      if (.not. pair%tied) return
+      pair%tied = .false.
+      call this%ties%release(k)
+      do s = pair%first, pair%last
+        if (cstate%status(s) /= CONTACT_TIED) cycle
+        p%xi = cstate%xi(:, s)
+        call open_node(cstate, s, cstate%face(s), p, cstate%gap(s))
+        cstate%tied_gap(s) = 0.0_dp
+      end do
+    end associate
+  end subroutine system_set_pair_behavior
 
   !> The node (index) of each slave entry of pair k, in the pair's order (the order of its
   !> output fields and of `pair_slip`).

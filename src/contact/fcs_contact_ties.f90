@@ -29,8 +29,11 @@ module fcs_contact_ties
     real(dp), allocatable :: coupling(:, :, :)
     !> Face pairs whose overlap could not be integrated (see fcs_tie_mortar), for the log.
     integer :: n_refused = 0
+    !> The tie (contact pair index given to `add`) each face pair belongs to.
+    integer, allocatable :: owner(:)
   contains
     procedure :: add => ties_add
+    procedure :: release => ties_release
     procedure :: assemble => ties_assemble
     procedure :: forces => ties_forces
     procedure :: cliques => ties_cliques
@@ -40,10 +43,10 @@ contains
 
   !> Add the face pairs of a tie: slave faces slave_faces(4, ns), master faces
   !> master_faces(4, nm) (global node indices, outward), reference coordinates x, penalty k,
-  !> pairs farther apart than `tolerance` are not tied.
-  subroutine ties_add(this, slave_faces, master_faces, x, penalty, tolerance)
+  !> pairs farther apart than `tolerance` are not tied; `owner`: the tie's index (for release).
+  subroutine ties_add(this, slave_faces, master_faces, x, penalty, tolerance, owner)
     class(tie_set_t), intent(inout) :: this
-    integer, intent(in) :: slave_faces(:, :), master_faces(:, :)
+    integer, intent(in) :: slave_faces(:, :), master_faces(:, :), owner
     real(dp), intent(in) :: x(:, :), penalty, tolerance
     type(mortar_tie_t) :: mortar
     real(dp), allocatable :: slave_x(:, :, :), master_x(:, :, :)
@@ -69,6 +72,7 @@ contains
         this%coupling(1:4, 5:8, k) = -penalty * pair%m(1:4, 1:4)
         this%coupling(5:8, 1:4, k) = -penalty * transpose(pair%m(1:4, 1:4))
         this%coupling(5:8, 5:8, k) = penalty * pair%e(1:4, 1:4)
+        this%owner(k) = owner
       end associate
     end do
     this%n = first + mortar%n_pairs
@@ -77,16 +81,30 @@ contains
   subroutine grow(this, n)
     type(tie_set_t), intent(inout) :: this
     integer, intent(in) :: n
-    integer, allocatable :: nodes(:, :)
+    integer, allocatable :: nodes(:, :), owner(:)
     real(dp), allocatable :: coupling(:, :, :)
-    allocate (nodes(8, n), coupling(8, 8, n))
+    allocate (nodes(8, n), coupling(8, 8, n), owner(n))
     if (this%n > 0) then
       nodes(:, 1:this%n) = this%nodes(:, 1:this%n)
       coupling(:, :, 1:this%n) = this%coupling(:, :, 1:this%n)
+      owner(1:this%n) = this%owner(1:this%n)
     end if
     call move_alloc(nodes, this%nodes)
     call move_alloc(coupling, this%coupling)
+    call move_alloc(owner, this%owner)
   end subroutine grow
+
+  !> Release tie `owner` (*CHANGE SURFACE BEHAVIOR from TIED): its face pairs no longer couple
+  !> the surfaces (their stiffness and forces are zero; they stay in the sparse pattern).
+  !> Releasing again changes nothing.
+  subroutine ties_release(this, owner)
+    class(tie_set_t), intent(inout) :: this
+    integer, intent(in) :: owner
+    integer :: p
+    do p = 1, this%n
+      if (this%owner(p) == owner) this%coupling(:, :, p) = 0.0_dp
+    end do
+  end subroutine ties_release
 
   !> Candidate master faces of every slave face: those whose bounding boxes, inflated by
   !> `margin`, overlap (candidates(start(i):start(i+1)-1) for slave face i).

@@ -212,18 +212,25 @@ contains
       face = 0
       if (mode == HOLD_CLOSED) call held_point(this, s, pair, x, xs, old_face, cstate%xi(:, s), face, p, gap)
       if (face == 0) call follow(pair, x, xs, old_face, cstate%xi(:, s), face, p, gap)
-      if (mode == HOLD_OPEN .or. face == 0 .or. &
-          (mode == HOLD_NONE .and. gap > GAP_TOLERANCE * pair%face_size)) then
+      if (mode == HOLD_OPEN .or. face == 0 .or. (mode == HOLD_NONE .and. separated(this, s, gap))) then
         call open_node(cstate, s, face, p, gap)
         return
       end if
       ! The opening event of the increment was taken: the node opens if its normal force
-      ! has (up to the linearisation error) come down to zero.
+      ! has (up to the linearisation error) come down to zero; under the exponential law, if
+      ! its gap has come up to c0.
       params = params_of(this, s, face, p%xi)
-      if (mode == HOLD_NONE .and. kind == EVENT_CONTACT_OPEN .and. &
-          params%support * pair%normal_stiffness * this%area(s) * (-gap) <= EVENT_BAND * cstate%normal_force(s)) then
-        call open_node(cstate, s, face, p, gap)
-        return
+      if (mode == HOLD_NONE .and. kind == EVENT_CONTACT_OPEN) then
+        if (exponential(this, s)) then
+          if (law_reach(this, s) - gap <= EVENT_BAND * (law_reach(this, s) - cstate%gap(s))) then
+            call open_node(cstate, s, face, p, gap)
+            return
+          end if
+        else if (params%support * pair%normal_stiffness * this%area(s) * (-gap) <= &
+                 EVENT_BAND * cstate%normal_force(s)) then
+          call open_node(cstate, s, face, p, gap)
+          return
+        end if
       end if
       friction = cstate%friction(:, s)
       if (face /= old_face) then
@@ -251,6 +258,38 @@ contains
       call store_update(cstate, s, u)
     end associate
   end subroutine update_closed
+
+  !> A closed node at gap `gap` has separated: its gap exceeds GAP_TOLERANCE times the
+  !> master face size, or, under the exponential law, c0 (where the law stops acting).
+  logical function separated(this, s, gap)
+    type(contact_system_t), intent(in) :: this
+    integer, intent(in) :: s
+    real(dp), intent(in) :: gap
+    if (exponential(this, s)) then
+      separated = gap > law_reach(this, s)
+    else
+      separated = gap > GAP_TOLERANCE * this%pairs(this%slave_pair(s))%face_size
+    end if
+  end function separated
+
+  !> An open node at gap `gap` (at `start_gap` at the start of the increment, whose closing
+  !> event was taken when kind is EVENT_CONTACT_CLOSE) closes: it penetrates (by more than
+  !> GAP_TOLERANCE times the master face size) or its closing event brought it within the
+  !> event band of touching; under the exponential law the same with the clearance c0 in
+  !> place of contact (g <= c0 closes).
+  logical function closes(this, s, gap, start_gap, kind)
+    type(contact_system_t), intent(in) :: this
+    integer, intent(in) :: s, kind
+    real(dp), intent(in) :: gap, start_gap
+    real(dp) :: c0
+    if (exponential(this, s)) then
+      c0 = law_reach(this, s)
+      closes = gap <= c0 .or. (kind == EVENT_CONTACT_CLOSE .and. gap - c0 <= EVENT_BAND * (start_gap - c0))
+    else
+      closes = gap < -GAP_TOLERANCE * this%pairs(this%slave_pair(s))%face_size .or. &
+               (kind == EVENT_CONTACT_CLOSE .and. gap <= EVENT_BAND * start_gap)
+    end if
+  end function closes
 
   !> The result of a return mapping of slave s into its state.
   pure subroutine store_update(cstate, s, u)
@@ -323,7 +362,11 @@ contains
       if (this%flips(s) >= MAX_HOLD_FLIPS) cycle
       select case (this%hold_status(s))
       case (HOLD_CLOSED)
-        if (cstate%normal_force(s) >= -normal_force_floor(this, s)) cycle
+        if (exponential(this, s)) then
+          if (cstate%gap(s) <= law_reach(this, s)) cycle
+        else if (cstate%normal_force(s) >= -normal_force_floor(this, s)) then
+          cycle
+        end if
         this%hold_status(s) = HOLD_OPEN
         this%held_face(s) = 0
       case (HOLD_OPEN)
@@ -331,7 +374,11 @@ contains
         if (this%twin(s) /= 0) then
           if (twin_inside(this, s, cstate)) cycle
         end if
-        if (cstate%gap(s) >= -GAP_TOLERANCE * this%pairs(this%slave_pair(s))%face_size) cycle
+        if (exponential(this, s)) then
+          if (cstate%gap(s) > law_reach(this, s)) cycle
+        else if (cstate%gap(s) >= -GAP_TOLERANCE * this%pairs(this%slave_pair(s))%face_size) then
+          cycle
+        end if
         params = params_of(this, s, cstate%face(s), cstate%xi(:, s))
         if (params%support <= 0.0_dp) cycle
         this%hold_status(s) = HOLD_CLOSED
@@ -383,8 +430,7 @@ contains
       if (face == 0) call search(pair, x, slave_position(this, s, x), face, p, gap)
       call open_node(cstate, s, face, p, gap)
       if (face == 0 .or. mode == HOLD_OPEN) return
-      if (mode == HOLD_CLOSED .or. gap < -GAP_TOLERANCE * pair%face_size .or. &
-          (kind == EVENT_CONTACT_CLOSE .and. gap <= EVENT_BAND * start_gap)) then
+      if (mode == HOLD_CLOSED .or. closes(this, s, gap, start_gap, kind)) then
         p_start = p
         if (start_face == face) p_start = segment_point(x(:, pair_face_nodes(pair, face)), start_xi)
         node = node_of(cstate, s, CONTACT_STICK)

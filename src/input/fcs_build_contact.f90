@@ -1,5 +1,6 @@
 !> Model builder, contact keywords: *SURFACE INTERACTION, *SURFACE BEHAVIOR, *FRICTION,
-!> *CONTACT PAIR, *TIE, *CHANGE FRICTION (with their CalculiX meaning; method notes 1.2-1.3).
+!> *CONTACT PAIR, *TIE, *CHANGE FRICTION, *CHANGE SURFACE BEHAVIOR (with their CalculiX
+!> meaning; method notes 1.2-1.3).
 module fcs_build_contact
   use fcs_kinds, only: dp
   use fcs_deck_lexer, only: card_t
@@ -7,15 +8,18 @@ module fcs_build_contact
   use fcs_diagnostics, only: diagnostics_t, source_loc_t
   use fcs_builder_state, only: builder_t
   use fcs_mesh, only: SURFACE_FACES, SURFACE_NODES
-  use fcs_model, only: model_t, interaction_def_t, contact_pair_def_t, friction_change_t
+  use fcs_model, only: model_t, interaction_def_t, contact_pair_def_t, friction_change_t, &
+                       behavior_change_t
   use fcs_strings, only: to_upper, str, parse_real, string_t
   use fcs_error, only: error_t
   use fcs_friction_factory, only: friction_def_t, friction_def_problems, set_friction_parameter, &
                                   friction_parameter_names
+  use fcs_pressure_overclosure, only: pressure_overclosure_t, OVERCLOSURE_EXPONENTIAL
   implicit none
   private
   public :: handle_surface_interaction, handle_surface_behavior, handle_friction
   public :: handle_contact_pair, handle_tie, resolve_pair_interactions, handle_change_friction
+  public :: handle_change_surface_behavior
 
 contains
 
@@ -50,7 +54,8 @@ contains
   end function has_interaction
 
   !> *SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR|TIED: slope K[, sigma_inf[, c0]], as in
-  !> CalculiX. fcs3d's penalty E_n is K: p = K max(-c, 0) (c the clearance, negative when
+  !> CalculiX; EXPONENTIAL: c0, p0 (exponential_behavior); in a step, after *CHANGE SURFACE
+  !> BEHAVIOR, the interaction's new behaviour (handle_step_behavior). fcs3d's penalty E_n is K: p = K max(-c, 0) (c the clearance, negative when
   !> penetrating) on every slave node that projects onto the master. CalculiX's node-to-face
   !> law smooths it, p = -K c (1/2 + arctan(-c/eps)/pi) with eps = pi sigma_inf / K: a tension
   !> tending to sigma_inf at large clearance, p = K (-c) - sigma_inf at large penetration (so
@@ -60,11 +65,28 @@ contains
   subroutine handle_surface_behavior(card, model, state, diag)
     type(card_t), intent(in) :: card
     type(model_t), intent(inout) :: model
-    type(builder_t), intent(in) :: state
+    type(builder_t), intent(inout) :: state
+    type(diagnostics_t), intent(inout) :: diag
+    if (state%in_step) then
+      call handle_step_behavior(card, model, state, diag)
+      return
+    end if
+    if (.not. has_interaction(card, state, diag)) return
+    call read_behavior(card, model%interactions(state%interaction), diag)
+  end subroutine handle_surface_behavior
+
+  !> The normal behaviour of a *SURFACE BEHAVIOR card into `interaction` (left as it was
+  !> after an error).
+  subroutine read_behavior(card, interaction, diag)
+    type(card_t), intent(in) :: card
+    type(interaction_def_t), intent(inout) :: interaction
     type(diagnostics_t), intent(inout) :: diag
     real(dp) :: slope, extra(2)
     integer :: i
-    if (.not. has_interaction(card, state, diag)) return
+    if (param_upper(card, 'PRESSURE-OVERCLOSURE') == 'EXPONENTIAL') then
+      call exponential_behavior(card, interaction, diag)
+      return
+    end if
     associate (line => card%lines(1))
       if (card%n_lines /= 1 .or. size(line%fields) > 3) then
         call diag%report(line%loc, '*SURFACE BEHAVIOR: expected one line: slope K[, sigma_inf[, c0]]')
@@ -90,11 +112,115 @@ contains
         'which it makes contact elements) is ignored: every slave node that projects onto ' // &
         'the master is a contact candidate in fcs3d')
     end associate
-    associate (interaction => model%interactions(state%interaction))
-      interaction%normal_stiffness = slope
-      interaction%tied = param_upper(card, 'PRESSURE-OVERCLOSURE') == 'TIED'
+    interaction%normal_stiffness = slope
+    interaction%tied = param_upper(card, 'PRESSURE-OVERCLOSURE') == 'TIED'
+    interaction%overclosure = pressure_overclosure_t()
+  end subroutine read_behavior
+
+  !> *CHANGE SURFACE BEHAVIOR, INTERACTION= (CalculiX's changesurfacebehaviors.f): the
+  !> *SURFACE BEHAVIOR that follows it gives that interaction's new normal behaviour from this
+  !> step on.
+  subroutine handle_change_surface_behavior(card, model, state, diag)
+    type(card_t), intent(in) :: card
+    type(model_t), intent(in) :: model
+    type(builder_t), intent(inout) :: state
+    type(diagnostics_t), intent(inout) :: diag
+    integer :: k
+    state%changed_behavior = 0
+    do k = 1, size(model%interactions)
+      if (model%interactions(k)%name == param_upper(card, 'INTERACTION')) state%changed_behavior = k
+    end do
+    if (state%changed_behavior == 0) then
+      call diag%report(card%loc, '*CHANGE SURFACE BEHAVIOR: interaction "' // &
+                       param_value(card, 'INTERACTION') // '" is not defined')
+      return
+    end if
+    state%behavior_loc = card%loc
+  end subroutine handle_change_surface_behavior
+
+  !> *SURFACE BEHAVIOR in a step, after *CHANGE SURFACE BEHAVIOR: the new normal behaviour of
+  !> its interaction. CalculiX takes any law; fcs3d changes LINEAR and EXPONENTIAL parameters
+  !> and laws, and releases a tie (TIED to LINEAR or EXPONENTIAL); tying an untied interaction
+  !> in a step is refused. The interaction's definition is the one of the model: what a step
+  !> changes is kept in the step (behavior_change_t) and applied when the step starts.
+  subroutine handle_step_behavior(card, model, state, diag)
+    type(card_t), intent(in) :: card
+    type(model_t), intent(in) :: model
+    type(builder_t), intent(inout) :: state
+    type(diagnostics_t), intent(inout) :: diag
+    type(interaction_def_t) :: changed
+    type(behavior_change_t) :: change
+    integer :: n_before
+    if (state%changed_behavior == 0) then
+      call diag%report(card%loc, '*SURFACE BEHAVIOR in a step must follow *CHANGE SURFACE ' // &
+                       'BEHAVIOR, INTERACTION= (or move it before the first *STEP)')
+      return
+    end if
+    change%interaction = state%changed_behavior
+    change%loc = card%loc
+    state%changed_behavior = 0
+    changed = model%interactions(change%interaction)
+    n_before = diag%count
+    call read_behavior(card, changed, diag)
+    if (diag%count > n_before) return
+    if (changed%tied .and. .not. model%interactions(change%interaction)%tied) then
+      call diag%report(card%loc, '*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=TIED in a step: ' // &
+        'interaction ' // changed%name // ' is not tied; tying surfaces in a step is not ' // &
+        'available (a tie can be released: TIED to LINEAR or EXPONENTIAL)')
+      return
+    end if
+    if (changed%tied) then
+      call diag%report(card%loc, '*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=TIED in a step: ' // &
+        'the tie of interaction ' // changed%name // ' cannot be changed (its penalty is ' // &
+        'fixed when the tie is made); release it with LINEAR or EXPONENTIAL')
+      return
+    end if
+    change%normal_stiffness = changed%normal_stiffness
+    change%overclosure = changed%overclosure
+    if (.not. allocated(state%step%behavior_changes)) allocate (state%step%behavior_changes(0))
+    state%step%behavior_changes = [state%step%behavior_changes, change]
+  end subroutine handle_step_behavior
+
+  !> *SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=EXPONENTIAL: one line c0 [length], p0 [stress]
+  !> (CalculiX's order and checks, surfacebehaviors.f: c0 > 0, p0 >= 0; p = p0 exp(-beta g),
+  !> beta = ln(100)/c0: fcs_pressure_overclosure). CalculiX reads the first two fields of the
+  !> line and no more: later fields are ignored with a warning; p0 = 0 (no pressure at all)
+  !> is accepted with a warning.
+  subroutine exponential_behavior(card, interaction, diag)
+    type(card_t), intent(in) :: card
+    type(interaction_def_t), intent(inout) :: interaction
+    type(diagnostics_t), intent(inout) :: diag
+    real(dp) :: c0, p0
+    associate (line => card%lines(1))
+      if (card%n_lines /= 1 .or. size(line%fields) < 2) then
+        call diag%report(line%loc, '*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=EXPONENTIAL: ' // &
+          'expected one line: c0 (the clearance where the pressure is 1 % of p0), p0 (the ' // &
+          'pressure at zero clearance)')
+        return
+      end if
+      if (.not. line_real(line, 1, c0, 'c0', 'SURFACE BEHAVIOR', diag)) return
+      if (.not. line_real(line, 2, p0, 'p0', 'SURFACE BEHAVIOR', diag)) return
+      if (.not. (c0 > 0.0_dp .and. c0 <= huge(c0))) then
+        call diag%report(line%loc, '*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=EXPONENTIAL: c0 = ' // &
+          line%fields(1)%s // ' must be positive (the clearance [length] at which the pressure ' // &
+          'has fallen to 1 % of p0)')
+        return
+      end if
+      if (.not. (p0 >= 0.0_dp .and. p0 <= huge(p0))) then
+        call diag%report(line%loc, '*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=EXPONENTIAL: p0 = ' // &
+          line%fields(2)%s // ' must not be negative (the contact pressure [stress] at zero ' // &
+          'clearance)')
+        return
+      end if
+      if (p0 == 0.0_dp) call diag%warn(line%loc, '*SURFACE BEHAVIOR: p0 = 0: the interaction ' // &
+        'carries no contact pressure (accepted, as CalculiX does)')
+      if (size(line%fields) > 2) call diag%warn(line%loc, '*SURFACE BEHAVIOR, PRESSURE-' // &
+        'OVERCLOSURE=EXPONENTIAL: the fields after c0, p0 are ignored (CalculiX reads two)')
     end associate
-  end subroutine handle_surface_behavior
+    interaction%overclosure = pressure_overclosure_t(OVERCLOSURE_EXPONENTIAL, c0, p0)
+    interaction%tied = .false.
+    interaction%normal_stiffness = 0.0_dp
+  end subroutine exponential_behavior
 
   !> *FRICTION, LAW=...: the law and its parameters (keyword line), or for COULOMB the
   !> CalculiX data line mu[, stick slope]; the stick slope also as STICK SLOPE=. In a step,

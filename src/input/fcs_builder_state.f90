@@ -54,6 +54,10 @@ module fcs_builder_state
     !> Interaction of the step's *CHANGE FRICTION that awaits its *FRICTION (0: none).
     integer :: changed_interaction = 0
     type(source_loc_t) :: change_loc
+    !> Interaction a *CHANGE SURFACE BEHAVIOR of this step named, for the *SURFACE BEHAVIOR
+    !> that must follow it (0: none pending), and where it was.
+    integer :: changed_behavior = 0
+    type(source_loc_t) :: behavior_loc
     logical :: in_step = .false.
     !> 0 for the model data, k while step k is read: conditions of one scope must agree.
     integer :: scope = 0

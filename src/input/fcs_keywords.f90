@@ -309,9 +309,16 @@ contains
          'the following *SURFACE BEHAVIOR and *FRICTION belong to it. It may follow the ' // &
          '*CONTACT PAIR that names it, as in CalculiX.', '', &
          [p('NAME', PARAM_NAME, required=.true., description='Name of the interaction.')]), &
-      kw('SURFACE BEHAVIOR', CONTEXT_MODEL, 'CalculiX', 'Normal behaviour of the current ' // &
-         'interaction: penalty slope E_n of the contact pressure against the overclosure.', &
-         'slope K = E_n [stress/length][, sigma_inf [stress][, c0 [-]]]. fcs3d''s penalty is ' // &
+      kw('SURFACE BEHAVIOR', CONTEXT_ANY, 'CalculiX', 'Normal behaviour of the current ' // &
+         'interaction: the contact pressure against the overclosure, linear (penalty slope ' // &
+         'E_n) or exponential. In a step, right after *CHANGE SURFACE BEHAVIOR: the new ' // &
+         'behaviour of that interaction.', &
+         'EXPONENTIAL: c0 [length], p0 [stress]: p = p0 exp(-beta g), beta = ln(100)/c0, g ' // &
+         'the clearance (negative in penetration), as CalculiX: p0 at contact, p0/100 at the ' // &
+         'clearance c0; a node or contact point carries it while g <= c0 (CalculiX''s rule), so ' // &
+         'also at positive clearance; past beta (-g) = 23 it continues linearly (CalculiX caps ' // &
+         'the force at e^23 instead); c0 > 0, p0 >= 0 (doc/theory.md 4.11). ' // &
+         'LINEAR and TIED: slope K = E_n [stress/length][, sigma_inf [stress][, c0 [-]]]. fcs3d''s penalty is ' // &
          'p = K max(overclosure, 0). sigma_inf and c0 are read and ignored, with a warning: ' // &
          'CalculiX''s node-to-face law is smoothed, with a tension tending to sigma_inf at ' // &
          'large clearance and p = K overclosure - sigma_inf at large overclosure (its ' // &
@@ -320,8 +327,9 @@ contains
          'Without *SURFACE BEHAVIOR, E_n = 10 E / h (E the master body''s Young''s modulus, ' // &
          'h the mean thickness of the master elements).', &
          [p('PRESSURE-OVERCLOSURE', PARAM_CHOICE, required=.true., &
-            choices=[s('LINEAR'), s('TIED')], &
-            description='LINEAR: penalty contact (opens under tension). TIED: the pair is ' // &
+            choices=[s('LINEAR'), s('EXPONENTIAL'), s('TIED')], &
+            description='LINEAR: penalty contact (opens under tension). EXPONENTIAL: ' // &
+            'CalculiX''s exponential law (soft contact acting up to the clearance c0). TIED: the pair is ' // &
             'tied (no separation, no slip), the "stick" segments of the paper.')], &
          data_required=.true.), &
       kw('FRICTION', CONTEXT_ANY, 'CalculiX', 'Friction of the current interaction, treated ' // &
@@ -336,6 +344,14 @@ contains
          'it. At the start of the step every closed node takes the new mu; a friction force ' // &
          'beyond the new cone is brought back onto it (the node slips), as a return mapping ' // &
          'does. Only Coulomb friction can be changed.', '', &
+         [p('INTERACTION', PARAM_NAME, required=.true., description='The *SURFACE INTERACTION.')]), &
+      kw('CHANGE SURFACE BEHAVIOR', CONTEXT_STEP, 'CalculiX', 'Change the normal behaviour ' // &
+         'of an interaction from this step on: the *SURFACE BEHAVIOR that follows replaces it ' // &
+         '(LINEAR: new penalty; EXPONENTIAL: new c0, p0; either law may replace the other). ' // &
+         'A TIED interaction changed to LINEAR or EXPONENTIAL is released at the start of the ' // &
+         'step: its tie stops coupling the surfaces and its slave nodes become contact nodes ' // &
+         '(node to surface, also for a SURFACE TO SURFACE pair), open until they touch. ' // &
+         'Tying an untied interaction in a step is refused.', '', &
          [p('INTERACTION', PARAM_NAME, required=.true., description='The *SURFACE INTERACTION.')]), &
       kw('CONTACT PAIR', CONTEXT_MODEL, 'CalculiX', 'A node-to-point contact pair: the slave ' // &
          'surface''s nodes (or, TYPE=SURFACE TO SURFACE, the integration points of its faces) ' // &

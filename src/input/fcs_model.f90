@@ -11,6 +11,7 @@ module fcs_model
   use fcs_thermal_properties, only: thermal_properties_t
   use fcs_orientation, only: orientation_t
   use fcs_contact_pair, only: contact_pair_def_t
+  use fcs_pressure_overclosure, only: pressure_overclosure_t
   use fcs_element_catalogue, only: element_catalogue_t
   use fcs_linear_constraints, only: linear_equation_t
   use fcs_nonlinear_constraints, only: nonlinear_constraint_t
@@ -20,7 +21,7 @@ module fcs_model
   public :: face_load_t, output_request_t, step_t, rmin_settings_t, initial_stress_t
   public :: initial_plastic_strain_t
   public :: body_load_t, BODY_GRAV, BODY_CENTRIF, transform_def_t, orientation_def_t
-  public :: friction_def_t, friction_change_t, interaction_def_t, contact_pair_def_t, checkpoint_settings_t
+  public :: friction_def_t, friction_change_t, behavior_change_t, interaction_def_t, contact_pair_def_t, checkpoint_settings_t
   public :: history_item_t, history_request_t, HISTORY_NSET_U, HISTORY_NSET_RF
   public :: HISTORY_CONTACT, HISTORY_ENERGY, HISTORY_RESIDUAL
   public :: BC_DISPLACEMENT, BC_VELOCITY, BC_FIXED, FORMULATION_FULL, FORMULATION_BBAR
@@ -237,6 +238,16 @@ module fcs_model
     type(source_loc_t) :: loc
   end type friction_change_t
 
+  !> *CHANGE SURFACE BEHAVIOR, INTERACTION= with its *SURFACE BEHAVIOR: the interaction's new
+  !> normal behaviour from this step on (LINEAR: penalty; EXPONENTIAL: c0, p0).
+  type :: behavior_change_t
+    integer :: interaction = 0
+    !> New penalty E_n [stress/length] (LINEAR; <= 0: none given).
+    real(dp) :: normal_stiffness = 0.0_dp
+    type(pressure_overclosure_t) :: overclosure
+    type(source_loc_t) :: loc
+  end type behavior_change_t
+
   !> One step (loading stage). The condition lists are complete: they hold every condition
   !> active in this step, after applying OP=NEW/MOD to those of the previous steps.
   type :: step_t
@@ -262,6 +273,8 @@ module fcs_model
     type(output_request_t), allocatable :: outputs(:)
     !> *CHANGE FRICTION of this step (the changes of earlier steps still hold).
     type(friction_change_t), allocatable :: friction_changes(:)
+    !> *CHANGE SURFACE BEHAVIOR of this step (the changes of earlier steps still hold).
+    type(behavior_change_t), allocatable :: behavior_changes(:)
     !> *TEMPERATURE of this step as read (node index, value, amplitude; `temperature_new`: an
     !> OP=NEW card cleared the earlier ones first), and, once the deck is read, the complete
     !> lists (every node, when the model has temperatures): the value each node reaches at
@@ -284,6 +297,8 @@ module fcs_model
     logical :: has_friction = .false.
     !> PRESSURE-OVERCLOSURE=TIED: the pairs using it never separate nor slip.
     logical :: tied = .false.
+    !> PRESSURE-OVERCLOSURE=LINEAR (normal_stiffness) or EXPONENTIAL (c0, p0).
+    type(pressure_overclosure_t) :: overclosure
     type(friction_def_t) :: friction
     !> *FRICTION, RADIATION DAMPING=: eta [stress time/length] as given (0: none), or from the
     !> elastic bodies on either side of each pair (damping_from_material: MATERIAL).

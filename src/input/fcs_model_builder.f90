@@ -33,6 +33,7 @@ module fcs_model_builder
                                check_body_loads
   use fcs_build_output, only: handle_output_request, handle_history, handle_event_catalog
   use fcs_build_contact, only: handle_surface_interaction, handle_surface_behavior, &
+                               handle_change_surface_behavior, &
                                handle_friction, handle_contact_pair, handle_tie, &
                                resolve_pair_interactions, handle_change_friction
   use fcs_build_constraints, only: handle_equation, handle_mpc, handle_rigid_body, &
@@ -271,6 +272,8 @@ contains
       call handle_friction(card, model, state, diag)
     case ('CHANGE FRICTION')
       call handle_change_friction(card, model, state, diag)
+    case ('CHANGE SURFACE BEHAVIOR')
+      call handle_change_surface_behavior(card, model, state, diag)
     case ('CONTACT PAIR')
       call handle_contact_pair(card, model, diag)
     case ('TIE')
@@ -322,6 +325,11 @@ contains
     end select
     if (card%keyword /= 'SURFACE INTERACTION' .and. card%keyword /= 'SURFACE BEHAVIOR' .and. &
         card%keyword /= 'FRICTION') state%interaction = 0
+    if (state%changed_behavior > 0 .and. card%keyword /= 'CHANGE SURFACE BEHAVIOR') then
+      call diag%report(state%behavior_loc, '*CHANGE SURFACE BEHAVIOR must be followed directly ' // &
+                       'by the *SURFACE BEHAVIOR card of the new behaviour')
+      state%changed_behavior = 0
+    end if
   end subroutine dispatch
 
   !> Check a card against its specification: known keyword, right context, known and
@@ -559,10 +567,9 @@ contains
                'plasticity'
     else if (is_one_of(keyword, [character(len=34) :: 'CFLUX', 'DFLUX', 'FILM', 'RADIATE'])) then
       reason = 'this load or initial condition is not available yet'
-    else if (is_one_of(keyword, [character(len=34) :: 'CHANGE SURFACE BEHAVIOR', &
-             'CHANGE CONTACT TYPE'])) then
+    else if (is_one_of(keyword, [character(len=34) :: 'CHANGE CONTACT TYPE'])) then
       reason = 'changing a contact interaction between steps is not available yet, except ' // &
-               'its Coulomb friction (*CHANGE FRICTION)'
+               'its Coulomb friction (*CHANGE FRICTION) and normal behaviour (*CHANGE SURFACE BEHAVIOR)'
     else if (is_one_of(keyword, [character(len=34) :: 'PART', 'END PART', 'INSTANCE', &
              'END INSTANCE', 'ASSEMBLY', 'END ASSEMBLY'])) then
       reason = 'Abaqus parts and assemblies are not read (CalculiX does not read them either): ' // &

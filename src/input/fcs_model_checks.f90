@@ -375,6 +375,7 @@ contains
         if (pair%interaction > 0) then
           associate (interaction => model%interactions(pair%interaction))
             if (interaction%normal_stiffness > 0.0_dp) pair%normal_stiffness = interaction%normal_stiffness
+            pair%overclosure = interaction%overclosure
             pair%stick_stiffness = pair%normal_stiffness
             if (interaction%stick_stiffness > 0.0_dp) pair%stick_stiffness = interaction%stick_stiffness
           end associate

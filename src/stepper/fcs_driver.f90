@@ -19,7 +19,7 @@ module fcs_driver
   use fcs_solver_factory, only: create_linear_solver
   use fcs_linear_solver, only: solver_stats_t
   use fcs_factor_reuse, only: reuse_settings_t
-  use fcs_contact_friction_change, only: apply_friction_changes
+  use fcs_contact_friction_change, only: apply_friction_changes, apply_behavior_changes
   use fcs_run_outputs, only: run_outputs_t, log_contact_totals
   use fcs_output_schedule, only: histories_due
   use fcs_echo, only: write_echo
@@ -585,9 +585,12 @@ contains
       else
         call build_step_loading(model, k, state%time - state%step_time, run%analysis%loading)
       end if
-      ! *CHANGE FRICTION of this and the earlier steps (again when resuming within the step).
-      if (run%analysis%contact%n_slaves() > 0) call apply_friction_changes(run%analysis%contact, &
-        model, k, state%contact, err)
+      ! *CHANGE SURFACE BEHAVIOR and *CHANGE FRICTION of this and the earlier steps (again
+      ! when resuming within the step).
+      if (run%analysis%contact%n_slaves() > 0) then
+        call apply_behavior_changes(run%analysis%contact, model, k, state%contact)
+        call apply_friction_changes(run%analysis%contact, model, k, state%contact, err)
+      end if
       if (allocated(err)) return
       if (state%step_time == 0.0_dp) then
         state%step_start_u = state%u

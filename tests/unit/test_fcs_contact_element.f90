@@ -3,7 +3,10 @@
 !> finite differences of the return-mapping update, on a warped (twisted) master segment, with
 !> a gap, for stick, slip and tied nodes; radiation damping (Rice 1993: a slipping node resists
 !> with mu f_n + eta A V) in the return mapping against its closed form and in the slip
-!> tangent against finite differences, with an implicit and an explicit slip rate.
+!> tangent against finite differences, with an implicit and an explicit slip rate; the
+!> exponential pressure-overclosure law (CalculiX's p = p0 exp(-beta g)): its values, slope and
+!> cap, and the element's tangent with it against finite differences, in penetration, at a
+!> positive clearance and past the cap.
 program test_fcs_contact_element
   use fcs_kinds, only: dp
   use fcs_test_assertions, only: test_suite_t
@@ -14,6 +17,7 @@ program test_fcs_contact_element
   use fcs_friction_law, only: friction_derivatives_t, friction_law_t
   use fcs_coulomb, only: coulomb_t
   use fcs_test_friction_laws, only: log_rate_law_t
+  use fcs_pressure_overclosure, only: pressure_overclosure_t, OVERCLOSURE_EXPONENTIAL, EXPONENT_CAP
   implicit none
   type(test_suite_t) :: suite
   integer :: seed_size, seed_index
@@ -40,6 +44,12 @@ program test_fcs_contact_element
   call test_damped_tangent(suite, log_rate_law_t(c=-0.003_dp), 'damping, rate weakening, implicit')
   call test_damped_tangent(suite, log_rate_law_t(c=-0.003_dp, explicit_rate=.true.), &
                            'damping, rate weakening, explicit')
+  call test_exponential_law(suite)
+  call test_exponential_tangent(suite, CONTACT_STICK, 0.0_dp, 0.2_dp, 'stick, penetrating')
+  call test_exponential_tangent(suite, CONTACT_SLIP, 0.0_dp, 0.2_dp, 'slip, penetrating')
+  call test_exponential_tangent(suite, CONTACT_STICK, 0.12_dp, 0.2_dp, 'stick, positive clearance')
+  call test_exponential_tangent(suite, CONTACT_SLIP, 0.12_dp, 0.2_dp, 'slip, positive clearance')
+  call test_exponential_tangent(suite, CONTACT_STICK, 0.0_dp, 0.002_dp, 'stick, past the cap')
   call suite%report()
 
 contains
@@ -67,11 +77,13 @@ contains
   end subroutine test_projection
 
   !> Nodal forces after moving the 5 nodes by du (the stepper's update, eq. 5).
-  function forces_after(xm, xs, xi0, ft0, status, du, tied_gap, xi_guess) result(f)
+  function forces_after(xm, xs, xi0, ft0, status, du, tied_gap, xi_guess, element_params) result(f)
     real(dp), intent(in) :: xm(3, 4), xs(3), xi0(2), ft0(2), du(15), tied_gap
     integer, intent(in) :: status
     !> Start of the projection (default xi0).
     real(dp), intent(in), optional :: xi_guess(2)
+    !> The element's parameters (default PARAMS).
+    type(contact_params_t), intent(in), optional :: element_params
     real(dp) :: f(15)
     real(dp) :: xm_new(3, 4), xs_new(3), gap, total(3)
     type(segment_point_t) :: p, p_old
@@ -86,8 +98,13 @@ contains
       call project_to_segment(xm_new, xs_new, xi0, p, gap, converged)
     end if
     p_old = segment_point(xm_new, xi0)
-    u = contact_update(p, gap, p_old, contact_node_t(status, 0.0_dp, ft0, 0.0_dp, 0.0_dp, tied_gap), &
-                       PARAMS, COULOMB, 1.0_dp)
+    if (present(element_params)) then
+      u = contact_update(p, gap, p_old, contact_node_t(status, 0.0_dp, ft0, 0.0_dp, 0.0_dp, tied_gap), &
+                         element_params, COULOMB, 1.0_dp)
+    else
+      u = contact_update(p, gap, p_old, contact_node_t(status, 0.0_dp, ft0, 0.0_dp, 0.0_dp, tied_gap), &
+                         PARAMS, COULOMB, 1.0_dp)
+    end if
     total = u%normal_force * p%normal + u%friction(1) * p%e(:, 1) + u%friction(2) * p%e(:, 2)
     f(1:3) = total
     do i = 1, 4
@@ -386,5 +403,83 @@ contains
     type(contact_node_t) :: node
     node%status = CONTACT_STICK
   end function stick_node
+
+  !> The exponential law against its definition (surfacebehaviors.f, springforc_n2f.f):
+  !> p(0) = p0, p(c0) = p0 / 100, dp/dg = -beta p (central differences), and past the cap
+  !> beta (-g) = EXPONENT_CAP a linear continuation with p and dp/dg continuous.
+  subroutine test_exponential_law(suite)
+    type(test_suite_t), intent(inout) :: suite
+    type(pressure_overclosure_t) :: law
+    real(dp) :: g, h, g_cap
+    integer :: i
+    law = pressure_overclosure_t(OVERCLOSURE_EXPONENTIAL, 0.3_dp, 7.0_dp)
+    call suite%close_to(law%pressure(0.0_dp), 7.0_dp, 1.0e-15_dp, 'exponential: p(0) = p0')
+    call suite%close_to(law%pressure(0.3_dp), 0.07_dp, 1.0e-14_dp, 'exponential: p(c0) = p0 / 100')
+    call suite%close_to(law%pressure(-0.3_dp), 700.0_dp, 1.0e-13_dp, 'exponential: p(-c0) = 100 p0')
+    call suite%check(law%acts(0.3_dp) .and. .not. law%acts(0.3_dp * (1.0_dp + 1.0e-12_dp)), &
+                     'exponential: acts up to the clearance c0 and not beyond')
+    h = 1.0e-6_dp
+    do i = -2, 4
+      g = 0.1_dp * i
+      ! Central differences: truncation O(h^2 beta^3 p) = 1e-12 relative; round-off 1e-10.
+      call suite%close_to(law%slope(g), (law%pressure(g + h) - law%pressure(g - h)) / (2 * h), 1.0e-8_dp, &
+                          'exponential: dp/dg by central differences')
+    end do
+    g_cap = -EXPONENT_CAP / law%decay()
+    call suite%close_to(law%pressure(g_cap * (1.0_dp + 1.0e-12_dp)), law%pressure(g_cap * (1.0_dp - 1.0e-12_dp)), &
+                        1.0e-10_dp, 'exponential: p continuous at the cap')
+    call suite%close_to(law%slope(g_cap * (1.0_dp + 1.0e-12_dp)), law%slope(g_cap * (1.0_dp - 1.0e-12_dp)), &
+                        1.0e-10_dp, 'exponential: dp/dg continuous at the cap')
+    call suite%close_to(law%pressure(2.0_dp * g_cap) - law%pressure(g_cap), law%slope(g_cap) * g_cap, 1.0e-12_dp, &
+                        'exponential: linear past the cap')
+  end subroutine test_exponential_law
+
+  !> K_f = -dF/du with the exponential law against central differences of the update, for a
+  !> slave node moved by `lift` along the normal from the warped configuration (penetrating at
+  !> lift 0, at a positive clearance below c0 for lift 0.12), with c0 = `c0`.
+  subroutine test_exponential_tangent(suite, status, lift, c0, label)
+    type(test_suite_t), intent(inout) :: suite
+    integer, intent(in) :: status
+    real(dp), intent(in) :: lift, c0
+    character(len=*), intent(in) :: label
+    real(dp) :: xm(3, 4), xs(3), gap, fn, ft(2), v(15), fd(15), eps, trial_norm, ft_returned(2), scale
+    type(segment_point_t) :: p
+    type(contact_linear_t) :: lin
+    type(friction_derivatives_t) :: fr
+    type(contact_params_t) :: law_params
+    logical :: converged
+    call configuration(xm, xs)
+    call project_to_segment(xm, xs, [0.0_dp, 0.0_dp], p, gap, converged)
+    xs = xs + lift * p%normal
+    call project_to_segment(xm, xs, p%xi, p, gap, converged)
+    law_params = PARAMS
+    law_params%overclosure = pressure_overclosure_t(OVERCLOSURE_EXPONENTIAL, c0, 50.0_dp)
+    call suite%check(law_params%overclosure%acts(gap), 'the node is within c0, ' // label)
+    if (lift > 0.0_dp) call suite%check(gap > 0.0_dp, 'the node is at a positive clearance, ' // label)
+    fn = AREA * law_params%overclosure%pressure(gap)
+    ft = [0.3_dp, -0.2_dp] * MU * fn
+    if (status == CONTACT_SLIP) ft = [0.9_dp, -0.6_dp] * MU * fn
+    trial_norm = norm2(ft)
+    ft_returned = ft
+    if (status == CONTACT_SLIP) ft_returned = MU * fn * ft / trial_norm
+    fr%mu = MU
+    call contact_linearise(reshape([xs, xm], [3, 5]), p, gap, &
+                           contact_node_t(status, fn, ft_returned, trial_norm, 0.0_dp, 0.0_dp), &
+                           law_params, fr, 0.0_dp, lin)
+    call random_number(v)
+    v = v - 0.5_dp
+    ! The step is kept small against the decay length c0 / ln 100 of the law.
+    eps = 1.0e-6_dp * c0
+    fd = (forces_after(xm, xs, p%xi, ft, status, eps * v, 0.0_dp, element_params=law_params) - &
+          forces_after(xm, xs, p%xi, ft, status, -eps * v, 0.0_dp, element_params=law_params)) / (2 * eps)
+    scale = max(1.0_dp, maxval(abs(fd)))
+    ! Central differences of a smooth map: truncation O(eps^2 beta^2), round-off ~1e-16/eps.
+    call suite%close_array(matmul(lin%stiffness(1:15, 1:15), v) / scale, -fd / scale, 1.0e-6_dp, &
+                           'K_f = -dF/du, exponential law, ' // label)
+    ! The normal stiffness is the law's: A beta p along the normal of the slave.
+    call suite%close_to(dot_product(p%normal, matmul(lin%stiffness(1:3, 1:3), p%normal)), &
+                        -AREA * law_params%overclosure%slope(gap), 0.05_dp, &
+                        'normal stiffness is A |dp/dg|, ' // label)
+  end subroutine test_exponential_tangent
 
 end program test_fcs_contact_element
