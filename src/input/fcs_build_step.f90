@@ -43,7 +43,15 @@ contains
     state%step%loc = card%loc
     state%step%name = param_value(card, 'NAME')
     if (len(state%step%name) == 0) state%step%name = 'Step-' // str(size(state%steps) + 1)
-    state%step%nlgeom = param_upper(card, 'NLGEOM') == 'YES'
+    ! NLGEOM stays on in the following steps until NLGEOM=NO, as in CalculiX (steps.f) and
+    ! Abaqus: a step without the parameter inherits the previous step's setting.
+    if (card%find_param('NLGEOM') > 0) then
+      state%step%nlgeom = param_upper(card, 'NLGEOM') == 'YES'
+    else if (size(state%steps) > 0) then
+      state%step%nlgeom = state%steps(size(state%steps))%nlgeom
+    else
+      state%step%nlgeom = .false.
+    end if
     call parse_int(param_value(card, 'INC'), increments, ok)
     if (increments <= 0) then
       call diag%report(card%loc, '*STEP: INC must be a positive number of increments')

@@ -502,7 +502,9 @@ contains
             'not available).'), &
           p('NLGEOM', PARAM_CHOICE, default='NO', choices=[s('YES'), s('NO')], flag_value='YES', &
             description='Geometric nonlinearity: updated Lagrangian with the Jaumann rate ' // &
-            '(paper eq. 1). Without it the step is small-strain and linear in geometry.'), &
+            '(paper eq. 1). Once on, it stays on in the following steps until a step says ' // &
+            'NLGEOM=NO (as CalculiX and Abaqus); without it in any step so far, the step is ' // &
+            'small-strain and linear in geometry.'), &
           p('INC', PARAM_INTEGER, default='1000000', &
             description='Maximum number of increments in the step. Unlike CalculiX (100), ' // &
             'the default is large: static-explicit runs take many small increments.'), &
