@@ -500,7 +500,7 @@ contains
             description='How loads without *AMPLITUDE change over the step: RAMP, linearly ' // &
             'from their values at the end of the previous step (STEP, applied at once, is ' // &
             'not available).'), &
-          p('NLGEOM', PARAM_CHOICE, default='NO', choices=[s('YES'), s('NO')], flag_value='YES', &
+          p('NLGEOM', PARAM_CHOICE, choices=[s('YES'), s('NO')], flag_value='YES', &
             description='Geometric nonlinearity: updated Lagrangian with the Jaumann rate ' // &
             '(paper eq. 1). Once on, it stays on in the following steps until a step says ' // &
             'NLGEOM=NO (as CalculiX and Abaqus); without it in any step so far, the step is ' // &
