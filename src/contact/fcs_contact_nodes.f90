@@ -22,6 +22,7 @@ contains
     node%friction_state = cstate%friction_state(s)
     node%tied_gap = cstate%tied_gap(s)
     node%slip_rate = cstate%slip_rate(s)
+    node%relative_rate = cstate%relative_rate(s)
   end procedure node_of
 
   !> Documented with its interface in fcs_contact_system.
@@ -30,7 +31,7 @@ contains
       ! During the equilibrium iterations of an increment the state is an iterate whose
       ! slip rate is the increment's own: its cone is the one its return mapping used.
       if (law%explicit_rate .and. .not. this%holding) then
-        mu = law%mu(cstate%normal_force(s) / this%area(s), cstate%slip_rate(s), &
+        mu = law%mu(cstate%normal_force(s) / this%area(s), law_rate(law, cstate, s), &
                     cstate%friction_state(s))
       else
         mu = cstate%mu(s)
@@ -39,11 +40,21 @@ contains
   end procedure cone_mu
 
   !> Documented with its interface in fcs_contact_system.
+  module procedure law_rate
+    if (law%relative_velocity) then
+      rate = cstate%relative_rate(s)
+    else
+      rate = cstate%slip_rate(s)
+    end if
+  end procedure law_rate
+
+  !> Documented with its interface in fcs_contact_system.
   module procedure params_of
     params%area = this%area(s)
     params%normal_stiffness = this%pairs(this%slave_pair(s))%normal_stiffness
     params%stick_stiffness = this%pairs(this%slave_pair(s))%stick_stiffness
     params%damping = this%pairs(this%slave_pair(s))%radiation_damping
+    params%relative_velocity = this%pairs(this%slave_pair(s))%law%relative_velocity
     if (present(face) .and. present(xi)) call edge_support(xi, &
       this%pairs(this%slave_pair(s))%free_edge(:, face), params%support, params%dsupport, &
       face_node_count(this%pairs(this%slave_pair(s))%face_nodes(:, face)))
@@ -63,8 +74,8 @@ contains
       x5 = x(:, nodes)
       if (pair%surface_to_surface) x5(:, 1) = slave_position(this, s, x)
       p = segment_point(x5(:, 2:), cstate%xi(:, s))
-      fr = pair%law%evaluate(cstate%normal_force(s) / this%area(s), cstate%slip_rate(s), &
-                             cstate%friction_state(s))
+      fr = pair%law%evaluate(cstate%normal_force(s) / this%area(s), &
+                             law_rate(pair%law, cstate, s), cstate%friction_state(s))
       fr%mu = cone_mu(this, s, cstate)
       node = node_of(cstate, s, cstate%status(s))
       node%bilateral = hold_mode(this, s) == HOLD_CLOSED
@@ -169,6 +180,7 @@ contains
     cstate%friction(:, s) = 0.0_dp
     cstate%trial_norm(s) = 0.0_dp
     cstate%slip_rate(s) = 0.0_dp
+    cstate%relative_rate(s) = 0.0_dp
     cstate%tangential_displacement(:, s) = 0.0_dp
     if (face == 0) return
     cstate%xi(:, s) = p%xi
