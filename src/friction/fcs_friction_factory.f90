@@ -597,10 +597,10 @@ contains
         '(the previous increment''s, known at its start; default for RATE DEPENDENT) or ' // &
         'IMPLICIT (its own, solved in the return mapping; default for the RATE STATE laws)', &
         RATE_UPDATE_NAMES), &
-      parameter_entry('VELOCITY', '', 'the slip rate V the law is evaluated at: SLIP (the ' // &
-        'plastic slip rate; default) or RELATIVE (the norm of the total relative tangential ' // &
-        'velocity of the contact, elastic stick part + slip: the literal reading of Xing et ' // &
-        'al. 2003, eq. 3)', VELOCITY_NAMES), &
+      parameter_entry('VELOCITY', '', 'the velocity V the rate law is evaluated at: SLIP (the ' // &
+        'slip rate, the plastic part, 0 in stick; default) or RELATIVE (the norm of the ' // &
+        'total relative tangential velocity of the contact, elastic stick part + slip: the ' // &
+        'literal reading of Xing et al. 2003, eq. 3)', VELOCITY_NAMES), &
       parameter_entry('THETA0', 'time', 'initial state theta, > 0'), &
       parameter_entry('VINIT', 'length/time', 'initial slip rate; the initial state is ' // &
         'steady state at it, theta0 = DC/VINIT; > 0') ]
