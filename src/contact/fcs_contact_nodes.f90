@@ -82,7 +82,11 @@ contains
       params = params_of(this, s, cstate%face(s), cstate%xi(:, s))
       ! An explicit rate is known at the start of the increment: no dmu/dV in the tangent (its
       ! rate term is then the radiation damping's alone, 0 without damping).
-      if (pair%law%explicit_rate) fr%dmu_drate = 0.0_dp
+      if (pair%law%explicit_rate) then
+        fr%dmu_drate = 0.0_dp
+      else if (pair%law%relative_velocity) then
+        fr%dmu_drate = relative_rate_derivative(this, s, cstate, fr, dt)
+      end if
       start_face = 0
       if (this%holding) start_face = this%start_face(s)
       if (start_face == 0) then
@@ -100,6 +104,33 @@ contains
       end if
     end associate
   end procedure linearise
+
+  !> dmu/dV of slave s for the tangent of a law read with VELOCITY=RELATIVE and an implicit
+  !> rate: mu = mu(V, phi(V)) with phi(V) the state evolved over dt at V from the state at the
+  !> start of the increment (relative_return), so dmu/dV = d_mu/d_V + d_mu/d_phi d_phi/d_V;
+  !> d_phi/d_V by central differences of the law's exact state update (relative step 1e-6).
+  !> Without it the tangent of a slipping node has the direct effect A/V alone, while the
+  !> update weakens as (A - B)/V once the state follows the rate within the increment.
+  function relative_rate_derivative(this, s, cstate, fr, dt) result(dmu_drate)
+    type(contact_system_t), intent(in) :: this
+    integer, intent(in) :: s
+    type(contact_state_t), intent(in) :: cstate
+    type(friction_derivatives_t), intent(in) :: fr
+    real(dp), intent(in) :: dt
+    real(dp) :: dmu_drate
+    real(dp), parameter :: STEP = 1.0e-6_dp
+    real(dp) :: rate, state, dstate
+    dmu_drate = fr%dmu_drate
+    associate (law => this%pairs(this%slave_pair(s))%law)
+      rate = cstate%relative_rate(s)
+      if (law%n_state() == 0 .or. dt <= 0.0_dp .or. rate <= 0.0_dp) return
+      state = cstate%friction_state(s)
+      if (this%holding .and. allocated(this%start_state)) state = this%start_state(s)
+      dstate = (law%evolve_state(state, rate * (1.0_dp + STEP), dt) - &
+                law%evolve_state(state, rate * (1.0_dp - STEP), dt)) / (2.0_dp * STEP * rate)
+      dmu_drate = dmu_drate + fr%dmu_dstate * dstate
+    end associate
+  end function relative_rate_derivative
 
   !> Documented with its interface in fcs_contact_system.
   module procedure element_nodes

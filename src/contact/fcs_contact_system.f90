@@ -121,6 +121,9 @@ module fcs_contact_system
     !> applied (recorded by `update`).
     integer, allocatable :: start_face(:)
     real(dp), allocatable :: start_xi(:, :)
+    !> ... and its friction state (the state a law read with VELOCITY=RELATIVE and an implicit
+    !> rate evolves from, for the state's part of dmu/dV in the tangent).
+    real(dp), allocatable :: start_state(:)
     !> The next entry of the same node in another pair (0: none; see find_twins).
     integer, allocatable :: twin(:)
     !> Tied pairs, as segment-to-segment penalty ties (their slave nodes' entries, status

@@ -23,6 +23,7 @@ contains
     ! same state): the equilibrium iterations linearise about the slip since then.
     this%start_face = cstate%face
     this%start_xi = cstate%xi
+    this%start_state = cstate%friction_state
     allocate (tie_force(size(x)))
     tie_force = 0.0_dp
     call this%ties%forces(x - this%reference, tie_force)
