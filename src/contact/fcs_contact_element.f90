@@ -72,6 +72,10 @@ module fcs_contact_element
     !> The pressure-overclosure law: LINEAR (the penalty E_n above) or EXPONENTIAL
     !> (f_n = support A p(g), p = p0 exp(-beta g); fcs_pressure_overclosure).
     type(pressure_overclosure_t) :: overclosure
+    !> The friction law reads V as the total relative tangential velocity (VELOCITY=RELATIVE,
+    !> friction_law_t%relative_velocity) instead of the slip rate: the rate term of the slip
+    !> tangent then acts on the total relative motion, not in series with E_t A.
+    logical :: relative_velocity = .false.
   end type contact_params_t
 
   !> The state of one slave node at the start of an increment.
@@ -85,6 +89,9 @@ module fcs_contact_element
     real(dp) :: tied_gap = 0.0_dp
     !> Slip rate of the previous increment (0 after stick): the rate of an explicit law.
     real(dp) :: slip_rate = 0.0_dp
+    !> Norm of the total relative tangential velocity of the previous increment (elastic +
+    !> slip) [length/time]: the rate of an explicit law read with VELOCITY=RELATIVE.
+    real(dp) :: relative_rate = 0.0_dp
     !> Held closed through equilibrium iterations: bilateral normal spring.
     logical :: bilateral = .false.
   end type contact_node_t
@@ -120,6 +127,9 @@ module fcs_contact_element
     real(dp) :: mu = 0.0_dp
     real(dp) :: slip_rate = 0.0_dp
     real(dp) :: friction_state = 0.0_dp
+    !> Norm of the total relative tangential velocity over the increment, |(ds . e_m) e_m| / dt
+    !> (elastic + slip) [length/time]; 0 for dt = 0.
+    real(dp) :: relative_rate = 0.0_dp
   end type contact_update_t
 
 contains
@@ -156,6 +166,7 @@ contains
     real(dp), intent(in), optional :: slip(3), shape_start(:)
     real(dp) :: dn(3, MAX_ELEMENT_DOFS), de(3, MAX_ELEMENT_DOFS, 2), eta(2), eta_vec(3), ft_vec(3), f(3)
     real(dp) :: k_t, k_v, series, mu_eff, penetration, dtrial(3, MAX_ELEMENT_DOFS), strength, factor
+    real(dp) :: predictor
     lin%n_dof = 3 * size(x5, 2)
     call contact_kinematics(p, gap, lin, dn, de)
     dtrial = trial_slip_derivative(p, lin%dslip, de, slip, shape_start)
@@ -193,20 +204,26 @@ contains
       ! when the cone has moved since (explicit rates, a new normal force).
       strength = fr%mu * node%normal_force + params%damping * params%area * node%slip_rate
       factor = min(1.0_dp, strength / max(node%trial_norm, norm2(node%friction)))
-      k_v = 0.0_dp
-      if (dt > 0.0_dp) k_v = max((node%normal_force * fr%dmu_drate + params%damping * params%area) / dt, &
-                                 -MAX_WEAKENING * k_t)
-      series = k_t / (k_t + k_v)
       mu_eff = fr%mu + node%normal_force * fr%dmu_dpressure / params%area
-      lin%df = outer(eta_vec, series * (mu_eff * lin%dfn - k_v * matmul(eta_vec, dtrial))) &
-               - factor * k_t * matmul(identity3() - outer3(p%normal, p%normal) &
-                                       - outer3(eta_vec, eta_vec), dtrial) &
+      if (params%relative_velocity) then
+        call relative_rate_tangent(p, node, params, fr, dt, k_t, eta_vec, mu_eff, dtrial, slip, &
+                                   lin, predictor)
+      else
+        k_v = 0.0_dp
+        if (dt > 0.0_dp) k_v = max((node%normal_force * fr%dmu_drate + params%damping * params%area) / dt, &
+                                   -MAX_WEAKENING * k_t)
+        series = k_t / (k_t + k_v)
+        lin%df = outer(eta_vec, series * (mu_eff * lin%dfn - k_v * matmul(eta_vec, dtrial)))
+        predictor = series * k_v * node%slip_rate * dt
+      end if
+      lin%df = lin%df - factor * k_t * matmul(identity3() - outer3(p%normal, p%normal) &
+                                              - outer3(eta_vec, eta_vec), dtrial) &
                + strength * (eta(1) * de(:, :, 1) + eta(2) * de(:, :, 2))
       ! Linearised about V_old, not V = 0: the friction predicted for a slip s of the
       ! increment is f_n mu(V_old) + k_v (s - V_old dt) (in series with E_t A). Without the
       ! V_old dt term, steady sliding keeps an out-of-balance force f_n V dmu/dV (in series)
       ! between the body and the contact, which the next increment applies in full.
-      ft_vec = ft_vec - series * k_v * node%slip_rate * dt * eta_vec
+      ft_vec = ft_vec - predictor * eta_vec
     case default
       lin%df = lin%dft_stick
     end select
@@ -214,6 +231,49 @@ contains
     f = node%normal_force * p%normal + ft_vec
     call assemble_element(p, f, lin)
   end subroutine contact_linearise
+
+  !> The part along the slip direction eta of the slip tangent of a node whose law reads V as
+  !> the total relative tangential velocity (VELOCITY=RELATIVE; Xing et al. 2003, eqs. 3, 6:
+  !> the d mu / d u~dot_eq term). The returned force along eta is
+  !> F = [E_t A mu(V) f_n + k_d |f^tr|] / (E_t A + k_d), k_d = eta_r A / dt, with
+  !> V = |s_t| / dt the relative tangential motion s_t of the increment over dt, so
+  !> dF = E_t A / (E_t A + k_d) [mu_eff df_n + k_r t.ds_t - k_d eta.ds_t], k_r = f_n dmu/dV / dt,
+  !> t the direction of s_t (the iterate's own when `slip` is given, else -eta: a slipping
+  !> slave moves against its friction force). Unlike the slip-rate reading, the rate term is not
+  !> in series with E_t A: mu follows the total motion, elastic part included. k_r is limited to
+  !> -MAX_WEAKENING E_t A (tangent only). `predictor`: at the start of an increment, the change
+  !> of F the linearisation expects for a repeat of the previous increment's motion,
+  !> E_t A / (E_t A + k_d) (k_r V_rel,old + k_d V_old) dt (V_rel,old = node%relative_rate,
+  !> V_old = node%slip_rate), so that such a repeat keeps F, as in the slip-rate form; 0 at an
+  !> iterate (`slip` given), which is linearised about its own motion.
+  pure subroutine relative_rate_tangent(p, node, params, fr, dt, k_t, eta_vec, mu_eff, dtrial, &
+                                        slip, lin, predictor)
+    type(segment_point_t), intent(in) :: p
+    type(contact_node_t), intent(in) :: node
+    type(contact_params_t), intent(in) :: params
+    type(friction_derivatives_t), intent(in) :: fr
+    real(dp), intent(in) :: dt, k_t, eta_vec(3), mu_eff, dtrial(3, MAX_ELEMENT_DOFS)
+    real(dp), intent(in), optional :: slip(3)
+    type(contact_linear_t), intent(inout) :: lin
+    real(dp), intent(out) :: predictor
+    real(dp) :: k_r, k_d, series, direction(3), tangential(3)
+    k_r = 0.0_dp
+    k_d = 0.0_dp
+    if (dt > 0.0_dp) then
+      k_r = max(node%normal_force * fr%dmu_drate / dt, -MAX_WEAKENING * k_t)
+      k_d = params%damping * params%area / dt
+    end if
+    series = k_t / (k_t + k_d)
+    direction = -eta_vec
+    predictor = series * (k_r * node%relative_rate + k_d * node%slip_rate) * dt
+    if (present(slip)) then
+      tangential = slip - dot_product(slip, p%normal) * p%normal
+      if (norm2(tangential) > 0.0_dp) direction = tangential / norm2(tangential)
+      predictor = 0.0_dp
+    end if
+    lin%df = outer(eta_vec, series * (mu_eff * lin%dfn + k_r * matmul(direction, dtrial) &
+                                      - k_d * matmul(eta_vec, dtrial)))
+  end subroutine relative_rate_tangent
 
   !> Derivative of the slip term sum_m (s . e_m) e_m of the trial force with respect to the
   !> nodal displacements: P_t ds + sum_m e_m (s . de_m), with ds = a_alpha dxi^alpha
@@ -355,6 +415,7 @@ contains
     ! The frictional force on the slave opposes its motion relative to the master (eq. 4).
     trial = node%friction - k_t * matmul(out%slip_vector, p_new%e)
     out%trial_norm = norm2(trial)
+    if (dt > 0.0_dp) out%relative_rate = norm2(matmul(out%slip_vector, p_new%e)) / dt
     out%friction_state = node%friction_state
     if (node%status == CONTACT_TIED) then
       out%status = CONTACT_TIED
@@ -390,6 +451,10 @@ contains
     ! The damping force eta_r A dlambda/dt of a slip dlambda over dt: a viscous spring.
     k_damping = 0.0_dp
     if (dt > 0.0_dp) k_damping = damping * area / dt
+    if (law%relative_velocity) then
+      call relative_return(out, trial, pressure, k_t, k_damping, law, node, dt)
+      return
+    end if
     if (law%explicit_rate) then
       call explicit_return(out, trial, pressure, k_t, k_damping, law, node, dt)
       return
@@ -438,6 +503,43 @@ contains
     if (dt > 0.0_dp) out%slip_rate = out%plastic_slip / dt
     out%friction_state = law%evolve_state(node%friction_state, out%slip_rate, max(dt, 0.0_dp))
   end subroutine explicit_return
+
+  !> The return mapping of a law read with VELOCITY=RELATIVE, the literal reading of Xing et
+  !> al. (2003, eq. 3): mu = mu(f_n, u~dot_eq, phi) with u~dot_eq = sqrt(u~dot_m u~dot_m) the
+  !> norm of the total relative tangential velocity (elastic + plastic), here the increment's
+  !> relative tangential motion over dt, out%relative_rate = |(ds . e_m) e_m| / dt. That
+  !> motion is known from the kinematics before the split into stick and slip
+  !> (f^tr = f_old - E_t A ds), so the cone mu_c = mu(p, V, phi) is known and the plastic slip
+  !> follows as for Coulomb friction, (|f^tr| - mu_c f_n) / (E_t A + k_damping). V is the
+  !> increment's own relative rate (IMPLICIT; the state evolved over the increment at it) or
+  !> the previous increment's (EXPLICIT: node%relative_rate with the state at the start). The
+  !> state evolves over the increment at the increment's relative rate; out%mu is mu_c for a
+  !> slipping node and mu at the increment's relative rate and new state for a sticking one
+  !> (the cone of its next increment under EXPLICIT).
+  pure subroutine relative_return(out, trial, pressure, k_t, k_damping, law, node, dt)
+    type(contact_update_t), intent(inout) :: out
+    real(dp), intent(in) :: trial(2), pressure, k_t, k_damping, dt
+    class(friction_law_t), intent(in) :: law
+    type(contact_node_t), intent(in) :: node
+    real(dp) :: mu_c
+    out%friction_state = law%evolve_state(node%friction_state, out%relative_rate, max(dt, 0.0_dp))
+    if (law%explicit_rate) then
+      mu_c = law%mu(pressure, node%relative_rate, node%friction_state)
+    else
+      mu_c = law%mu(pressure, out%relative_rate, out%friction_state)
+    end if
+    if (out%trial_norm <= mu_c * out%normal_force) then
+      out%status = CONTACT_STICK
+      out%friction = trial
+      out%mu = law%mu(pressure, out%relative_rate, out%friction_state)
+      return
+    end if
+    out%status = CONTACT_SLIP
+    out%plastic_slip = (out%trial_norm - mu_c * out%normal_force) / (k_t + k_damping)
+    out%mu = mu_c
+    out%friction = (mu_c * out%normal_force + k_damping * out%plastic_slip) * trial / out%trial_norm
+    if (dt > 0.0_dp) out%slip_rate = out%plastic_slip / dt
+  end subroutine relative_return
 
   !> Plastic slip of a slipping node: the smallest root in (0, |f^tr|/k_t] of
   !> g(l) = |f^tr| - (k_t + k_damping) l - f_n mu(p, l/dt, phi(l)) (k_damping = eta_r A / dt,

@@ -22,6 +22,7 @@ contains
     node%friction_state = cstate%friction_state(s)
     node%tied_gap = cstate%tied_gap(s)
     node%slip_rate = cstate%slip_rate(s)
+    node%relative_rate = cstate%relative_rate(s)
   end procedure node_of
 
   !> Documented with its interface in fcs_contact_system.
@@ -30,7 +31,7 @@ contains
       ! During the equilibrium iterations of an increment the state is an iterate whose
       ! slip rate is the increment's own: its cone is the one its return mapping used.
       if (law%explicit_rate .and. .not. this%holding) then
-        mu = law%mu(cstate%normal_force(s) / this%area(s), cstate%slip_rate(s), &
+        mu = law%mu(cstate%normal_force(s) / this%area(s), law_rate(law, cstate, s), &
                     cstate%friction_state(s))
       else
         mu = cstate%mu(s)
@@ -39,12 +40,22 @@ contains
   end procedure cone_mu
 
   !> Documented with its interface in fcs_contact_system.
+  module procedure law_rate
+    if (law%relative_velocity) then
+      rate = cstate%relative_rate(s)
+    else
+      rate = cstate%slip_rate(s)
+    end if
+  end procedure law_rate
+
+  !> Documented with its interface in fcs_contact_system.
   module procedure params_of
     params%area = this%area(s)
     params%normal_stiffness = this%pairs(this%slave_pair(s))%normal_stiffness
     params%stick_stiffness = this%pairs(this%slave_pair(s))%stick_stiffness
     params%damping = this%pairs(this%slave_pair(s))%radiation_damping
     params%overclosure = this%pairs(this%slave_pair(s))%overclosure
+    params%relative_velocity = this%pairs(this%slave_pair(s))%law%relative_velocity
     if (present(face) .and. present(xi)) call edge_support(xi, &
       this%pairs(this%slave_pair(s))%free_edge(:, face), params%support, params%dsupport, &
       face_node_count(this%pairs(this%slave_pair(s))%face_nodes(:, face)))
@@ -64,15 +75,19 @@ contains
       x5 = x(:, nodes)
       if (pair%surface_to_surface) x5(:, 1) = slave_position(this, s, x)
       p = segment_point(x5(:, 2:), cstate%xi(:, s))
-      fr = pair%law%evaluate(cstate%normal_force(s) / this%area(s), cstate%slip_rate(s), &
-                             cstate%friction_state(s))
+      fr = pair%law%evaluate(cstate%normal_force(s) / this%area(s), &
+                             law_rate(pair%law, cstate, s), cstate%friction_state(s))
       fr%mu = cone_mu(this, s, cstate)
       node = node_of(cstate, s, cstate%status(s))
       node%bilateral = hold_mode(this, s) == HOLD_CLOSED
       params = params_of(this, s, cstate%face(s), cstate%xi(:, s))
       ! An explicit rate is known at the start of the increment: no dmu/dV in the tangent (its
       ! rate term is then the radiation damping's alone, 0 without damping).
-      if (pair%law%explicit_rate) fr%dmu_drate = 0.0_dp
+      if (pair%law%explicit_rate) then
+        fr%dmu_drate = 0.0_dp
+      else if (pair%law%relative_velocity) then
+        fr%dmu_drate = relative_rate_derivative(this, s, cstate, fr, dt)
+      end if
       start_face = 0
       if (this%holding) start_face = this%start_face(s)
       if (start_face == 0) then
@@ -90,6 +105,33 @@ contains
       end if
     end associate
   end procedure linearise
+
+  !> dmu/dV of slave s for the tangent of a law read with VELOCITY=RELATIVE and an implicit
+  !> rate: mu = mu(V, phi(V)) with phi(V) the state evolved over dt at V from the state at the
+  !> start of the increment (relative_return), so dmu/dV = d_mu/d_V + d_mu/d_phi d_phi/d_V;
+  !> d_phi/d_V by central differences of the law's exact state update (relative step 1e-6).
+  !> Without it the tangent of a slipping node has the direct effect A/V alone, while the
+  !> update weakens as (A - B)/V once the state follows the rate within the increment.
+  function relative_rate_derivative(this, s, cstate, fr, dt) result(dmu_drate)
+    type(contact_system_t), intent(in) :: this
+    integer, intent(in) :: s
+    type(contact_state_t), intent(in) :: cstate
+    type(friction_derivatives_t), intent(in) :: fr
+    real(dp), intent(in) :: dt
+    real(dp) :: dmu_drate
+    real(dp), parameter :: STEP = 1.0e-6_dp
+    real(dp) :: rate, state, dstate
+    dmu_drate = fr%dmu_drate
+    associate (law => this%pairs(this%slave_pair(s))%law)
+      rate = cstate%relative_rate(s)
+      if (law%n_state() == 0 .or. dt <= 0.0_dp .or. rate <= 0.0_dp) return
+      state = cstate%friction_state(s)
+      if (this%holding .and. allocated(this%start_state)) state = this%start_state(s)
+      dstate = (law%evolve_state(state, rate * (1.0_dp + STEP), dt) - &
+                law%evolve_state(state, rate * (1.0_dp - STEP), dt)) / (2.0_dp * STEP * rate)
+      dmu_drate = dmu_drate + fr%dmu_dstate * dstate
+    end associate
+  end function relative_rate_derivative
 
   !> Documented with its interface in fcs_contact_system.
   module procedure element_nodes
@@ -180,6 +222,7 @@ contains
     cstate%friction(:, s) = 0.0_dp
     cstate%trial_norm(s) = 0.0_dp
     cstate%slip_rate(s) = 0.0_dp
+    cstate%relative_rate(s) = 0.0_dp
     cstate%tangential_displacement(:, s) = 0.0_dp
     if (face == 0) return
     cstate%xi(:, s) = p%xi

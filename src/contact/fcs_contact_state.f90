@@ -29,6 +29,9 @@ module fcs_contact_state
     !> Accumulated irreversible slip [length] and the slip rate of the last increment.
     real(dp), allocatable :: slip(:)
     real(dp), allocatable :: slip_rate(:)
+    !> Norm of the total relative tangential velocity of the last increment (elastic + slip)
+    !> [length/time]: the V of a law read with VELOCITY=RELATIVE.
+    real(dp), allocatable :: relative_rate(:)
     !> Friction coefficient in use and the friction law's state variable.
     real(dp), allocatable :: mu(:)
     real(dp), allocatable :: friction_state(:)
@@ -58,7 +61,7 @@ contains
     allocate (this%status(n), this%face(n), this%xi(2, n), this%gap(n), this%normal_force(n), &
               this%friction(2, n), this%trial_norm(n), this%slip(n), this%slip_rate(n), this%mu(n), &
               this%friction_state(n), this%tied_gap(n), this%tangential_displacement(3, n), &
-              this%work(n))
+              this%work(n), this%relative_rate(n))
     this%status = 0
     this%face = 0
     this%xi = 0.0_dp
@@ -68,6 +71,7 @@ contains
     this%trial_norm = 0.0_dp
     this%slip = 0.0_dp
     this%slip_rate = 0.0_dp
+    this%relative_rate = 0.0_dp
     this%mu = 0.0_dp
     this%friction_state = 0.0_dp
     this%tied_gap = 0.0_dp
@@ -91,6 +95,7 @@ contains
     if (.not. allocated(err)) call archive%put('/contact/scalars', reshape([this%gap, &
       this%normal_force, this%trial_norm, this%slip, this%slip_rate, this%mu, &
       this%friction_state, this%tied_gap, this%work], [this%n, N_SCALARS]), err)
+    if (.not. allocated(err)) call archive%put('/contact/relative_rate', this%relative_rate, err)
   end subroutine contact_state_save
 
   !> Read what `save` wrote into states set up for the same slave nodes (`init`).
@@ -119,6 +124,11 @@ contains
     this%friction_state = scalars(:, 7)
     this%tied_gap = scalars(:, 8)
     this%work = scalars(:, 9)
+    ! Checkpoints written before VELOCITY=RELATIVE existed have no relative rate: 0 (the laws
+    ! that read it could not be in them).
+    this%relative_rate = 0.0_dp
+    if (archive%exists('/contact/relative_rate')) &
+      call archive%get('/contact/relative_rate', this%relative_rate, err)
   end subroutine contact_state_load
 
 end module fcs_contact_state

@@ -28,7 +28,7 @@ module fcs_contact_system
   use fcs_contact_areas, only: slave_node_areas, surface_face_nodes
   use fcs_contact_ties, only: tie_set_t
   use fcs_contact_points, only: slave_points_t, slave_face_points
-  use fcs_friction_law, only: friction_derivatives_t
+  use fcs_friction_law, only: friction_law_t, friction_derivatives_t
   use fcs_friction_factory, only: friction_def_t, create_friction_law
   use fcs_sparse, only: sparse_matrix_t
   use fcs_rmin_events, only: rmin_collector_t, EVENT_CONTACT_CLOSE, EVENT_CONTACT_OPEN, &
@@ -123,6 +123,9 @@ module fcs_contact_system
     !> applied (recorded by `update`).
     integer, allocatable :: start_face(:)
     real(dp), allocatable :: start_xi(:, :)
+    !> ... and its friction state (the state a law read with VELOCITY=RELATIVE and an implicit
+    !> rate evolves from, for the state's part of dmu/dV in the tangent).
+    real(dp), allocatable :: start_state(:)
     !> The next entry of the same node in another pair (0: none; see find_twins).
     integer, allocatable :: twin(:)
     !> Tied pairs, as segment-to-segment penalty ties (their slave nodes' entries, status
@@ -247,9 +250,18 @@ module fcs_contact_system
       type(contact_node_t) :: node
     end function node_of
 
+    !> The rate V at which slave s's law is evaluated: the slip rate of the last increment, or
+    !> for a law read with VELOCITY=RELATIVE its total relative tangential velocity.
+    pure module function law_rate(law, cstate, s) result(rate)
+      class(friction_law_t), intent(in) :: law
+      type(contact_state_t), intent(in) :: cstate
+      integer, intent(in) :: s
+      real(dp) :: rate
+    end function law_rate
+
     !> The friction coefficient of slave s's cone in the coming increment: the one in use, or
-    !> for a law with an explicit rate mu at the slip rate of the last increment (during the
-    !> equilibrium iterations, the one of the increment's return mapping).
+    !> for a law with an explicit rate mu at the rate of the last increment (law_rate; during
+    !> the equilibrium iterations, the one of the increment's return mapping).
     module function cone_mu(this, s, cstate) result(mu)
       type(contact_system_t), intent(in) :: this
       integer, intent(in) :: s

@@ -23,12 +23,13 @@ contains
     ! same state): the equilibrium iterations linearise about the slip since then.
     this%start_face = cstate%face
     this%start_xi = cstate%xi
+    this%start_state = cstate%friction_state
     allocate (tie_force(size(x)))
     tie_force = 0.0_dp
     call this%ties%forces(x - this%reference, tie_force)
     do s = 1, size(this%slave_node)
       was_slipping = cstate%status(s) == CONTACT_SLIP .and. cstate%slip_rate(s) > 0.0_dp
-      old_rate = cstate%slip_rate(s)
+      old_rate = law_rate(this%pairs(this%slave_pair(s))%law, cstate, s)
       old_mu = cstate%mu(s)
       old_state = cstate%friction_state(s)
       kind = EVENT_NONE
@@ -107,7 +108,8 @@ contains
   end function twin_inside
 
   !> The changes of slipping node s over the increment that matter to its friction law: ln V
-  !> for rate-dependent laws, mu, and the law's own state measure.
+  !> for rate-dependent laws (V the law's rate, law_rate: the slip rate, or the total relative
+  !> tangential velocity with VELOCITY=RELATIVE), mu, and the law's own state measure.
   subroutine record_friction_changes(this, s, old_rate, old_mu, old_state, cstate)
     type(contact_system_t), intent(inout) :: this
     integer, intent(in) :: s
@@ -116,7 +118,8 @@ contains
     real(dp) :: log_rate
     associate (law => this%pairs(this%slave_pair(s))%law)
       log_rate = 0.0_dp
-      if (law%rate_dependent()) log_rate = abs(log(cstate%slip_rate(s) / old_rate))
+      if (law%rate_dependent() .and. old_rate > 0.0_dp) &
+        log_rate = abs(log(law_rate(law, cstate, s) / old_rate))
       call record_changes(this, s, [log_rate, abs(cstate%mu(s) - old_mu), &
                                     law%state_change(old_state, cstate%friction_state(s))])
     end associate
@@ -304,6 +307,7 @@ contains
     cstate%work(s) = cstate%work(s) + norm2(u%friction) * u%plastic_slip
     cstate%tangential_displacement(:, s) = cstate%tangential_displacement(:, s) + u%slip_vector
     cstate%slip_rate(s) = u%slip_rate
+    cstate%relative_rate(s) = u%relative_rate
     cstate%mu(s) = u%mu
     cstate%friction_state(s) = u%friction_state
   end subroutine store_update

@@ -48,12 +48,13 @@ module fcs_friction_factory
   character(len=*), parameter :: STATE_LAW_NAMES = 'AGEING, SLIP'
   character(len=*), parameter :: REGULARISATION_NAMES = 'FLOOR, LINEAR'
   character(len=*), parameter :: RATE_UPDATE_NAMES = 'EXPLICIT, IMPLICIT'
+  character(len=*), parameter :: VELOCITY_NAMES = 'SLIP, RELATIVE'
 
   !> A friction law as the deck defines it: its name and parameters in deck units. A real
   !> parameter the deck did not give is FRICTION_UNSET, a text one is unallocated. Deck names:
   !> MU0 mu0, MUK mu_kinetic, DECAY decay, DC dc, A a, B b, V0 v0, VC cutoff_rate,
   !> REGULARISATION regularisation, STATE LAW state_law, THETA0 initial_state,
-  !> VINIT initial_rate.
+  !> VINIT initial_rate, RATE UPDATE rate_update, VELOCITY velocity.
   type :: friction_def_t
     !> Law name, upper case (a name of the registry, friction_laws()).
     character(len=:), allocatable :: law
@@ -79,6 +80,10 @@ module fcs_friction_factory
     character(len=:), allocatable :: regularisation
     !> RATE UPDATE: EXPLICIT or IMPLICIT (rate laws; default by law, explicit_rate_of).
     character(len=:), allocatable :: rate_update
+    !> VELOCITY: SLIP (the law's V is the slip rate; default) or RELATIVE (the norm of the
+    !> total relative tangential velocity, elastic + slip: the literal reading of Xing et al.
+    !> 2003, eq. 3).
+    character(len=:), allocatable :: velocity
     !> VC [length/time]: cut-off slip rate of the regularisation (RATE DEPENDENT, RATE STATE).
     real(dp) :: cutoff_rate = FRICTION_UNSET
     !> VINIT [length/time]: initial slip rate; the initial state is steady state at it,
@@ -167,6 +172,8 @@ contains
     k = laws%find(def%law)
     call laws%laws(k)%construct(def, law)
     law%explicit_rate = explicit_rate_of(def, laws%laws(k))
+    law%relative_velocity = .false.
+    if (allocated(def%velocity)) law%relative_velocity = def%velocity == 'RELATIVE'
   end subroutine create_friction_law
 
   !> RATE UPDATE as given, else the law's default (`explicit_rate` of its entry): EXPLICIT for
@@ -191,12 +198,12 @@ contains
       friction_law_entry('STATIC KINETIC', 'MU0, MUK, DECAY', '', .false., new_static_kinetic), &
       friction_law_entry('SLIP WEAKENING', 'MU0, MUK, DC', '', .false., new_slip_weakening), &
       friction_law_entry('RATE DEPENDENT', 'MU0, A, B, V0, VC, REGULARISATION', &
-                         'RATE UPDATE', .true., new_rate_dependent), &
+                         'RATE UPDATE, VELOCITY', .true., new_rate_dependent), &
       friction_law_entry('RATE STATE', 'MU0, A, B, DC, V0, VC, STATE LAW', &
-                         'THETA0, VINIT, RATE UPDATE', .false., new_rate_state, &
+                         'THETA0, VINIT, RATE UPDATE, VELOCITY', .false., new_rate_state, &
                          check_initial_state), &
       friction_law_entry('RATE STATE ARCSINH', 'MU0, A, B, DC, V0, STATE LAW', &
-                         'THETA0, VINIT, RATE UPDATE', .false., new_rate_state_arcsinh, &
+                         'THETA0, VINIT, RATE UPDATE, VELOCITY', .false., new_rate_state_arcsinh, &
                          check_initial_state)]
   end function builtin_friction_registry
 
@@ -461,6 +468,11 @@ contains
         string_t('RATE UPDATE = "' // def%rate_update // '" is not valid; ' // &
         'expected one of ' // RATE_UPDATE_NAMES)]
     end if
+    if (applies('VELOCITY')) then
+      if (.not. in_list(def%velocity, VELOCITY_NAMES)) problems = [problems, &
+        string_t('VELOCITY = "' // def%velocity // '" is not valid; ' // &
+        'expected one of ' // VELOCITY_NAMES)]
+    end if
   contains
     pure logical function applies(name)
       character(len=*), intent(in) :: name
@@ -522,7 +534,8 @@ contains
     end select
   end subroutine set_friction_real
 
-  !> Store the choice parameter `name` (STATE LAW, REGULARISATION, RATE UPDATE) as `value`,
+  !> Store the choice parameter `name` (STATE LAW, REGULARISATION, RATE UPDATE, VELOCITY) as
+  !> `value`,
   !> upper-cased;
   !> the value is checked against the choices later (friction_def_problems).
   subroutine set_friction_text(def, name, value, err)
@@ -546,6 +559,8 @@ contains
       def%regularisation = to_upper(trim(value))
     case ('RATE UPDATE')
       def%rate_update = to_upper(trim(value))
+    case ('VELOCITY')
+      def%velocity = to_upper(trim(value))
     case default
       call input_error(err, 'parameter ' // key // ' expects a number, not "' // value // '"')
     end select
@@ -582,6 +597,10 @@ contains
         '(the previous increment''s, known at its start; default for RATE DEPENDENT) or ' // &
         'IMPLICIT (its own, solved in the return mapping; default for the RATE STATE laws)', &
         RATE_UPDATE_NAMES), &
+      parameter_entry('VELOCITY', '', 'the velocity V the rate law is evaluated at: SLIP (the ' // &
+        'slip rate, the plastic part, 0 in stick; default) or RELATIVE (the norm of the ' // &
+        'total relative tangential velocity of the contact, elastic stick part + slip: the ' // &
+        'literal reading of Xing et al. 2003, eq. 3)', VELOCITY_NAMES), &
       parameter_entry('THETA0', 'time', 'initial state theta, > 0'), &
       parameter_entry('VINIT', 'length/time', 'initial slip rate; the initial state is ' // &
         'steady state at it, theta0 = DC/VINIT; > 0') ]
@@ -615,7 +634,7 @@ contains
   end function friction_required_parameters
 
   !> The optional parameters of `law`: THETA0 and VINIT for the Dieterich-Ruina laws (exactly
-  !> one of them must be given) and RATE UPDATE for every rate law; none for the others.
+  !> one of them must be given), RATE UPDATE and VELOCITY for every rate law; none for the others.
   function friction_optional_parameters(law, registry) result(names)
     character(len=*), intent(in) :: law
     type(friction_registry_t), intent(in), optional :: registry
@@ -748,6 +767,8 @@ contains
       is_given = allocated(def%regularisation)
     case ('RATE UPDATE')
       is_given = allocated(def%rate_update)
+    case ('VELOCITY')
+      is_given = allocated(def%velocity)
     case default
       is_given = .false.
     end select

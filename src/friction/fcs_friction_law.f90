@@ -29,6 +29,12 @@ module fcs_friction_law
     !> falls with the rate at once (the state-less velocity-weakening law of the fault-bend
     !> model: doc/theory.md, "Explicit slip rate").
     logical :: explicit_rate = .false.
+    !> Which velocity the law's V is (the deck's VELOCITY). .false. (SLIP): the plastic slip
+    !> rate, the irreversible slip of an increment over its duration. .true. (RELATIVE): the
+    !> literal reading of Xing et al. (2003, eq. 3), V = u~dot_eq = sqrt(u~dot_m u~dot_m), the
+    !> norm of the total relative tangential velocity between slave and master, elastic (stick)
+    !> part included: in stick V = |df_t/dt| / (E_t A), not 0 (doc/friction.md, "VELOCITY").
+    logical :: relative_velocity = .false.
   contains
     procedure(evaluate_interface), deferred :: evaluate
     procedure(name_interface), deferred :: name

@@ -30,6 +30,7 @@ program test_fcs_friction_factory
   call check_applicability(suite)
   call check_out_of_range(suite)
   call check_rate_update(suite)
+  call check_velocity(suite)
   call check_registered_law(suite)
   call suite%report()
 
@@ -49,7 +50,8 @@ contains
     do i = 1, size(fields)
       eq = index(fields(i)%s, '=')
       associate (name => fields(i)%s(1:eq - 1), text => fields(i)%s(eq + 1:))
-        if (name == 'STATE LAW' .or. name == 'REGULARISATION' .or. name == 'RATE UPDATE') then
+        if (name == 'STATE LAW' .or. name == 'REGULARISATION' .or. name == 'RATE UPDATE' .or. &
+            name == 'VELOCITY') then
           call set_friction_parameter(def, name, text, err)
         else
           read (text, *) value
@@ -110,6 +112,43 @@ contains
     call create_friction_law(def, law, err)
     call suite%check(allocated(err), 'RATE UPDATE refused for COULOMB')
   end subroutine check_rate_update
+
+  !> VELOCITY: SLIP (the slip rate) by default and when given, RELATIVE (the total relative
+  !> tangential velocity, the literal reading of eq. 3) for every rate law, independent of
+  !> RATE UPDATE; an invalid value and a law without a rate are refused with a message that
+  !> names the valid choices / the law's parameters.
+  subroutine check_velocity(suite)
+    type(test_suite_t), intent(inout) :: suite
+    class(friction_law_t), allocatable :: law
+    type(error_t), allocatable :: err
+    call create_friction_law(deck_def('RATE DEPENDENT', valid_parameters('RATE DEPENDENT')), law, err)
+    call suite%check(.not. allocated(err) .and. .not. law%relative_velocity, &
+                     'VELOCITY: SLIP by default')
+    call create_friction_law(deck_def('RATE DEPENDENT', valid_parameters('RATE DEPENDENT') // &
+                                      ', VELOCITY=slip'), law, err)
+    call suite%check(.not. allocated(err) .and. .not. law%relative_velocity, 'VELOCITY=SLIP given')
+    call create_friction_law(deck_def('RATE DEPENDENT', valid_parameters('RATE DEPENDENT') // &
+                                      ', VELOCITY=RELATIVE'), law, err)
+    call suite%check(.not. allocated(err) .and. law%relative_velocity .and. law%explicit_rate, &
+                     'VELOCITY=RELATIVE on RATE DEPENDENT, RATE UPDATE still EXPLICIT')
+    call create_friction_law(deck_def('RATE STATE', valid_parameters('RATE STATE') // &
+                                      ', VELOCITY=RELATIVE'), law, err)
+    call suite%check(.not. allocated(err) .and. law%relative_velocity .and. .not. law%explicit_rate, &
+                     'VELOCITY=RELATIVE on RATE STATE, implicit')
+    call create_friction_law(deck_def('RATE STATE ARCSINH', valid_parameters('RATE STATE ARCSINH') &
+                                      // ', VELOCITY=RELATIVE'), law, err)
+    call suite%check(.not. allocated(err) .and. law%relative_velocity, &
+                     'VELOCITY=RELATIVE on RATE STATE ARCSINH')
+    call create_friction_law(deck_def('RATE DEPENDENT', valid_parameters('RATE DEPENDENT') // &
+                                      ', VELOCITY=ELASTIC'), law, err)
+    call suite%check(allocated(err), 'VELOCITY=ELASTIC refused')
+    if (allocated(err)) call suite%check(contains_text(err%message, &
+      'VELOCITY = "ELASTIC" is not valid; expected one of SLIP, RELATIVE'), 'the message lists SLIP, RELATIVE')
+    call create_friction_law(deck_def('COULOMB', 'MU0=0.6, VELOCITY=RELATIVE'), law, err)
+    call suite%check(allocated(err), 'VELOCITY refused for COULOMB')
+    if (allocated(err)) call suite%check(contains_text(err%message, &
+      'parameter VELOCITY does not apply to law COULOMB'), 'the message names VELOCITY and COULOMB')
+  end subroutine check_velocity
 
   !> The recipe "How to add a friction law" on a test-only law: registered at run time, the
   !> registry's names, parameter lists, messages and the *FRICTION keyword parameters include
@@ -204,16 +243,16 @@ contains
     catalogue = friction_parameters()
     laws = friction_laws()
     call suite%equal_int(size(laws), 6, 'six laws')
-    call suite%equal_int(size(catalogue), 13, 'thirteen parameters')
+    call suite%equal_int(size(catalogue), 14, 'fourteen parameters')
     call suite%check(friction_parameter_names('RATE STATE') == &
-                     'MU0, A, B, DC, V0, VC, STATE LAW, THETA0, VINIT, RATE UPDATE', &
+                     'MU0, A, B, DC, V0, VC, STATE LAW, THETA0, VINIT, RATE UPDATE, VELOCITY', &
                      'RATE STATE parameter list')
     call suite%check(friction_parameter_names('COULOMB') == 'MU0', 'COULOMB parameter list')
     call suite%check(friction_parameter_names('NONSENSE') == '', 'unknown law: no parameters')
     call suite%equal_int(size(friction_required_parameters('RATE DEPENDENT')), 6, &
                          'RATE DEPENDENT: six required parameters')
-    call suite%equal_int(size(friction_optional_parameters('RATE STATE ARCSINH')), 3, &
-                         'RATE STATE ARCSINH: THETA0, VINIT, RATE UPDATE optional')
+    call suite%equal_int(size(friction_optional_parameters('RATE STATE ARCSINH')), 4, &
+                         'RATE STATE ARCSINH: THETA0, VINIT, RATE UPDATE, VELOCITY optional')
     call suite%equal_int(size(catalogue(9)%choices), 2, 'REGULARISATION has two choices')
     call suite%check(catalogue(10)%name == 'STATE LAW' .and. catalogue(10)%choices(1)%s == &
                      'AGEING', 'STATE LAW choices')
