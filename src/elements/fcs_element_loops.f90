@@ -574,7 +574,8 @@ contains
   !> Stress and strain update of this process's elements for the (scaled) increment du:
   !> gradients on the mid-increment configuration (with NLGEOM; the reference one without),
   !> objective rotation (Hughes & Winget 1980), then the material law (`update_point`).
-  subroutine loops_update(this, x, du, fields, nlgeom, err, temperature_start, temperature_end)
+  subroutine loops_update(this, x, du, fields, nlgeom, err, temperature_start, temperature_end, &
+                         temperature_zero)
     class(element_loops_t), intent(in) :: this
     real(dp), intent(in) :: x(:, :), du(:)
     type(element_state_t), intent(inout) :: fields
@@ -583,10 +584,13 @@ contains
     !> Nodal temperatures at the start and the end of the increment (models with
     !> temperatures): the thermal strain increment of each point (update_point_thermal).
     real(dp), intent(in), optional :: temperature_start(:), temperature_end(:)
+    !> The initial (stress-free) nodal temperatures: the total thermal strain of St Venant-
+    !> Kirchhoff points (update_svk; without it, those at the increment's start).
+    real(dp), intent(in), optional :: temperature_zero(:)
     type(element_geometry_t) :: geo
     real(dp) :: strain(6, MAX_POINTS), spin(3, 3, MAX_POINTS), equivalent(MAX_POINTS)
     real(dp) :: angle(MAX_POINTS), du_e(3, MAX_NODES), xe(3, MAX_NODES)
-    real(dp) :: t_start(MAX_POINTS), t_end(MAX_POINTS)
+    real(dp) :: t_start(MAX_POINTS), t_end(MAX_POINTS), t_zero(MAX_POINTS)
     integer :: e, q, i, n
     logical :: ok, thermal
     do i = 1, size(this%mine)
@@ -616,7 +620,11 @@ contains
             if (thermal) then
               call point_temperatures(this, e, temperature_start, t_start)
               call point_temperatures(this, e, temperature_end, t_end)
-              call update_svk(this, e, xe(:, 1:n), du_e(:, 1:n), fields, err, t_start, t_end)
+              t_zero = t_start
+              if (present(temperature_zero)) call point_temperatures(this, e, temperature_zero, t_zero)
+              call update_svk(this, e, xe(:, 1:n), du_e(:, 1:n), fields, err, &
+                              reshape([t_zero(1:kind%n_points), t_start(1:kind%n_points), &
+                                       t_end(1:kind%n_points)], [kind%n_points, 3]))
             else
               call update_svk(this, e, xe(:, 1:n), du_e(:, 1:n), fields, err)
             end if
@@ -655,7 +663,7 @@ contains
     end do
   end subroutine loops_update
 
-  !> Whether element e takes St Venant-Kirchhoff (doc/theory.md 1.7): under NLGEOM, a material
+  !> Whether element e takes St Venant-Kirchhoff (doc/theory.md 2.10): under NLGEOM, a material
   !> marked `st_venant_kirchhoff` (*ELASTIC without plasticity) in an element without
   !> incompatible modes. C3D8I keeps the rate form: its modes are found anew in every increment
   !> (update_modes), so the total deformation gradient with the modes is not known.
@@ -728,23 +736,26 @@ contains
     if (works_in_local_axes(this, e)) c = rotate_stiffness(c, this%axes(:, :, q, this%axes_index(e)))
   end function reference_stiffness
 
-  !> St Venant-Kirchhoff update of element e (doc/theory.md 1.7) for nodal increments du_e
+  !> St Venant-Kirchhoff update of element e (doc/theory.md 2.10) for nodal increments du_e
   !> from the nodes' start positions xe: with F0 and F1 the deformation gradients at the start
   !> and the end of the increment, S0 = det F0 F0^-1 sigma F0^-T,
-  !>   S1 = C(T1) C(T0)^-1 S0 + C(T1) : (E(F1) - E(F0) - delta E_th),   sigma = F1 S1 F1^T / det F1,
-  !> which is S = C : (E - E_th) (+ the initial stress) exactly, as a function of the start
-  !> state and the increment (CalculiX: emec = E - eth, resultsmech.f); delta E_th is the
-  !> secant thermal strain increment of material%thermal_strain_increment. The point's strain
-  !> becomes the Green-Lagrange strain E(F1) (total, thermal part included: CalculiX's E).
-  subroutine update_svk(this, e, xe, du_e, fields, err, t_start, t_end)
+  !>   S1 = C(T1) C(T0)^-1 S0 + C(T1) : (E_m(F1, a1) - E_m(F0, a0)),   sigma = F1 S1 F1^T / det F1,
+  !> which is S = C : E_m (+ the initial stress) exactly, as a function of the start state and
+  !> the increment. E_m(F, a) = E(F - a I) is CalculiX's mechanical strain (calcmechstrain.f:
+  !> the thermal stretch taken off the deformation gradient), a the total thermal strain of
+  !> the point from its initial temperature (material%thermal_strain_increment, secant);
+  !> without temperatures E_m = E. `temperatures(q, :)`: the point's initial, start and end
+  !> temperatures. The point's strain becomes the Green-Lagrange strain E(F1) (total, the
+  !> thermal part included: CalculiX's E).
+  subroutine update_svk(this, e, xe, du_e, fields, err, temperatures)
     class(element_loops_t), intent(in) :: this
     integer, intent(in) :: e
     real(dp), intent(in) :: xe(:, :), du_e(:, :)
     type(element_state_t), intent(inout) :: fields
     type(error_t), allocatable, intent(out) :: err
-    real(dp), intent(in), optional :: t_start(:), t_end(:)
+    real(dp), intent(in), optional :: temperatures(:, :)
     real(dp) :: f0(3, 3, MAX_POINTS), f1(3, 3, MAX_POINTS), s(6), strain_end(6), dstrain(6)
-    real(dp) :: t0, t1
+    real(dp) :: a0, a1
     integer :: q, n
     associate (kind => this%catalogue%kinds(this%kind(e)), &
                material => this%materials(this%material(e))%m)
@@ -754,18 +765,18 @@ contains
       call deformation_gradients(this, e, xe(:, 1:n) + du_e(:, 1:n), f1, err)
       if (allocated(err)) return
       do q = 1, kind%n_points
-        t0 = 0.0_dp
-        t1 = 0.0_dp
-        if (present(t_start)) t0 = t_start(q)
-        if (present(t_end)) t1 = t_end(q)
         s = pk2_from_cauchy(f0(:, :, q), fields%stress(:, q, e))
         strain_end = green_lagrange_strain(f1(:, :, q))
-        dstrain = strain_end - green_lagrange_strain(f0(:, :, q))
-        if (present(t_start) .and. present(t_end)) then
-          s = material%rescale_stress(s, t0, t1)
-          dstrain = dstrain - material%thermal_strain_increment(t0, t1)
-          s = s + matmul(reference_stiffness(this, e, q, t1), dstrain)
+        if (present(temperatures)) then
+          associate (t => temperatures(q, :))
+            a0 = first(material%thermal_strain_increment(t(1), t(2)))
+            a1 = first(material%thermal_strain_increment(t(1), t(3)))
+            dstrain = mechanical_strain(f1(:, :, q), a1) - mechanical_strain(f0(:, :, q), a0)
+            s = material%rescale_stress(s, t(2), t(3)) + &
+                matmul(reference_stiffness(this, e, q, t(3)), dstrain)
+          end associate
         else
+          dstrain = strain_end - green_lagrange_strain(f0(:, :, q))
           s = s + matmul(reference_stiffness(this, e, q), dstrain)
         end if
         fields%stress(:, q, e) = cauchy_from_pk2(f1(:, :, q), s)
@@ -773,6 +784,25 @@ contains
       end do
     end associate
   end subroutine update_svk
+
+  !> CalculiX's mechanical strain under NLGEOM (calcmechstrain.f): the Green-Lagrange strain of
+  !> F - a I, a the isotropic thermal strain.
+  pure function mechanical_strain(f, a) result(strain)
+    real(dp), intent(in) :: f(3, 3), a
+    real(dp) :: strain(6)
+    integer :: i
+    real(dp) :: fm(3, 3)
+    fm = f
+    do i = 1, 3
+      fm(i, i) = fm(i, i) - a
+    end do
+    strain = green_lagrange_strain(fm)
+  end function mechanical_strain
+
+  pure real(dp) function first(v)
+    real(dp), intent(in) :: v(:)
+    first = v(1)
+  end function first
 
   !> The St Venant-Kirchhoff tangents c(:, :, q) of element e (svk_jaumann_tangent) for its
   !> nodes at xe and its points' Cauchy stresses, with the stiffness at the points' temperatures

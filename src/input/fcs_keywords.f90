@@ -178,7 +178,7 @@ contains
       kw('ELASTIC', CONTEXT_MODEL, 'CalculiX', 'Elastic constants of the current material. ' // &
          'Small strain: sigma = C : eps. Under NLGEOM, CalculiX''s St Venant-Kirchhoff law: ' // &
          'the second Piola-Kirchhoff stress S = C : (E - E_th) of the Green-Lagrange strain E, ' // &
-         'C in the reference axes, and E output is E (doc/theory.md section 1.7); with ' // &
+         'C in the reference axes, and E output is E (doc/theory.md section 2.10); with ' // &
          'plasticity, and in C3D8I elements, the hypoelastic rate form of *HYPOELASTIC. ' // &
          'TYPE=ISO: isotropic, constant or as a table over ' // &
          'temperature (linear between the lines, constant beyond the first and last, as ' // &

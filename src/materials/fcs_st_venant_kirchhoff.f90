@@ -3,7 +3,7 @@
 !> 1998, section 7.1): the second Piola-Kirchhoff stress S = C : (E - E_th), with the
 !> Green-Lagrange strain E = (F^T F - I)/2 of the deformation gradient F = dx/dX, C the elastic
 !> stiffness in the reference axes and E_th the thermal strain; the Cauchy stress is
-!> sigma = F S F^T / det F. doc/theory.md section 1.7 derives the Jaumann tangent.
+!> sigma = F S F^T / det F. doc/theory.md section 2.10 derives the Jaumann tangent.
 !>
 !> Stresses and strains are Voigt vectors (11, 22, 33, 12, 13, 23), engineering shear strains;
 !> C is a 6 x 6 matrix from engineering strains to stresses.
@@ -95,7 +95,7 @@ contains
   end function pk2_from_cauchy
 
   !> The tangent of St Venant-Kirchhoff in the rate form of the element loops, sigma^J = c : D
-  !> (Jaumann rate of the Cauchy stress, D the rate of deformation; doc/theory.md 1.7):
+  !> (Jaumann rate of the Cauchy stress, D the rate of deformation; doc/theory.md 2.10):
   !>   c_ijkl = (1/J) F_iI F_jJ F_kK F_lL C_IJKL
   !>          + 1/2 (delta_ik s_jl + delta_il s_jk + s_ik delta_jl + s_il delta_jk) - s_ij delta_kl,
   !> from the Lie derivative of the Kirchhoff stress tau = F S F^T, L_v tau = F (C : dE/dt) F^T,

@@ -34,7 +34,7 @@ contains
       end if
       if (allocated(err)) return
       slots(k)%m%thermal = model%materials(k)%thermal
-      ! *ELASTIC without plasticity: St Venant-Kirchhoff under NLGEOM (doc/theory.md 1.7).
+      ! *ELASTIC without plasticity: St Venant-Kirchhoff under NLGEOM (doc/theory.md 2.10).
       slots(k)%m%st_venant_kirchhoff = .not. model%materials(k)%hypoelastic .and. &
                                        model%materials(k)%plastic%model == PLASTICITY_NONE
     end do
