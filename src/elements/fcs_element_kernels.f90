@@ -46,6 +46,7 @@ module fcs_element_kernels
   public :: element_face_area, element_hourglass_force, element_hourglass_stiffness
   public :: element_hourglass_increment
   public :: element_mode_residual, element_mode_correction, MAX_MODES, HOURGLASS_SCALE
+  public :: element_displacement_gradients
 
   !> Nonzeros of the strain-displacement matrix B (as fcs_hex8_element): column (a, i) has
   !> dN_a/dx_B_GRADIENT(n, i) in row B_ROW(n, i), n = 1..3.
@@ -225,6 +226,25 @@ contains
       dv = geo%dv(1:kind%n_points)
     end if
   end function element_point_volumes
+
+  !> Displacement gradients h(:, :, q) = du/dX = sum_a u_a (x) grad N_a at the points, for nodal
+  !> displacements u(3, n_nodes) and gradients of `geo` (on the configuration X they are taken
+  !> from; the nodes only: C3D8I's modes are not included).
+  pure function element_displacement_gradients(kind, geo, u) result(h)
+    type(element_kind_t), intent(in) :: kind
+    type(element_geometry_t), intent(in) :: geo
+    real(dp), intent(in) :: u(:, :)
+    real(dp) :: h(3, 3, kind%n_points)
+    integer :: q, n
+    n = kind%n_nodes
+    do q = 1, kind%n_points
+      if (kind%kernel == KERNEL_HEX8) then
+        h(:, :, q) = matmul(u(:, 1:8), transpose(geo%hex8%grad(:, 1:8, q)))
+      else
+        h(:, :, q) = matmul(u(:, 1:n), transpose(geo%grad(:, 1:n, q)))
+      end if
+    end do
+  end function element_displacement_gradients
 
   !> Internal force f = sum_q Bbar^T sigma dv (3 n_nodes values, node-major) from the stresses
   !> stress(6, q) at the points.

@@ -39,11 +39,13 @@ module fcs_element_loops
     element_min_jacobian_ratio, element_volume, element_face_nodes, element_face_pressure, &
     element_face_area, element_hourglass_force, element_hourglass_stiffness, &
     element_hourglass_increment, &
-    element_mode_residual, element_mode_correction, MAX_MODES
+    element_mode_residual, element_mode_correction, MAX_MODES, element_displacement_gradients
   use fcs_element_state, only: element_state_t
   use fcs_hex8_element, only: hex8_rotate_stress, mises_stress
   use fcs_material, only: material_t, material_slot_t
   use fcs_voigt, only: spin_rotation, rotate_stress_like, rotate_strain_like
+  use fcs_st_venant_kirchhoff, only: green_lagrange_strain, cauchy_from_pk2, pk2_from_cauchy, &
+                                     svk_jaumann_tangent, determinant_of
   use fcs_orientation, only: orientation_t, orientation_axes, stress_to_global, strain_to_local, &
                              stress_to_local, rotate_stiffness
   use fcs_sparse, only: sparse_matrix_t
@@ -126,6 +128,7 @@ module fcs_element_loops
     procedure :: nodal_average => loops_nodal_average
     procedure :: point_volumes => loops_point_volumes
     procedure :: thermal_strains => loops_thermal_strains
+    procedure :: energy_stresses => loops_energy_stresses
     procedure :: plastic_fields => loops_plastic_fields
     procedure :: cliques => loops_cliques
     procedure :: face_nodes => loops_face_nodes
@@ -527,6 +530,16 @@ contains
         end if
         if (.not. present(matrix)) cycle
         associate (material => this%materials(this%material(e))%m)
+          if (takes_svk(this, e, nlgeom)) then
+            call svk_tangents(this, e, xe(:, 1:n), fields%stress(:, :, e), c, err, temperature)
+            if (allocated(err)) return
+            call element_tangent(kind, geo, fields%stress(:, :, e), c(:, :, 1:kind%n_points), &
+                                 this%bbar(e), nlgeom, k(1:3 * n, 1:3 * n))
+            if (kind%formulation == FORMULATION_HOURGLASS) call element_hourglass_stiffness(kind, &
+              geo, youngs_modulus(material), k(1:3 * n, 1:3 * n))
+            call matrix%add_matrix(this%nodes(1:n, e), k(1:3 * n, 1:3 * n), missing)
+            cycle
+          end if
           do q = 1, kind%n_points
             c(:, :, q) = material%tangent(fields%stress(:, q, e), fields%material_state(:, q, e))
           end do
@@ -561,7 +574,8 @@ contains
   !> Stress and strain update of this process's elements for the (scaled) increment du:
   !> gradients on the mid-increment configuration (with NLGEOM; the reference one without),
   !> objective rotation (Hughes & Winget 1980), then the material law (`update_point`).
-  subroutine loops_update(this, x, du, fields, nlgeom, err, temperature_start, temperature_end)
+  subroutine loops_update(this, x, du, fields, nlgeom, err, temperature_start, temperature_end, &
+                         temperature_zero)
     class(element_loops_t), intent(in) :: this
     real(dp), intent(in) :: x(:, :), du(:)
     type(element_state_t), intent(inout) :: fields
@@ -570,10 +584,13 @@ contains
     !> Nodal temperatures at the start and the end of the increment (models with
     !> temperatures): the thermal strain increment of each point (update_point_thermal).
     real(dp), intent(in), optional :: temperature_start(:), temperature_end(:)
+    !> The initial (stress-free) nodal temperatures: the total thermal strain of St Venant-
+    !> Kirchhoff points (update_svk; without it, those at the increment's start).
+    real(dp), intent(in), optional :: temperature_zero(:)
     type(element_geometry_t) :: geo
     real(dp) :: strain(6, MAX_POINTS), spin(3, 3, MAX_POINTS), equivalent(MAX_POINTS)
     real(dp) :: angle(MAX_POINTS), du_e(3, MAX_NODES), xe(3, MAX_NODES)
-    real(dp) :: t_start(MAX_POINTS), t_end(MAX_POINTS)
+    real(dp) :: t_start(MAX_POINTS), t_end(MAX_POINTS), t_zero(MAX_POINTS)
     integer :: e, q, i, n
     logical :: ok, thermal
     do i = 1, size(this%mine)
@@ -598,7 +615,21 @@ contains
         associate (material => this%materials(this%material(e))%m)
           thermal = present(temperature_start) .and. present(temperature_end)
           if (thermal) thermal = material%thermal%is_active()
-          if (works_in_local_axes(this, e)) then
+          if (takes_svk(this, e, nlgeom)) then
+            call element_x(this, e, x, nlgeom, xe)
+            if (thermal) then
+              call point_temperatures(this, e, temperature_start, t_start)
+              call point_temperatures(this, e, temperature_end, t_end)
+              t_zero = t_start
+              if (present(temperature_zero)) call point_temperatures(this, e, temperature_zero, t_zero)
+              call update_svk(this, e, xe(:, 1:n), du_e(:, 1:n), fields, err, &
+                              reshape([t_zero(1:kind%n_points), t_start(1:kind%n_points), &
+                                       t_end(1:kind%n_points)], [kind%n_points, 3]))
+            else
+              call update_svk(this, e, xe(:, 1:n), du_e(:, 1:n), fields, err)
+            end if
+            if (allocated(err)) return
+          else if (works_in_local_axes(this, e)) then
             if (thermal) then
               call point_temperatures(this, e, temperature_start, t_start)
               call point_temperatures(this, e, temperature_end, t_end)
@@ -631,6 +662,171 @@ contains
       end associate
     end do
   end subroutine loops_update
+
+  !> Whether element e takes St Venant-Kirchhoff (doc/theory.md 2.10): under NLGEOM, a material
+  !> marked `st_venant_kirchhoff` (*ELASTIC without plasticity) in an element without
+  !> incompatible modes. C3D8I keeps the rate form: its modes are found anew in every increment
+  !> (update_modes), so the total deformation gradient with the modes is not known.
+  pure logical function takes_svk(this, e, nlgeom) result(svk)
+    class(element_loops_t), intent(in) :: this
+    integer, intent(in) :: e
+    logical, intent(in) :: nlgeom
+    svk = nlgeom
+    if (.not. svk) return
+    svk = this%materials(this%material(e))%m%st_venant_kirchhoff .and. &
+          this%catalogue%kinds(this%kind(e))%n_modes == 0
+  end function takes_svk
+
+  !> Deformation gradients f(:, :, q) = dx/dX at the points of element e whose nodes are at xe
+  !> (3, n), from the reference coordinates; with FORMULATION=BBAR the F-bar of de Souza Neto
+  !> et al. (1996): each F scaled by (Jbar / det F)^(1/3), Jbar the element's volume ratio
+  !> (the volume-weighted mean of det F), as B-bar takes the mean volumetric strain.
+  subroutine deformation_gradients(this, e, xe, f, err)
+    class(element_loops_t), intent(in) :: this
+    integer, intent(in) :: e
+    real(dp), intent(in) :: xe(:, :)
+    real(dp), intent(out) :: f(:, :, :)
+    type(error_t), allocatable, intent(out) :: err
+    type(element_geometry_t) :: geo
+    real(dp) :: x0(3, MAX_NODES), dv(MAX_POINTS), det(MAX_POINTS), mean
+    integer :: q, n, np, i
+    logical :: ok
+    associate (kind => this%catalogue%kinds(this%kind(e)))
+      n = kind%n_nodes
+      np = kind%n_points
+      x0(:, 1:n) = this%x_reference(:, this%nodes(1:n, e))
+      call element_geometry(kind, x0(:, 1:n), geo, ok)
+      if (.not. ok) then
+        call inverted_element_error(this, e, err)
+        return
+      end if
+      f(:, :, 1:np) = element_displacement_gradients(kind, geo, xe(:, 1:n) - x0(:, 1:n))
+      do q = 1, np
+        do i = 1, 3
+          f(i, i, q) = f(i, i, q) + 1.0_dp
+        end do
+        det(q) = determinant_of(f(:, :, q))
+      end do
+      if (any(det(1:np) <= 0.0_dp)) then
+        call inverted_element_error(this, e, err)
+        return
+      end if
+      if (.not. this%bbar(e)) return
+      dv(1:np) = element_point_volumes(kind, geo)
+      mean = sum(det(1:np) * dv(1:np)) / sum(dv(1:np))
+      do q = 1, np
+        f(:, :, q) = f(:, :, q) * (mean / det(q))**(1.0_dp / 3.0_dp)
+      end do
+    end associate
+  end subroutine deformation_gradients
+
+  !> The elastic stiffness of element e's material at its point q in the global reference axes
+  !> (the *ORIENTATION axes at the point's reference position turned to global ones for an
+  !> anisotropic material), at temperature t (without it, the material's own constants).
+  function reference_stiffness(this, e, q, t) result(c)
+    class(element_loops_t), intent(in) :: this
+    integer, intent(in) :: e, q
+    real(dp), intent(in), optional :: t
+    real(dp) :: c(6, 6)
+    if (present(t)) then
+      c = this%materials(this%material(e))%m%elastic_matrix_at(t)
+    else
+      c = this%materials(this%material(e))%m%elastic_matrix()
+    end if
+    if (works_in_local_axes(this, e)) c = rotate_stiffness(c, this%axes(:, :, q, this%axes_index(e)))
+  end function reference_stiffness
+
+  !> St Venant-Kirchhoff update of element e (doc/theory.md 2.10) for nodal increments du_e
+  !> from the nodes' start positions xe: with F0 and F1 the deformation gradients at the start
+  !> and the end of the increment, S0 = det F0 F0^-1 sigma F0^-T,
+  !>   S1 = C(T1) C(T0)^-1 S0 + C(T1) : (E_m(F1, a1) - E_m(F0, a0)),   sigma = F1 S1 F1^T / det F1,
+  !> which is S = C : E_m (+ the initial stress) exactly, as a function of the start state and
+  !> the increment. E_m(F, a) = E(F - a I) is CalculiX's mechanical strain (calcmechstrain.f:
+  !> the thermal stretch taken off the deformation gradient), a the total thermal strain of
+  !> the point from its initial temperature (material%thermal_strain_increment, secant);
+  !> without temperatures E_m = E. `temperatures(q, :)`: the point's initial, start and end
+  !> temperatures. The point's strain becomes the Green-Lagrange strain E(F1) (total, the
+  !> thermal part included: CalculiX's E).
+  subroutine update_svk(this, e, xe, du_e, fields, err, temperatures)
+    class(element_loops_t), intent(in) :: this
+    integer, intent(in) :: e
+    real(dp), intent(in) :: xe(:, :), du_e(:, :)
+    type(element_state_t), intent(inout) :: fields
+    type(error_t), allocatable, intent(out) :: err
+    real(dp), intent(in), optional :: temperatures(:, :)
+    real(dp) :: f0(3, 3, MAX_POINTS), f1(3, 3, MAX_POINTS), s(6), strain_end(6), dstrain(6)
+    real(dp) :: a0, a1
+    integer :: q, n
+    associate (kind => this%catalogue%kinds(this%kind(e)), &
+               material => this%materials(this%material(e))%m)
+      n = kind%n_nodes
+      call deformation_gradients(this, e, xe(:, 1:n), f0, err)
+      if (allocated(err)) return
+      call deformation_gradients(this, e, xe(:, 1:n) + du_e(:, 1:n), f1, err)
+      if (allocated(err)) return
+      do q = 1, kind%n_points
+        s = pk2_from_cauchy(f0(:, :, q), fields%stress(:, q, e))
+        strain_end = green_lagrange_strain(f1(:, :, q))
+        if (present(temperatures)) then
+          associate (t => temperatures(q, :))
+            a0 = first(material%thermal_strain_increment(t(1), t(2)))
+            a1 = first(material%thermal_strain_increment(t(1), t(3)))
+            dstrain = mechanical_strain(f1(:, :, q), a1) - mechanical_strain(f0(:, :, q), a0)
+            s = material%rescale_stress(s, t(2), t(3)) + &
+                matmul(reference_stiffness(this, e, q, t(3)), dstrain)
+          end associate
+        else
+          dstrain = strain_end - green_lagrange_strain(f0(:, :, q))
+          s = s + matmul(reference_stiffness(this, e, q), dstrain)
+        end if
+        fields%stress(:, q, e) = cauchy_from_pk2(f1(:, :, q), s)
+        fields%strain(:, q, e) = strain_end
+      end do
+    end associate
+  end subroutine update_svk
+
+  !> CalculiX's mechanical strain under NLGEOM (calcmechstrain.f): the Green-Lagrange strain of
+  !> F - a I, a the isotropic thermal strain.
+  pure function mechanical_strain(f, a) result(strain)
+    real(dp), intent(in) :: f(3, 3), a
+    real(dp) :: strain(6)
+    integer :: i
+    real(dp) :: fm(3, 3)
+    fm = f
+    do i = 1, 3
+      fm(i, i) = fm(i, i) - a
+    end do
+    strain = green_lagrange_strain(fm)
+  end function mechanical_strain
+
+  pure real(dp) function first(v)
+    real(dp), intent(in) :: v(:)
+    first = v(1)
+  end function first
+
+  !> The St Venant-Kirchhoff tangents c(:, :, q) of element e (svk_jaumann_tangent) for its
+  !> nodes at xe and its points' Cauchy stresses, with the stiffness at the points' temperatures
+  !> when the nodal `temperature` is given.
+  subroutine svk_tangents(this, e, xe, stress, c, err, temperature)
+    class(element_loops_t), intent(in) :: this
+    integer, intent(in) :: e
+    real(dp), intent(in) :: xe(:, :), stress(:, :)
+    real(dp), intent(out) :: c(:, :, :)
+    type(error_t), allocatable, intent(out) :: err
+    real(dp), intent(in), optional :: temperature(:)
+    real(dp) :: f(3, 3, MAX_POINTS), tq(MAX_POINTS)
+    integer :: q
+    call deformation_gradients(this, e, xe, f, err)
+    if (allocated(err)) return
+    if (present(temperature)) call point_temperatures(this, e, temperature, tq)
+    do q = 1, this%catalogue%kinds(this%kind(e))%n_points
+      if (present(temperature)) then
+        c(:, :, q) = svk_jaumann_tangent(f(:, :, q), stress(:, q), reference_stiffness(this, e, q, tq(q)))
+      else
+        c(:, :, q) = svk_jaumann_tangent(f(:, :, q), stress(:, q), reference_stiffness(this, e, q))
+      end if
+    end do
+  end subroutine svk_tangents
 
   !> C3D8R element e: its generalised hourglass forces Q go from the start to the end of the
   !> increment: Q_{n+1} = R Q_n + E a du Gamma, with Gamma and a on the mid-increment
@@ -1145,6 +1341,32 @@ contains
       end associate
     end do
   end function loops_point_volumes
+
+  !> The stress work-conjugate to each point's strain field, for the energy density 1/2 S:E of
+  !> *EL PRINT, ENER: the second Piola-Kirchhoff stress S = det F F^-1 sigma F^-T of the points
+  !> that take St Venant-Kirchhoff under `nlgeom` (their strain is Green-Lagrange, the energy
+  !> per reference volume, CalculiX's ENER), the Cauchy stress elsewhere; x the current
+  !> coordinates. Beyond an element's points, 0.
+  function loops_energy_stresses(this, x, stress, nlgeom, err) result(conjugate)
+    class(element_loops_t), intent(in) :: this
+    real(dp), intent(in) :: x(:, :), stress(:, :, :)
+    logical, intent(in) :: nlgeom
+    type(error_t), allocatable, intent(out) :: err
+    real(dp), allocatable :: conjugate(:, :, :)
+    real(dp) :: f(3, 3, MAX_POINTS), xe(3, MAX_NODES)
+    integer :: e, q, n
+    conjugate = stress
+    do e = 1, this%n_elements
+      if (.not. takes_svk(this, e, nlgeom)) cycle
+      n = this%catalogue%kinds(this%kind(e))%n_nodes
+      call element_x(this, e, x, nlgeom, xe)
+      call deformation_gradients(this, e, xe(:, 1:n), f, err)
+      if (allocated(err)) return
+      do q = 1, this%catalogue%kinds(this%kind(e))%n_points
+        conjugate(:, q, e) = pk2_from_cauchy(f(:, :, q), stress(:, q, e))
+      end do
+    end do
+  end function loops_energy_stresses
 
   !> The thermal strain of every integration point (Voigt, engineering shear) between the
   !> nodal temperatures `temperature_zero` (stress free, *INITIAL CONDITIONS) and

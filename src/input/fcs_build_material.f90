@@ -14,7 +14,7 @@ module fcs_build_material
   use fcs_strings, only: str
   implicit none
   private
-  public :: handle_material, handle_elastic, handle_density, handle_solid_section, handle_solver
+  public :: handle_material, handle_elastic, handle_hypoelastic, handle_density, handle_solid_section, handle_solver
   public :: handle_restart, resolve_section_materials, handle_orientation, is_isotropic_elastic
 
 contains
@@ -54,30 +54,61 @@ contains
     type(model_t), intent(inout) :: model
     type(builder_t), intent(in) :: state
     type(diagnostics_t), intent(inout) :: diag
-    real(dp) :: e, nu
     if (.not. has_current_material(card, state, diag)) return
     if (.not. is_isotropic_elastic(card)) then
       call handle_anisotropic_elastic(card, model, state, diag)
       return
     end if
-    if (card%n_lines /= 1 .or. size(card%lines(1)%fields) /= 2) then
-      call diag%report(card%lines(1)%loc, '*ELASTIC: expected one line: Young''s modulus, ' // &
-                       'Poisson''s ratio (temperature-dependent tables are not supported)')
+    call set_isotropic_constants(card, 'ELASTIC', model, state, diag)
+  end subroutine handle_elastic
+
+  !> *HYPOELASTIC (Abaqus): E, nu of the current material, whose law under NLGEOM is the
+  !> rate form (Xing, Mora & Makinouchi 2003, eq. 1) instead of *ELASTIC's St Venant-Kirchhoff.
+  !> One line of two constants: Abaqus' strain-invariant and temperature columns are refused.
+  subroutine handle_hypoelastic(card, model, state, diag)
+    type(card_t), intent(in) :: card
+    type(model_t), intent(inout) :: model
+    type(builder_t), intent(in) :: state
+    type(diagnostics_t), intent(inout) :: diag
+    if (.not. has_current_material(card, state, diag)) return
+    if (card%n_lines > 1 .or. size(card%lines(1)%fields) > 2) then
+      call diag%report(card%lines(1)%loc, '*HYPOELASTIC: expected one line: Young''s modulus, ' // &
+                       'Poisson''s ratio (moduli depending on the strain invariants, on ' // &
+                       'temperature or on field variables are not available)')
       return
     end if
-    if (.not. line_real(card%lines(1), 1, e, 'Young''s modulus', 'ELASTIC', diag)) return
-    if (.not. line_real(card%lines(1), 2, nu, 'Poisson''s ratio', 'ELASTIC', diag)) return
+    call set_isotropic_constants(card, 'HYPOELASTIC', model, state, diag)
+    model%materials(state%material)%hypoelastic = .true.
+  end subroutine handle_hypoelastic
+
+  !> The isotropic constants E, nu of the one data line of `card` (*ELASTIC or *HYPOELASTIC,
+  !> named by `keyword`) for the current material: E > 0, -1 < nu < 0.5, once per material.
+  subroutine set_isotropic_constants(card, keyword, model, state, diag)
+    type(card_t), intent(in) :: card
+    character(len=*), intent(in) :: keyword
+    type(model_t), intent(inout) :: model
+    type(builder_t), intent(in) :: state
+    type(diagnostics_t), intent(inout) :: diag
+    real(dp) :: e, nu
+    if (card%n_lines /= 1 .or. size(card%lines(1)%fields) /= 2) then
+      call diag%report(card%lines(1)%loc, '*' // keyword // ': expected one line: Young''s ' // &
+                       'modulus, Poisson''s ratio (temperature-dependent tables are not supported)')
+      return
+    end if
+    if (.not. line_real(card%lines(1), 1, e, 'Young''s modulus', keyword, diag)) return
+    if (.not. line_real(card%lines(1), 2, nu, 'Poisson''s ratio', keyword, diag)) return
     if (e <= 0.0_dp) then
-      call diag%report(card%lines(1)%loc, '*ELASTIC: Young''s modulus must be positive')
+      call diag%report(card%lines(1)%loc, '*' // keyword // ': Young''s modulus must be positive')
       return
     end if
     if (nu <= -1.0_dp .or. nu >= 0.5_dp) then
-      call diag%report(card%lines(1)%loc, '*ELASTIC: Poisson''s ratio must lie in (-1, 0.5)')
+      call diag%report(card%lines(1)%loc, '*' // keyword // ': Poisson''s ratio must lie in (-1, 0.5)')
       return
     end if
     associate (m => model%materials(state%material))
       if (m%has_elastic) then
-        call diag%report(card%loc, '*ELASTIC: material ' // m%name // ' already has elastic constants')
+        call diag%report(card%loc, '*' // keyword // ': material ' // m%name // &
+                         ' already has elastic constants')
         return
       end if
       m%has_elastic = .true.
@@ -85,7 +116,7 @@ contains
       m%poisson_ratio = nu
       m%elastic_loc = card%loc
     end associate
-  end subroutine handle_elastic
+  end subroutine set_isotropic_constants
 
   !> *ELASTIC, TYPE=ORTHO | ENGINEERING CONSTANTS | ANISO: 9 or 21 constants in CalculiX's
   !> order (fcs_anisotropic_elastic), over as many lines as the deck spreads them (CalculiX

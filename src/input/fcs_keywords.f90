@@ -172,18 +172,22 @@ contains
     type(keyword_spec_t), allocatable :: t(:)
     t = [ &
       kw('MATERIAL', CONTEXT_MODEL, 'CalculiX', 'Start a material definition; the ' // &
-         'following *ELASTIC, *DENSITY, *PLASTIC, *CYCLIC HARDENING, *DRUCKER PRAGER and ' // &
+         'following *ELASTIC, *HYPOELASTIC, *DENSITY, *PLASTIC, *CYCLIC HARDENING, *DRUCKER PRAGER and ' // &
          '*DRUCKER PRAGER HARDENING lines belong to it.', '', &
          [p('NAME', PARAM_NAME, required=.true., description='Name of the material.')]), &
-      kw('ELASTIC', CONTEXT_MODEL, 'CalculiX', 'Elastic constants of the current material ' // &
-         '(hypoelastic rate form). TYPE=ISO: isotropic, constant or as a table over ' // &
+      kw('ELASTIC', CONTEXT_MODEL, 'CalculiX', 'Elastic constants of the current material. ' // &
+         'Small strain: sigma = C : eps. Under NLGEOM, CalculiX''s St Venant-Kirchhoff law: ' // &
+         'the second Piola-Kirchhoff stress S = C : (E - E_th) of the Green-Lagrange strain E, ' // &
+         'C in the reference axes, and E output is E (doc/theory.md section 2.10); with ' // &
+         'plasticity, and in C3D8I elements, the hypoelastic rate form of *HYPOELASTIC. ' // &
+         'TYPE=ISO: isotropic, constant or as a table over ' // &
          'temperature (linear between the lines, constant beyond the first and last, as ' // &
          'CalculiX; elastic materials only, not with plasticity); with a table the stress ' // &
          'follows sigma = C(T) eps_el as in CalculiX (doc/theory.md section 2.5). ' // &
          'TYPE=ORTHO, ENGINEERING CONSTANTS, ANISO: a constant stiffness in the material ' // &
          'axes of the section''s *ORIENTATION (global axes without one), CalculiX''s order ' // &
          'of the constants (doc/theory.md section 2.9); it must be positive definite; not with ' // &
-         'plasticity, NLGEOM, temperature tables, C3D8I or C3D8R elements.', &
+         'plasticity, temperature tables, C3D8I or C3D8R elements.', &
          'TYPE=ISO: Young''s modulus [stress], Poisson''s ratio [-][, temperature]: one line, ' // &
          'or one line per temperature, temperatures strictly increasing. ORTHO: D1111, D1122, ' // &
          'D2222, D1133, D2233, D3333, D1212, D1313, D2323 [stress][, temperature]. ' // &
@@ -196,6 +200,14 @@ contains
             s('ORTHOTROPIC'), s('ENGINEERING CONSTANTS'), s('ANISO'), s('ANISOTROPIC')], &
             description='Isotropic, orthotropic (9 stiffness constants, or 9 engineering ' // &
             'constants) or fully anisotropic (21 constants).')], data_required=.true.), &
+      kw('HYPOELASTIC', CONTEXT_MODEL, 'Abaqus', 'Isotropic hypoelastic constants of the ' // &
+         'current material: the rate form sigma^J = C : D of Xing, Mora & Makinouchi (2003), ' // &
+         'eq. 1 (Jaumann rate of the Cauchy stress, constant isotropic C; doc/theory.md ' // &
+         'section 1.2), the law of the fault-bend reference run. Without NLGEOM the same as ' // &
+         '*ELASTIC. Abaqus'' dependence on the strain invariants, on temperature or on field ' // &
+         'variables, and its user subroutine (USER) are not available.', &
+         'Young''s modulus [stress], Poisson''s ratio [-]: one line.', &
+         [p_none()], data_required=.true.), &
       kw('EXPANSION', CONTEXT_MODEL, 'CalculiX', 'Isotropic thermal expansion of the ' // &
          'current material: the secant coefficient alpha from the reference temperature ZERO, ' // &
          'thermal strain alpha(T) (T - ZERO) - alpha(T0) (T0 - ZERO) from the initial ' // &

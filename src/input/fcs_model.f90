@@ -71,6 +71,8 @@ module fcs_model
     !> its Voigt-average isotropic scale).
     logical :: anisotropic = .false.
     real(dp) :: stiffness(6, 6) = 0.0_dp
+    !> *HYPOELASTIC: the rate form under NLGEOM (else *ELASTIC: St Venant-Kirchhoff).
+    logical :: hypoelastic = .false.
   end type material_def_t
 
   !> *ORIENTATION: local material axes (fcs_orientation), with the card that gave them.

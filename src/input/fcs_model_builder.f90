@@ -20,7 +20,8 @@ module fcs_model_builder
   use fcs_builder_state, only: builder_t
   use fcs_build_mesh, only: handle_node, handle_element, handle_nset, handle_elset, &
                             handle_surface, handle_mesh
-  use fcs_build_material, only: handle_material, handle_elastic, handle_density, &
+  use fcs_build_material, only: handle_material, handle_elastic, handle_hypoelastic, &
+    handle_density, &
                                 handle_solid_section, handle_solver, handle_restart, &
                                 resolve_section_materials, handle_orientation, is_isotropic_elastic
   use fcs_build_plasticity, only: handle_plastic, handle_cyclic_hardening, handle_drucker_prager, &
@@ -244,6 +245,8 @@ contains
       else
         call handle_elastic(card, model, state, diag)
       end if
+    case ('HYPOELASTIC')
+      call handle_hypoelastic(card, model, state, diag)
     case ('EXPANSION')
       call handle_expansion(card, model, state, diag)
     case ('INITIAL CONDITIONS')
@@ -318,8 +321,8 @@ contains
                        '(the keyword table and the builder disagree)')
     end select
     select case (card%keyword)
-    case ('MATERIAL', 'ELASTIC', 'DENSITY', 'PLASTIC', 'CYCLIC HARDENING', 'DRUCKER PRAGER', &
-          'DRUCKER PRAGER HARDENING', 'EXPANSION')
+    case ('MATERIAL', 'ELASTIC', 'HYPOELASTIC', 'DENSITY', 'PLASTIC', 'CYCLIC HARDENING', &
+          'DRUCKER PRAGER', 'DRUCKER PRAGER HARDENING', 'EXPANSION')
     case default
       state%material = 0
     end select
@@ -562,8 +565,9 @@ contains
              'CONDUCTIVITY', 'SPECIFIC HEAT', 'HYPERELASTIC', 'HYPERFOAM', 'CREEP', &
              'USER MATERIAL', 'DEFORMATION PLASTICITY', 'RATE DEPENDENT', 'CAP PLASTICITY', &
              'MOHR COULOMB', 'DRUCKER PRAGER CREEP'])) then
-      reason = 'materials are hypoelastic (*ELASTIC: isotropic, or anisotropic and elastic ' // &
-               'only), with von Mises (*PLASTIC) or linear Drucker-Prager (*DRUCKER PRAGER) ' // &
+      reason = 'materials are linear elastic (*ELASTIC: isotropic, or anisotropic and elastic ' // &
+               'only; St Venant-Kirchhoff under NLGEOM), hypoelastic (*HYPOELASTIC), with ' // &
+               'von Mises (*PLASTIC) or linear Drucker-Prager (*DRUCKER PRAGER) ' // &
                'plasticity'
     else if (is_one_of(keyword, [character(len=34) :: 'CFLUX', 'DFLUX', 'FILM', 'RADIATE'])) then
       reason = 'this load or initial condition is not available yet'

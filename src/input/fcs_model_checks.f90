@@ -56,9 +56,9 @@ contains
     if (.not. diag%has_errors()) call check_supports(model, diag)
   end subroutine check_model
 
-  !> Anisotropic elasticity (fcs_anisotropic_elastic) is small-strain, elastic only and works
-  !> through the standard point update: refused with NLGEOM (its axes would have to turn with
-  !> the material), with plasticity (isotropic yield surfaces on an anisotropic stiffness are
+  !> Anisotropic elasticity (fcs_anisotropic_elastic) is elastic only (St Venant-Kirchhoff
+  !> under NLGEOM, its axes fixed in the reference configuration) and works through the
+  !> standard point update: refused with plasticity (isotropic yield surfaces on an anisotropic stiffness are
   !> not CalculiX's anisotropic plasticity), and for element kinds with their own update
   !> (C3D8I's incompatible modes, C3D8R's hourglass control).
   subroutine check_anisotropy(model, diag)
@@ -71,9 +71,6 @@ contains
         if (m%plastic%model /= PLASTICITY_NONE) call diag%report(m%elastic_loc, '*ELASTIC: ' // &
           'material ' // m%name // ': plasticity (*PLASTIC, *DRUCKER PRAGER) with anisotropic ' // &
           'elasticity is not available; use TYPE=ISO')
-        if (any(model%steps%nlgeom)) call diag%report(m%elastic_loc, '*ELASTIC: material ' // &
-          m%name // ': anisotropic elasticity is not available with NLGEOM (the material axes ' // &
-          'would have to rotate with the body); use NLGEOM=NO or TYPE=ISO')
       end associate
     end do
     do k = 1, size(model%sections)

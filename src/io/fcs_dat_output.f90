@@ -138,22 +138,29 @@ contains
   !> energy at the current temperature's constants; exact for linear elasticity at small
   !> strain), ELSE its integral over the element (sum of ENER x point volume), as CalculiX's
   !> "internal energy (element, energy)"; the input refuses both with plasticity
-  !> (fcs_build_output).
+  !> (fcs_build_output). With `energy_stress`, ENER and ELSE take it instead of `stress` (the
+  !> second Piola-Kirchhoff stress of St Venant-Kirchhoff points under NLGEOM, whose strain is
+  !> Green-Lagrange: CalculiX's energy per reference volume).
   subroutine dat_el_print(this, model, request, time, stress, strain, peeq, n_points, volume, err, &
-                          thermal_strain)
+                          thermal_strain, energy_stress)
     class(dat_file_t), intent(inout) :: this
     type(model_t), intent(in) :: model
     type(output_request_t), intent(in) :: request
     real(dp), intent(in) :: time, stress(:, :, :), strain(:, :, :), peeq(:, :), volume(:, :)
     integer, intent(in) :: n_points(:)
     type(error_t), allocatable, intent(out) :: err
-    real(dp), intent(in), optional :: thermal_strain(:, :, :)
-    real(dp), allocatable :: elastic(:, :, :)
+    real(dp), intent(in), optional :: thermal_strain(:, :, :), energy_stress(:, :, :)
+    real(dp), allocatable :: elastic(:, :, :), conjugate(:, :, :)
     character(len=32) :: stamp
     integer :: v
     integer, allocatable :: elements(:)
     elastic = strain
     if (present(thermal_strain)) elastic = strain - thermal_strain
+    if (present(energy_stress)) then
+      conjugate = energy_stress
+    else
+      conjugate = stress
+    end if
     associate (set => model%mesh%element_sets(request%set))
       elements = set%members(argsort_integers(model%mesh%element_id(set%members)))
       do v = 1, size(request%variables)
@@ -180,11 +187,11 @@ contains
           call header(this%file, 'internal energy density (elem, integ.pnt.,energy)', &
                       set%name, time, err)
           if (.not. allocated(err)) call point_rows(this%file, model, elements, n_points, &
-            energy_density(stress, elastic), err)
+            energy_density(conjugate, elastic), err)
         case ('ELSE')
           call header(this%file, 'internal energy (element, energy)', set%name, time, err)
           if (.not. allocated(err)) call element_energy_rows(this%file, model, elements, &
-            n_points, energy_density(stress, elastic) * volume, err)
+            n_points, energy_density(conjugate, elastic) * volume, err)
         end select
         if (allocated(err)) return
       end do

@@ -48,6 +48,10 @@ module fcs_material
   type, abstract :: material_t
     real(dp) :: youngs_modulus = 0.0_dp
     real(dp) :: poisson_ratio = 0.0_dp
+    !> Under NLGEOM, St Venant-Kirchhoff (fcs_st_venant_kirchhoff: the stress a function of the
+    !> deformation gradient, CalculiX's law for *ELASTIC) instead of the rate form of `update`
+    !> (*HYPOELASTIC, and the elastic part of plasticity). The element loops choose the path.
+    logical :: st_venant_kirchhoff = .false.
     !> Thermal expansion and temperature-dependent elastic constants (fcs_thermal_properties);
     !> empty for a material that temperature does not affect.
     type(thermal_properties_t) :: thermal

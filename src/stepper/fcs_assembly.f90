@@ -6,7 +6,7 @@ module fcs_assembly
   use fcs_error, only: error_t
   use fcs_model, only: model_t, BODY_GRAV
   use fcs_material, only: material_slot_t
-  use fcs_material_factory, only: create_material
+  use fcs_material_factory, only: create_material, PLASTICITY_NONE
   use fcs_element_loops, only: element_loops_t, BODY_FORCE_GRAVITY, BODY_FORCE_CENTRIFUGAL
   use fcs_sparse, only: sparse_matrix_t
   use fcs_loading, only: step_loading_t
@@ -34,6 +34,9 @@ contains
       end if
       if (allocated(err)) return
       slots(k)%m%thermal = model%materials(k)%thermal
+      ! *ELASTIC without plasticity: St Venant-Kirchhoff under NLGEOM (doc/theory.md 2.10).
+      slots(k)%m%st_venant_kirchhoff = .not. model%materials(k)%hypoelastic .and. &
+                                       model%materials(k)%plastic%model == PLASTICITY_NONE
     end do
   end subroutine make_materials
 

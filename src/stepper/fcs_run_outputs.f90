@@ -151,8 +151,9 @@ contains
     integer, intent(in) :: i
     type(error_t), allocatable, intent(out) :: err
     real(dp), allocatable :: peeq(:, :), plastic_strain(:, :, :), back_stress(:, :, :)
-    real(dp), allocatable :: displacement(:, :), stress(:, :), volume(:, :)
+    real(dp), allocatable :: displacement(:, :), stress(:, :), volume(:, :), conjugate(:, :, :)
     integer :: v
+    logical :: energy
     integer, allocatable :: node(:)
     logical, allocatable :: closed(:)
     associate (request => model%steps(a%state%step)%outputs(i), state => a%state)
@@ -172,23 +173,34 @@ contains
         else
           allocate (volume(0, 0))
         end if
+        energy = any([(request%variables(v)%s == 'ENER' .or. request%variables(v)%s == 'ELSE', &
+                       v = 1, size(request%variables))])
+        ! ENER/ELSE: the stress conjugate to the strain (St Venant-Kirchhoff under NLGEOM: S).
+        if (energy) then
+          conjugate = a%elements%energy_stresses(state%x, state%elements%stress, &
+                                                 model%steps(state%step)%nlgeom, err)
+          if (allocated(err)) return
+        else
+          conjugate = state%elements%stress
+        end if
         if (.not. request%global .and. size(model%orientations) > 0) then
           ! GLOBAL=NO: S and E of oriented elements in their local axes (as CalculiX).
           call this%dat%el_print(model, request, state%time, &
             a%elements%to_material_axes(state%elements%stress, .false.), &
             a%elements%to_material_axes(state%elements%strain, .true.), peeq, &
-            a%elements%point_counts(), volume, err)
+            a%elements%point_counts(), volume, err, &
+            energy_stress=a%elements%to_material_axes(conjugate, .false.))
         else if (allocated(state%temperature) .and. allocated(model%initial_temperature) .and. &
-                 any([(request%variables(v)%s == 'ENER' .or. request%variables(v)%s == 'ELSE', &
-                       v = 1, size(request%variables))])) then
+                 energy) then
           ! ENER/ELSE: the energy of the mechanical strain, less the thermal strain.
           call this%dat%el_print(model, request, state%time, state%elements%stress, &
                                  state%elements%strain, peeq, a%elements%point_counts(), volume, err, &
                                  a%elements%thermal_strains(model%initial_temperature, &
-                                                            state%temperature))
+                                                            state%temperature), conjugate)
         else
           call this%dat%el_print(model, request, state%time, state%elements%stress, &
-                                 state%elements%strain, peeq, a%elements%point_counts(), volume, err)
+                                 state%elements%strain, peeq, a%elements%point_counts(), volume, &
+                                 err, energy_stress=conjugate)
         end if
       case (OUTPUT_CONTACT_PRINT)
         call a%contact%print_values(a%x_contact, state%contact, node, closed, displacement, stress)

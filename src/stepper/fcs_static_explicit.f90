@@ -359,7 +359,7 @@ contains
         if (allocated(state%temperature)) then
           call end_temperatures(a, model, inc%end_time())
           call a%elements%update(state%x, a%sys%du, state%elements, step%nlgeom, err, &
-                                 state%temperature, a%trial%temperature)
+                                 state%temperature, a%trial%temperature, model%initial_temperature)
         else
           call a%elements%update(state%x, a%sys%du, state%elements, step%nlgeom, err)
         end if

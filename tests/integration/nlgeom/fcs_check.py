@@ -66,12 +66,14 @@ class Block:
         return lines
 
 
-def material_cards(young, poisson, bbar=False):
-    """One hypoelastic material on every element."""
+def material_cards(young, poisson, bbar=False, law='HYPOELASTIC'):
+    """One material on every element: hypoelastic (*HYPOELASTIC, the rate form of the paper,
+    whose closed forms these tests check) or, with law='ELASTIC', *ELASTIC (St Venant-Kirchhoff
+    under NLGEOM)."""
     section = '*SOLID SECTION, ELSET=ALL_ELEMENTS, MATERIAL=STEEL'
     if bbar:
         section += ', FORMULATION=BBAR'
-    return ['*MATERIAL, NAME=STEEL', '*ELASTIC', '%.17g, %.17g' % (young, poisson), section]
+    return ['*MATERIAL, NAME=STEEL', '*' + law, '%.17g, %.17g' % (young, poisson), section]
 
 
 def amplitude_card(name, times, values, time='STEP TIME'):
