@@ -44,6 +44,7 @@ module fcs_element_loops
   use fcs_hex8_element, only: hex8_rotate_stress, mises_stress
   use fcs_material, only: material_t, material_slot_t
   use fcs_voigt, only: spin_rotation, rotate_stress_like, rotate_strain_like
+  use fcs_simo_plasticity, only: simo_plasticity_t
   use fcs_st_venant_kirchhoff, only: green_lagrange_strain, cauchy_from_pk2, pk2_from_cauchy, &
                                      svk_jaumann_tangent, determinant_of
   use fcs_orientation, only: orientation_t, orientation_axes, stress_to_global, strain_to_local, &
@@ -530,8 +531,12 @@ contains
         end if
         if (.not. present(matrix)) cycle
         associate (material => this%materials(this%material(e))%m)
-          if (takes_svk(this, e, nlgeom)) then
-            call svk_tangents(this, e, xe(:, 1:n), fields%stress(:, :, e), c, err, temperature)
+          if (takes_svk(this, e, nlgeom) .or. takes_simo(this, e, nlgeom)) then
+            if (takes_svk(this, e, nlgeom)) then
+              call svk_tangents(this, e, xe(:, 1:n), fields%stress(:, :, e), c, err, temperature)
+            else
+              call simo_tangents(this, e, xe(:, 1:n), fields, c, err, elastic, temperature)
+            end if
             if (allocated(err)) return
             call element_tangent(kind, geo, fields%stress(:, :, e), c(:, :, 1:kind%n_points), &
                                  this%bbar(e), nlgeom, k(1:3 * n, 1:3 * n))
@@ -615,7 +620,21 @@ contains
         associate (material => this%materials(this%material(e))%m)
           thermal = present(temperature_start) .and. present(temperature_end)
           if (thermal) thermal = material%thermal%is_active()
-          if (takes_svk(this, e, nlgeom)) then
+          if (takes_simo(this, e, nlgeom)) then
+            call element_x(this, e, x, nlgeom, xe)
+            xe(:, 1:n) = xe(:, 1:n) + du_e(:, 1:n)
+            if (thermal) then
+              call point_temperatures(this, e, temperature_end, t_end)
+              t_zero = t_end
+              if (present(temperature_zero)) call point_temperatures(this, e, temperature_zero, t_zero)
+              call update_simo(this, e, xe(:, 1:n), fields, err, &
+                               reshape([t_zero(1:kind%n_points), t_end(1:kind%n_points)], &
+                                       [kind%n_points, 2]))
+            else
+              call update_simo(this, e, xe(:, 1:n), fields, err)
+            end if
+            if (allocated(err)) return
+          else if (takes_svk(this, e, nlgeom)) then
             call element_x(this, e, x, nlgeom, xe)
             if (thermal) then
               call point_temperatures(this, e, temperature_start, t_start)
@@ -676,6 +695,91 @@ contains
     svk = this%materials(this%material(e))%m%st_venant_kirchhoff .and. &
           this%catalogue%kinds(this%kind(e))%n_modes == 0
   end function takes_svk
+
+  !> Whether element e takes the multiplicative finite-strain plasticity of CalculiX
+  !> (fcs_simo_plasticity, doc/theory.md 2.8): under NLGEOM, a simo_plasticity_t material
+  !> (*ELASTIC with *PLASTIC) in an element without incompatible modes (C3D8I keeps the rate
+  !> form, as for St Venant-Kirchhoff: takes_svk).
+  pure logical function takes_simo(this, e, nlgeom) result(simo)
+    class(element_loops_t), intent(in) :: this
+    integer, intent(in) :: e
+    logical, intent(in) :: nlgeom
+    simo = nlgeom
+    if (.not. simo) return
+    simo = this%catalogue%kinds(this%kind(e))%n_modes == 0
+    if (.not. simo) return
+    select type (material => this%materials(this%material(e))%m)
+    type is (simo_plasticity_t)
+    class default
+      simo = .false.
+    end select
+  end function takes_simo
+
+  !> Multiplicative plasticity update of element e whose nodes have reached xe (3, n): the
+  !> stress and state of each point from its deformation gradient F at xe and its state at
+  !> the start of the increment (simo_finite_stress, a total form: no strain increments or
+  !> rotations); the strain becomes the Green-Lagrange strain of F (CalculiX's E).
+  !> `temperatures(q, :)`: the point's initial and end temperatures (ccx's thermal stretch
+  !> a = alpha (T - T_0) taken off F, the elastic constants at T).
+  subroutine update_simo(this, e, xe, fields, err, temperatures)
+    class(element_loops_t), intent(in) :: this
+    integer, intent(in) :: e
+    real(dp), intent(in) :: xe(:, :)
+    type(element_state_t), intent(inout) :: fields
+    type(error_t), allocatable, intent(out) :: err
+    real(dp), intent(in), optional :: temperatures(:, :)
+    real(dp) :: f(3, 3, MAX_POINTS), a, t
+    integer :: q
+    call deformation_gradients(this, e, xe, f, err)
+    if (allocated(err)) return
+    select type (material => this%materials(this%material(e))%m)
+    type is (simo_plasticity_t)
+      do q = 1, this%catalogue%kinds(this%kind(e))%n_points
+        a = 0.0_dp
+        t = 0.0_dp
+        if (present(temperatures)) then
+          a = first(material%thermal_strain_increment(temperatures(q, 1), temperatures(q, 2)))
+          t = temperatures(q, 2)
+        end if
+        call material%finite_stress(f(:, :, q), a, t, fields%material_state(:, q, e), &
+                                    fields%stress(:, q, e))
+        fields%strain(:, q, e) = green_lagrange_strain(f(:, :, q))
+      end do
+    end select
+  end subroutine update_simo
+
+  !> The tangents c(:, :, q) of element e's multiplicative plasticity (simo_finite_tangent)
+  !> at its nodes xe: of continued loading at points on their yield surface that `elastic`
+  !> does not mark as unloading, elastic elsewhere; elastic constants at the nodal
+  !> `temperature` interpolated to the points when given.
+  subroutine simo_tangents(this, e, xe, fields, c, err, elastic, temperature)
+    class(element_loops_t), intent(in) :: this
+    integer, intent(in) :: e
+    real(dp), intent(in) :: xe(:, :)
+    type(element_state_t), intent(in) :: fields
+    real(dp), intent(out) :: c(:, :, :)
+    type(error_t), allocatable, intent(out) :: err
+    logical, intent(in), optional :: elastic(:, :)
+    real(dp), intent(in), optional :: temperature(:)
+    real(dp) :: f(3, 3, MAX_POINTS), tq(MAX_POINTS)
+    integer :: q
+    logical :: plastic
+    call deformation_gradients(this, e, xe, f, err)
+    if (allocated(err)) return
+    tq = 0.0_dp
+    if (present(temperature)) call point_temperatures(this, e, temperature, tq)
+    select type (material => this%materials(this%material(e))%m)
+    type is (simo_plasticity_t)
+      do q = 1, this%catalogue%kinds(this%kind(e))%n_points
+        associate (state => fields%material_state(:, q, e))
+          plastic = material%on_surface(fields%stress(:, q, e), state)
+          if (present(elastic)) plastic = plastic .and. .not. elastic(q, e)
+          c(:, :, q) = material%finite_tangent(f(:, :, q), material%thermal_stretch(f(:, :, q), &
+                                               state), tq(q), state, plastic)
+        end associate
+      end do
+    end select
+  end subroutine simo_tangents
 
   !> Deformation gradients f(:, :, q) = dx/dX at the points of element e whose nodes are at xe
   !> (3, n), from the reference coordinates; with FORMULATION=BBAR the F-bar of de Souza Neto

@@ -179,7 +179,8 @@ contains
          'Small strain: sigma = C : eps. Under NLGEOM, CalculiX''s St Venant-Kirchhoff law: ' // &
          'the second Piola-Kirchhoff stress S = C : (E - E_th) of the Green-Lagrange strain E, ' // &
          'C in the reference axes, and E output is E (doc/theory.md section 2.10); with ' // &
-         'plasticity, and in C3D8I elements, the hypoelastic rate form of *HYPOELASTIC. ' // &
+         '*PLASTIC, CalculiX''s multiplicative finite-strain plasticity (section 2.8); with ' // &
+         '*DRUCKER PRAGER, and in C3D8I elements, the hypoelastic rate form of *HYPOELASTIC. ' // &
          'TYPE=ISO: isotropic, constant or as a table over ' // &
          'temperature (linear between the lines, constant beyond the first and last, as ' // &
          'CalculiX; elastic materials only, not with plasticity); with a table the stress ' // &
@@ -224,7 +225,9 @@ contains
          'lines all give the same density (a density that varies with temperature is refused).', &
          [p_none()], data_required=.true.), &
       kw('PLASTIC', CONTEXT_MODEL, 'CalculiX', 'von Mises plasticity of the current material ' // &
-         '(radial return in the rotated frame; doc/theory.md section 2.2). The curve is read as ' // &
+         '(radial return in the rotated frame; doc/theory.md section 2.2; under NLGEOM with ' // &
+         '*ELASTIC, CalculiX''s multiplicative finite-strain model of Simo 1988, section ' // &
+         '2.8, with *HYPOELASTIC the rotated-frame rate form). The curve is read as ' // &
          'CalculiX reads it: ISOTROPIC, the yield stress; KINEMATIC, the yield surface keeps ' // &
          'the first stress as its radius and its centre (back stress) moves so that uniaxial ' // &
          'loading follows the curve; COMBINED, as KINEMATIC with the radius from *CYCLIC ' // &

@@ -27,9 +27,9 @@ module fcs_von_mises
                        rotate_stress_like, rotate_strain_like
   implicit none
   private
-  public :: von_mises_t, N_STATE_VON_MISES
+  public :: von_mises_t, N_STATE_VON_MISES, PEEQ, PLASTIC_STRAIN, BACK_STRESS
 
-  !> Positions of the internal variables.
+  !> Positions of the internal variables (public for fcs_simo_plasticity, which extends them).
   integer, parameter :: PEEQ = 1, PLASTIC_STRAIN = 2, BACK_STRESS = 8
   integer, parameter :: N_STATE_VON_MISES = 13
 

@@ -5,7 +5,9 @@ module fcs_assembly
   use fcs_kinds, only: dp
   use fcs_error, only: error_t
   use fcs_model, only: model_t, BODY_GRAV
-  use fcs_material, only: material_slot_t
+  use fcs_material, only: material_t, material_slot_t
+  use fcs_von_mises, only: von_mises_t
+  use fcs_simo_plasticity, only: simo_from_von_mises
   use fcs_material_factory, only: create_material, PLASTICITY_NONE
   use fcs_element_loops, only: element_loops_t, BODY_FORCE_GRAVITY, BODY_FORCE_CENTRIFUGAL
   use fcs_sparse, only: sparse_matrix_t
@@ -33,12 +35,29 @@ contains
                              model%materials(k)%plastic, slots(k)%m, err)
       end if
       if (allocated(err)) return
+      ! *ELASTIC with *PLASTIC: multiplicative finite-strain plasticity under NLGEOM
+      ! (fcs_simo_plasticity, doc/theory.md 2.8); *HYPOELASTIC keeps the rate form.
+      if (.not. model%materials(k)%hypoelastic) call to_multiplicative(slots(k)%m)
       slots(k)%m%thermal = model%materials(k)%thermal
       ! *ELASTIC without plasticity: St Venant-Kirchhoff under NLGEOM (doc/theory.md 2.10).
       slots(k)%m%st_venant_kirchhoff = .not. model%materials(k)%hypoelastic .and. &
                                        model%materials(k)%plastic%model == PLASTICITY_NONE
     end do
   end subroutine make_materials
+
+  !> A von Mises material made CalculiX's multiplicative law (the rate form without NLGEOM);
+  !> any other material unchanged.
+  subroutine to_multiplicative(material)
+    class(material_t), allocatable, intent(inout) :: material
+    type(von_mises_t), allocatable :: law
+    select type (material)
+    type is (von_mises_t)
+      law = material
+    end select
+    if (.not. allocated(law)) return
+    deallocate (material)
+    allocate (material, source=simo_from_von_mises(law))
+  end subroutine to_multiplicative
 
   !> The stresses of *INITIAL CONDITIONS, TYPE=STRESS set into the integration-point fields
   !> at the start of the analysis, in deck order: a point's given stress, or, GEOSTATIC, at

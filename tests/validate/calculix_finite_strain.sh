@@ -1,11 +1,12 @@
 #!/bin/sh
-# Why CalculiX's NLGEOM *PLASTIC decks (beampiso, beampkin, beampik, beampt) differ from fcs3d
+# CalculiX's NLGEOM *PLASTIC decks (beampiso, beampkin, beampik, beampt) in one element
 # (`make validate`): one C3D8 in uniaxial stress at NLGEOM through ccx and fcs3d, against
 # CalculiX's finite-strain plasticity re-derived for uniaxial stress (Simo 1988, ccx's
-# incplas.f; it must reproduce ccx within 2e-5) and fcs3d's closed form (the small-strain J2
-# law on the logarithmic strain, within 1e-4); prints how the back-stress transport and the
-# flow rule split the differences of the beam decks (doc/theory.md 2.8). Skips (exit 77)
-# without ccx. About 15 s.
+# incplas.f; it must reproduce ccx within 2e-5); fcs3d's *ELASTIC + *PLASTIC must reproduce ccx
+# within 1e-4 (3e-4 heated) and its *HYPOELASTIC + *PLASTIC the rate form's closed form (the
+# small-strain J2 law on the logarithmic strain, within 1e-4); prints how the back-stress
+# transport and the flow rule split the differences between the two laws on the beam decks
+# (doc/theory.md 2.8). Skips (exit 77) without ccx. About 20 s.
 set -u
 here=$(cd "$(dirname "$0")/../.." && pwd)
 py=${PYTHON:-/usr/bin/python3}

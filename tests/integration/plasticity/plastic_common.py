@@ -56,10 +56,12 @@ def require_h5py():
 
 
 def von_mises_cards(young, poisson, curve, hardening='ISOTROPIC', cyclic=None, bbar=False,
-                    name='STEEL', elset='ALL_ELEMENTS'):
-    """*MATERIAL with *ELASTIC, *PLASTIC (curve: [(stress, plastic strain), ...]) and, for
-    COMBINED, *CYCLIC HARDENING; the *SOLID SECTION on elset."""
-    lines = ['*MATERIAL, NAME=%s' % name, '*ELASTIC', '%.17g, %.17g' % (young, poisson),
+                    name='STEEL', elset='ALL_ELEMENTS', hypoelastic=False):
+    """*MATERIAL with *ELASTIC (*HYPOELASTIC, the rate form under NLGEOM, with hypoelastic),
+    *PLASTIC (curve: [(stress, plastic strain), ...]) and, for COMBINED, *CYCLIC HARDENING; the
+    *SOLID SECTION on elset."""
+    lines = ['*MATERIAL, NAME=%s' % name, '*HYPOELASTIC' if hypoelastic else '*ELASTIC',
+             '%.17g, %.17g' % (young, poisson),
              '*PLASTIC, HARDENING=%s' % hardening]
     lines += ['%.17g, %.17g' % point for point in curve]
     if cyclic is not None:

@@ -25,9 +25,9 @@ gives the exact lateral contraction, the R-minimum yield events end the elastic 
 exactly on the surface, and the unloading switch (elastic tangent for a point the increment
 unloads) gives the elastic lateral contraction: what remains is round-off (measured 1e-13).
 
-NLGEOM (ISOTROPIC, monotonic to 10 % engineering strain): with fixed principal axes the
-Jaumann rate is the material rate and D_zz = d ln(l)/dt, so the rate law integrates to the
-same curve in logarithmic strain and Cauchy stress: s = s_y + E H/(E + H) (ln(l/l0) - s_y/E).
+NLGEOM (*HYPOELASTIC, the rate form; ISOTROPIC, monotonic to 10 % engineering strain): with
+fixed principal axes the Jaumann rate is the material rate and D_zz = d ln(l)/dt, so the rate
+law integrates to the same curve in logarithmic strain and Cauchy stress: s = s_y + E H/(E + H) (ln(l/l0) - s_y/E).
 The static-explicit increment is linear: each NLGEOM increment leaves an out-of-balance force
 of second order in its strain increment de (the tangent of the start configuration against
 the update on the mid-increment one), about E de^2, carried into and removed by the next
@@ -91,7 +91,8 @@ def deck(path, case, nlgeom=False, rmin=None, frequency=1, kind='C3D8', reverse=
         lines += pc.kind_mesh_cards((1.0, 1.0, 1.0), (2, 2, 2), kind, {
             'X0': lambda x, y, z: x == 0.0, 'Y0': lambda x, y, z: y == 0.0,
             'Z0': lambda x, y, z: z == 0.0, 'TOP': lambda x, y, z: z == 1.0})
-    lines += pc.von_mises_cards(YOUNG, POISSON, curve, hardening, cyclic)
+    # NLGEOM: the closed forms are the rate form's (logarithmic strain), *HYPOELASTIC's law.
+    lines += pc.von_mises_cards(YOUNG, POISSON, curve, hardening, cyclic, hypoelastic=nlgeom)
     lines += ['*BOUNDARY', 'X0, 1, 1', 'Y0, 2, 2', 'Z0, 3, 3']
     if nlgeom:
         lines += ['*STEP, NLGEOM', '*STATIC', '0.05, 1.'] + ([rmin] if rmin else [])
