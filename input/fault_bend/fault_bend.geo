@@ -41,7 +41,7 @@
 // (slave) side and at most h_fault * lower_fault_factor on the lower (master) side (an even
 // number of elements per segment). With the default lower_fault_factor = 1 the fault nodes of
 // the two sides coincide in position (still distinct nodes): matching fault nodes, which pass
-// the contact patch test (issue 19; doc/validation/fault_bend.md, section 8.5). With
+// the contact patch test (issue 19; doc/validation/fault_bend_paper_law.md, section 8.5). With
 // lower_fault_factor = 1.25 (the default before issue 19) they match only at C, D, E, F, G and
 // where the two divisions happen to agree. Away from
 // the fault the in-plane size grows linearly from h_fault to h_far over the distance h_grading.

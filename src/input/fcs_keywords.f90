@@ -516,9 +516,10 @@ contains
             'from their values at the end of the previous step (STEP, applied at once, is ' // &
             'not available).'), &
           p('NLGEOM', PARAM_CHOICE, choices=[s('YES'), s('NO')], flag_value='YES', &
-            description='Geometric nonlinearity: updated Lagrangian with the Jaumann rate ' // &
-            '(paper eq. 1). Once on, it stays on in the following steps until a step says ' // &
-            'NLGEOM=NO (as CalculiX and Abaqus); without it in any step so far, the step is ' // &
+            description='Geometric nonlinearity: updated Lagrangian (paper eq. 1; *ELASTIC ' // &
+            'is then St Venant-Kirchhoff, *HYPOELASTIC the Jaumann rate form). Once on, ' // &
+            'it stays on in the following steps until a step says NLGEOM=NO (as CalculiX ' // &
+            'and Abaqus); without it in any step so far, the step is ' // &
             'small-strain and linear in geometry.'), &
           p('INC', PARAM_INTEGER, default='1000000', &
             description='Maximum number of increments in the step. Unlike CalculiX (100), ' // &
