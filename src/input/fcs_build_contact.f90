@@ -125,11 +125,7 @@ contains
     type(model_t), intent(in) :: model
     type(builder_t), intent(inout) :: state
     type(diagnostics_t), intent(inout) :: diag
-    integer :: k
-    state%changed_behavior = 0
-    do k = 1, size(model%interactions)
-      if (model%interactions(k)%name == param_upper(card, 'INTERACTION')) state%changed_behavior = k
-    end do
+    state%changed_behavior = interaction_index(model, param_upper(card, 'INTERACTION'))
     if (state%changed_behavior == 0) then
       call diag%report(card%loc, '*CHANGE SURFACE BEHAVIOR: interaction "' // &
                        param_value(card, 'INTERACTION') // '" is not defined')
@@ -283,11 +279,7 @@ contains
     type(model_t), intent(in) :: model
     type(builder_t), intent(inout) :: state
     type(diagnostics_t), intent(inout) :: diag
-    integer :: k
-    state%changed_interaction = 0
-    do k = 1, size(model%interactions)
-      if (model%interactions(k)%name == param_upper(card, 'INTERACTION')) state%changed_interaction = k
-    end do
+    state%changed_interaction = interaction_index(model, param_upper(card, 'INTERACTION'))
     if (state%changed_interaction == 0) then
       call diag%report(card%loc, '*CHANGE FRICTION: interaction "' // &
                        param_value(card, 'INTERACTION') // '" is not defined')
@@ -601,5 +593,17 @@ contains
     end do
     model%contact_pairs = [model%contact_pairs, pair]
   end subroutine add_pair
+
+  !> Index of the *SURFACE INTERACTION named name (upper case) in model%interactions, 0 if none
+  !> (the last one of that name, as the handlers found it before).
+  pure integer function interaction_index(model, name) result(found)
+    type(model_t), intent(in) :: model
+    character(len=*), intent(in) :: name
+    integer :: k
+    found = 0
+    do k = 1, size(model%interactions)
+      if (model%interactions(k)%name == name) found = k
+    end do
+  end function interaction_index
 
 end module fcs_build_contact

@@ -34,7 +34,7 @@ module fcs_simo_plasticity
   use fcs_kinds, only: dp
   use fcs_von_mises, only: von_mises_t, N_STATE_VON_MISES, PEEQ, PLASTIC_STRAIN, BACK_STRESS
   use fcs_hardening_table, only: solve_flow_equation
-  use fcs_st_venant_kirchhoff, only: voigt_tensor, tensor_voigt, determinant_of
+  use fcs_st_venant_kirchhoff, only: voigt_tensor, tensor_voigt, determinant_of, inverse_of
   implicit none
   private
   public :: simo_plasticity_t, simo_from_von_mises, N_STATE_SIMO
@@ -104,7 +104,7 @@ contains
     end do
     c = matmul(transpose(fm), fm)
     j = determinant_of(fm)
-    c_inv = inverse3(c)
+    c_inv = inverse_of(c)
     j23 = j**(2.0_dp / 3.0_dp)
     cp_inv = IDENTITY + voigt_tensor(state(INVERSE_PLASTIC:INVERSE_PLASTIC + 5))
     b_ref = voigt_tensor(state(REFERENCE_BACK:REFERENCE_BACK + 5))
@@ -137,7 +137,7 @@ contains
       state(PEEQ) = alpha_n + d_alpha
       state(INVERSE_PLASTIC:INVERSE_PLASTIC + 5) = tensor_voigt(cp_inv - IDENTITY)
       state(REFERENCE_BACK:REFERENCE_BACK + 5) = tensor_voigt(b_ref)
-      state(PLASTIC_STRAIN:PLASTIC_STRAIN + 5) = engineering(0.5_dp * (inverse3(cp_inv) - IDENTITY))
+      state(PLASTIC_STRAIN:PLASTIC_STRAIN + 5) = engineering(0.5_dp * (inverse_of(cp_inv) - IDENTITY))
     end if
     s = s + 0.5_dp * k * (j**2 - 1.0_dp) * c_inv
     sigma = tensor_voigt(matmul(f, matmul(s, transpose(f)))) / determinant_of(f)
@@ -252,7 +252,7 @@ contains
     e_p = state(PLASTIC_STRAIN:PLASTIC_STRAIN + 5)
     e_p(4:6) = 0.5_dp * e_p(4:6)
     state(INVERSE_PLASTIC:INVERSE_PLASTIC + 5) = &
-      tensor_voigt(inverse3(IDENTITY + 2.0_dp * voigt_tensor(e_p)) - IDENTITY)
+      tensor_voigt(inverse_of(IDENTITY + 2.0_dp * voigt_tensor(e_p)) - IDENTITY)
   end subroutine simo_add_plastic_strain
 
   pure integer function simo_n_state(this)
@@ -278,21 +278,5 @@ contains
     real(dp), intent(in) :: t(3, 3)
     trace = t(1, 1) + t(2, 2) + t(3, 3)
   end function trace
-
-  !> Inverse of a 3 x 3 matrix with a nonzero determinant (adjugate over determinant).
-  pure function inverse3(f) result(g)
-    real(dp), intent(in) :: f(3, 3)
-    real(dp) :: g(3, 3)
-    g(1, 1) = f(2, 2) * f(3, 3) - f(2, 3) * f(3, 2)
-    g(1, 2) = f(1, 3) * f(3, 2) - f(1, 2) * f(3, 3)
-    g(1, 3) = f(1, 2) * f(2, 3) - f(1, 3) * f(2, 2)
-    g(2, 1) = f(2, 3) * f(3, 1) - f(2, 1) * f(3, 3)
-    g(2, 2) = f(1, 1) * f(3, 3) - f(1, 3) * f(3, 1)
-    g(2, 3) = f(1, 3) * f(2, 1) - f(1, 1) * f(2, 3)
-    g(3, 1) = f(2, 1) * f(3, 2) - f(2, 2) * f(3, 1)
-    g(3, 2) = f(1, 2) * f(3, 1) - f(1, 1) * f(3, 2)
-    g(3, 3) = f(1, 1) * f(2, 2) - f(1, 2) * f(2, 1)
-    g = g / determinant_of(f)
-  end function inverse3
 
 end module fcs_simo_plasticity

@@ -12,7 +12,7 @@ module fcs_st_venant_kirchhoff
   implicit none
   private
   public :: green_lagrange_strain, cauchy_from_pk2, pk2_from_cauchy, svk_jaumann_tangent
-  public :: determinant_of, voigt_tensor, tensor_voigt
+  public :: determinant_of, inverse_of, voigt_tensor, tensor_voigt
 
   !> Voigt index of the tensor components (i, j).
   integer, parameter :: VOIGT_INDEX(3, 3) = reshape([1, 4, 5, 4, 2, 6, 5, 6, 3], [3, 3])
