@@ -9,7 +9,7 @@
 module fcs_build_constraints
   use fcs_kinds, only: dp
   use fcs_deck_lexer, only: card_t, data_line_t
-  use fcs_diagnostics, only: diagnostics_t
+  use fcs_diagnostics, only: diagnostics_t, source_loc_t
   use fcs_deck_fields, only: line_int, line_real, is_integer_text, param_value, resolve_nodes, &
                              resolve_elements
   use fcs_model, only: model_t, transform_def_t
@@ -21,6 +21,7 @@ module fcs_build_constraints
   implicit none
   private
   public :: handle_equation, handle_mpc, handle_rigid_body, handle_transform, resolve_transforms
+  public :: rigid_equations, unique
 
   !> Terms per data line of *EQUATION, as CalculiX reads them (12 entries per line).
   integer, parameter :: MAX_TERMS_PER_LINE = 4
@@ -476,9 +477,7 @@ contains
     type(model_t), intent(inout) :: model
     type(diagnostics_t), intent(inout) :: diag
     integer, allocatable :: members(:), elements(:)
-    type(linear_equation_t) :: equation
-    integer :: ref, rot, k, p, i, i1, i2
-    real(dp) :: r(3)
+    integer :: ref, rot, k
     if (len(param_value(card, 'NSET')) > 0 .eqv. len(param_value(card, 'ELSET')) > 0) then
       call diag%report(card%loc, '*RIGID BODY: give either NSET= or ELSET= (the nodes of the body)')
       return
@@ -512,10 +511,25 @@ contains
       return
     end if
     model%rotation_nodes = [model%rotation_nodes, rot]
+    call rigid_equations(model, members, ref, rot, 1, 3, card%loc, '*RIGID BODY')
+  end subroutine handle_rigid_body
+
+  !> The rigid-body equations (doc/theory.md (L5)) of the nodes `members` in directions
+  !> first..last, about reference node `ref` with the rotation held by the three degrees of
+  !> freedom of `rot`; each also a nonlinear constraint (N3) for steps with NLGEOM. Used by
+  !> *RIGID BODY (directions 1-3) and *COUPLING with *KINEMATIC (the directions given).
+  subroutine rigid_equations(model, members, ref, rot, first, last, loc, origin)
+    type(model_t), intent(inout) :: model
+    integer, intent(in) :: members(:), ref, rot, first, last
+    type(source_loc_t), intent(in) :: loc
+    character(len=*), intent(in) :: origin
+    type(linear_equation_t) :: equation
+    real(dp) :: r(3)
+    integer :: k, p, i, i1, i2
     do k = 1, size(members)
       p = members(k)
       r = model%mesh%x(:, p) - model%mesh%x(:, ref)
-      do i = 1, 3
+      do i = first, last
         i1 = mod(i, 3) + 1
         i2 = mod(i + 1, 3) + 1
         ! (theta x r)_i = theta_i1 r_i2 - theta_i2 r_i1; theta_i's term, zero here, is that
@@ -523,15 +537,15 @@ contains
         equation%terms = [constraint_term_t(p, i, 1.0_dp), constraint_term_t(ref, i, -1.0_dp), &
                           constraint_term_t(rot, i1, -r(i2)), constraint_term_t(rot, i2, r(i1)), &
                           constraint_term_t(rot, i, 0.0_dp)]
-        equation%loc = card%loc
-        equation%origin = '*RIGID BODY'
+        equation%loc = loc
+        equation%origin = origin
         equation%transmits = .true.
         model%equations = [model%equations, equation]
         model%nonlinear_constraints = [model%nonlinear_constraints, nonlinear_constraint_t( &
           CONSTRAINT_RIGID, size(model%equations), [p, ref, rot], i, 0, r)]
       end do
     end do
-  end subroutine handle_rigid_body
+  end subroutine rigid_equations
 
   !> *TRANSFORM, NSET=, TYPE=R|C: one data line with the points a and b (ccx manual,
   !> *TRANSFORM); the axes are worked out per node after the last card (`resolve_transforms`).

@@ -269,9 +269,9 @@ contains
             if (.not. line_int(line, 3, last, 'last degree of freedom', 'BOUNDARY', diag)) cycle
           end if
         end if
-        if (.not. valid_dofs(line, first, last, diag)) cycle
         if (.not. line_optional_real(line, 4, value, 0.0_dp, 'value', 'BOUNDARY', diag)) cycle
         call resolve_nodes(model%mesh, line%fields(1)%s, line, 'BOUNDARY', diag, nodes)
+        if (.not. valid_dofs(line, first, last, all_coupled(state, nodes), diag)) cycle
         c%kind = merge(BC_VELOCITY, BC_DISPLACEMENT, param_upper(card, 'TYPE') == 'VELOCITY')
         if (has_flag(card, 'FIXED')) then
           c%kind = BC_FIXED
@@ -283,9 +283,8 @@ contains
         c%amplitude = amplitude
         origin = record_line(state, line%loc)
         do j = 1, size(nodes)
-          c%node = nodes(j)
           do dof = first, last
-            c%dof = dof
+            call coupled_dof(state, nodes(j), dof, c%node, c%dof)
             call state%boundary%put(c, state%scope, origin, clash)
             if (clash > 0) call report_clash(state, model, line%loc, 'BOUNDARY', c, clash, &
                                              n_clashes, diag)
@@ -347,15 +346,45 @@ contains
       ' more degrees of freedom with two different conditions in the same step')
   end subroutine report_more_clashes
 
-  logical function valid_dofs(line, first, last, diag) result(ok)
+  !> Degree of freedom `dof` of `node` as fcs3d holds it: 4-6 of the reference node of a
+  !> *KINEMATIC coupling are 1-3 of its generated rotation node (fcs_build_coupling).
+  subroutine coupled_dof(state, node, dof, held_node, held_dof)
+    type(builder_t), intent(in) :: state
+    integer, intent(in) :: node, dof
+    integer, intent(out) :: held_node, held_dof
+    held_node = node
+    held_dof = dof
+    if (dof <= 3) return
+    held_node = state%coupling_rots(findloc(state%coupling_refs, node, 1))
+    held_dof = dof - 3
+  end subroutine coupled_dof
+
+  !> True when every node is the reference node of a *KINEMATIC coupling (which has
+  !> rotations 4-6).
+  logical function all_coupled(state, nodes)
+    type(builder_t), intent(in) :: state
+    integer, intent(in) :: nodes(:)
+    integer :: j
+    all_coupled = .false.
+    if (.not. allocated(state%coupling_refs) .or. size(nodes) == 0) return
+    do j = 1, size(nodes)
+      if (.not. any(state%coupling_refs == nodes(j))) return
+    end do
+    all_coupled = .true.
+  end function all_coupled
+
+  logical function valid_dofs(line, first, last, rotations, diag) result(ok)
     type(data_line_t), intent(in) :: line
     integer, intent(in) :: first, last
+    !> The nodes have rotations 4-6 (reference nodes of *KINEMATIC couplings).
+    logical, intent(in) :: rotations
     type(diagnostics_t), intent(inout) :: diag
-    ok = first >= 1 .and. last <= 3 .and. first <= last
+    ok = first >= 1 .and. last <= merge(6, 3, rotations) .and. first <= last
     if (ok) return
     if (first >= 4 .and. first <= 6 .or. last >= 4 .and. last <= 6) then
       call diag%report(line%loc, '*BOUNDARY: degrees of freedom 4-6 are rotations, which solid ' // &
-                       'elements do not have; use 1, 2, 3 (x, y, z)')
+                       'elements do not have (only the reference node of a *COUPLING with ' // &
+                       '*KINEMATIC has them); use 1, 2, 3 (x, y, z)')
     else
       call diag%report(line%loc, '*BOUNDARY: degrees of freedom must satisfy 1 <= first <= ' // &
                        'last <= 3 (x, y, z)')
@@ -385,18 +414,18 @@ contains
           cycle
         end if
         if (.not. line_int(line, 2, dof, 'degree of freedom', 'CLOAD', diag)) cycle
-        if (dof < 1 .or. dof > 3) then
-          call diag%report(line%loc, '*CLOAD: the degree of freedom must be 1, 2 or 3 (x, y, z)')
-          cycle
-        end if
         if (.not. line_real(line, 3, value, 'magnitude', 'CLOAD', diag)) cycle
         call resolve_nodes(model%mesh, line%fields(1)%s, line, 'CLOAD', diag, nodes)
-        c%dof = dof
+        if (dof < 1 .or. dof > merge(6, 3, all_coupled(state, nodes))) then
+          call diag%report(line%loc, '*CLOAD: the degree of freedom must be 1, 2 or 3 (x, y, z; ' // &
+            'moments 4-6 only at the reference node of a *COUPLING with *KINEMATIC)')
+          cycle
+        end if
         c%value = value
         c%amplitude = amplitude
         origin = record_line(state, line%loc)
         do j = 1, size(nodes)
-          c%node = nodes(j)
+          call coupled_dof(state, nodes(j), dof, c%node, c%dof)
           call state%loads%put(c, state%scope, origin, clash)
           if (clash > 0) call report_clash(state, model, line%loc, 'CLOAD', c, clash, &
                                            n_clashes, diag)

@@ -58,6 +58,16 @@ module fcs_builder_state
     !> that must follow it (0: none pending), and where it was.
     integer :: changed_behavior = 0
     type(source_loc_t) :: behavior_loc
+    !> The *COUPLING that awaits its *KINEMATIC or *DISTRIBUTING (coupling_ref = 0: none):
+    !> its reference node and surface (indices), its name and line.
+    integer :: coupling_ref = 0
+    integer :: coupling_surface = 0
+    character(len=:), allocatable :: coupling_name
+    type(source_loc_t) :: coupling_loc
+    !> The reference nodes of the *KINEMATIC couplings so far and their generated rotation
+    !> nodes: *BOUNDARY and *CLOAD on degrees of freedom 4-6 of such a reference node go to
+    !> degrees of freedom 1-3 of its rotation node (CalculiX's rotations of the reference node).
+    integer, allocatable :: coupling_refs(:), coupling_rots(:)
     logical :: in_step = .false.
     !> 0 for the model data, k while step k is read: conditions of one scope must agree.
     integer :: scope = 0

@@ -453,6 +453,36 @@ contains
           p('ROT NODE', PARAM_INTEGER, required=.true., description='Rotation node (its ' // &
             'three degrees of freedom are the rotation of the body, radians); defined by *NODE, ' // &
             'in no element.')]), &
+      kw('COUPLING', CONTEXT_MODEL, 'CalculiX', 'Couples the nodes of a surface to a ' // &
+         'reference node; the next card says how: *KINEMATIC (rigid) or *DISTRIBUTING ' // &
+         '(area-weighted mean). No data lines.', '', &
+         [p('REF NODE', PARAM_INTEGER, required=.true., description='Reference node, ' // &
+            'defined by *NODE.'), &
+          p('SURFACE', PARAM_NAME, required=.true., description='The coupled surface ' // &
+            '(element faces; *KINEMATIC also takes a nodal surface).'), &
+          p('CONSTRAINT NAME', PARAM_NAME, required=.true., description='Name of the ' // &
+            'coupling (for messages).'), &
+          p('ORIENTATION', PARAM_NAME, description='Local axes of the coupled degrees of ' // &
+            'freedom: not available in fcs3d (an input error); the directions are global.')]), &
+      kw('KINEMATIC', CONTEXT_MODEL, 'CalculiX', 'Follows *COUPLING: the surface nodes ' // &
+         'follow, in the directions given, the rigid motion of the reference node. As ' // &
+         'CalculiX, fcs3d generates a rotation node (the next node number, printed as a ' // &
+         'warning) whose degrees of freedom 1-3 are the rotation of the reference node, ' // &
+         'radians (CalculiX''s degrees of freedom 4-6 of the reference node: *BOUNDARY and ' // &
+         '*CLOAD on the rotation go to that node), and writes the equations of *RIGID BODY: ' // &
+         'linearised without NLGEOM, finite rotations with it (doc/theory.md 6.2.4). RF at ' // &
+         'the reference node is the force the surface transmits.', &
+         'first degree of freedom, last degree of freedom (1..3; last = first when absent); ' // &
+         'several lines allowed.', [p_none()], data_required=.true.), &
+      kw('DISTRIBUTING', CONTEXT_MODEL, 'CalculiX', 'Follows *COUPLING: the translation of ' // &
+         'the reference node is the mean of the surface nodes'' translations weighted by ' // &
+         'their nodal areas (CalculiX''s weights), a linear equation per direction whose ' // &
+         'dependent term is the reference node''s: a *CLOAD there is spread over the ' // &
+         'surface in proportion to the nodal areas (doc/theory.md 6.2.4). The three ' // &
+         'translations are always coupled, as in CalculiX; the rotations 4-6 are not ' // &
+         'available (an input error).', &
+         'first degree of freedom, last degree of freedom (1..3; last = first when absent).', &
+         [p_none()], data_required=.true.), &
       kw('TRANSFORM', CONTEXT_MODEL, 'CalculiX', 'Local axes for the nodes of a node set: ' // &
          '*BOUNDARY, *CLOAD and *EQUATION terms on them are in these axes, and *NODE PRINT ' // &
          'prints their U and RF in them (rows marked L), as CalculiX does. The three ' // &

@@ -39,6 +39,7 @@ module fcs_model_builder
                                resolve_pair_interactions, handle_change_friction
   use fcs_build_constraints, only: handle_equation, handle_mpc, handle_rigid_body, &
                                    handle_transform, resolve_transforms
+  use fcs_build_coupling, only: handle_coupling, handle_kinematic, handle_distributing
   use fcs_model, only: model_t, step_t
   use fcs_element_loops, only: mesh_kinds
   use fcs_model_checks, only: check_model
@@ -287,6 +288,12 @@ contains
       call handle_mpc(card, model, diag)
     case ('RIGID BODY')
       call handle_rigid_body(card, model, diag)
+    case ('COUPLING')
+      call handle_coupling(card, model, state, diag)
+    case ('KINEMATIC')
+      call handle_kinematic(card, model, state, diag)
+    case ('DISTRIBUTING')
+      call handle_distributing(card, model, state, diag)
     case ('TRANSFORM')
       call handle_transform(card, model, diag)
     case ('AMPLITUDE')
@@ -332,6 +339,11 @@ contains
       call diag%report(state%behavior_loc, '*CHANGE SURFACE BEHAVIOR must be followed directly ' // &
                        'by the *SURFACE BEHAVIOR card of the new behaviour')
       state%changed_behavior = 0
+    end if
+    if (state%coupling_ref > 0 .and. card%keyword /= 'COUPLING') then
+      call diag%report(state%coupling_loc, '*COUPLING must be followed directly by *KINEMATIC ' // &
+                       'or *DISTRIBUTING (the kind of coupling and its degrees of freedom)')
+      state%coupling_ref = 0
     end if
   end subroutine dispatch
 
@@ -558,9 +570,9 @@ contains
       reason = 'fcs3d has 3D solid elements only (C3D4, C3D6, C3D8, C3D8R, C3D8I, C3D10, ' // &
                'C3D15, C3D20, C3D20R)'
     else if (is_one_of(keyword, [character(len=34) :: &
-             'COUPLING', 'DISTRIBUTING', 'KINEMATIC', 'CYCLIC SYMMETRY MODEL'])) then
-      reason = 'constraints other than *BOUNDARY, *EQUATION, *MPC (PLANE, STRAIGHT), *RIGID ' // &
-               'BODY and *TRANSFORM are not available yet'
+             'CYCLIC SYMMETRY MODEL'])) then
+      reason = 'constraints other than *BOUNDARY, *EQUATION, *MPC (PLANE, STRAIGHT, MEANROT), ' // &
+               '*RIGID BODY, *COUPLING and *TRANSFORM are not available yet'
     else if (is_one_of(keyword, [character(len=34) :: &
              'CONDUCTIVITY', 'SPECIFIC HEAT', 'HYPERELASTIC', 'HYPERFOAM', 'CREEP', &
              'USER MATERIAL', 'DEFORMATION PLASTICITY', 'RATE DEPENDENT', 'CAP PLASTICITY', &
