@@ -5,7 +5,7 @@
 !> along the master normal n, positive open), when g <= ADJUST (ADJUST=<clearance>; a
 !> penetrating node, g < 0, is always moved) or when the node is in the node set
 !> (ADJUST=<node set>). The reference coordinates change: the moved node starts stress-free
-!> on the master (doc/theory.md 4.12).
+!> on the master (doc/theory.md 4.13).
 !>
 !> fcs3d moves the node to its closest-point projection on the master face (the same point
 !> as -g n on a flat face; CalculiX projects onto the plane of a triangle of its
