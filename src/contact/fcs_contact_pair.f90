@@ -38,6 +38,11 @@ module fcs_contact_pair
     logical :: surface_to_surface = .false.
     !> *TIE: slave nodes farther than this from the master are not tied (<= 0: default).
     real(dp) :: position_tolerance = 0.0_dp
+    !> *CONTACT PAIR, ADJUST=: slave nodes with a signed gap up to adjust_distance [length]
+    !> (< 0: none), or those of node set adjust_set (0: none), are moved onto the master
+    !> before the analysis (fcs_contact_adjust).
+    real(dp) :: adjust_distance = -1.0_dp
+    integer :: adjust_set = 0
     !> Resolved penalties E_n, E_t [stress/length] and friction coefficient of this pair.
     real(dp) :: normal_stiffness = 0.0_dp
     real(dp) :: stick_stiffness = 0.0_dp

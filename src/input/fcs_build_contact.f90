@@ -455,6 +455,9 @@ contains
       'SLIDING is accepted as finite sliding: fcs3d finds each slave node''s master face once ' // &
       'per increment, as CalculiX does with SMALL SLIDING, and follows the node over the ' // &
       'master surface from increment to increment')
+    if (card%find_param('ADJUST') > 0) then
+      if (.not. adjust_parameter(card, model, diag, pair)) return
+    end if
     do i = 1, card%n_lines
       if (.not. pair_surfaces(card, i, model, diag, pair)) cycle
       if (pair%surface_to_surface) then
@@ -467,6 +470,38 @@ contains
       call add_pair(model, pair, card%lines(i)%loc, diag)
     end do
   end subroutine handle_contact_pair
+
+  !> *CONTACT PAIR, ADJUST=: a clearance (a number >= 0) or a node set (its name), as
+  !> CalculiX reads it; the move itself is fcs_contact_adjust's, after the model is built.
+  logical function adjust_parameter(card, model, diag, pair) result(ok)
+    type(card_t), intent(in) :: card
+    type(model_t), intent(in) :: model
+    type(diagnostics_t), intent(inout) :: diag
+    type(contact_pair_def_t), intent(inout) :: pair
+    character(len=:), allocatable :: text
+    real(dp) :: value
+    text = param_value(card, 'ADJUST')
+    pair%adjust_set = model%mesh%find_node_set(to_upper(text))
+    ok = pair%adjust_set > 0
+    if (ok) return
+    call parse_real(text, value, ok)
+    if (ok) then
+      ok = value >= 0.0_dp
+      if (ok) then
+        pair%adjust_distance = value
+      else
+        call diag%report(card%loc, '*CONTACT PAIR: ADJUST=' // text // ' is negative; ' // &
+          'expected a clearance >= 0 (slave nodes at most that far from the master are ' // &
+          'moved onto it) or a node set')
+      end if
+    else if (len(text) > 0 .and. verify(text(1:1), '0123456789+-.') == 0) then
+      call diag%report(card%loc, '*CONTACT PAIR: ADJUST=' // text // ' is not a number; ' // &
+        'expected a clearance >= 0 or the name of a node set')
+    else
+      call diag%report(card%loc, '*CONTACT PAIR: ADJUST=' // text // ': no node set of ' // &
+        'that name (define it with *NSET before the pair), nor a number (a clearance >= 0)')
+    end if
+  end function adjust_parameter
 
   !> The slave surface of a TYPE=SURFACE TO SURFACE pair (data line i): its element-face
   !> definition (integration points need faces); a node-based one is refused.

@@ -390,7 +390,12 @@ contains
             'node''s master face once per increment instead of in every iteration. Accepted ' // &
             'with a warning: fcs3d always finds it once per increment (and keeps it through ' // &
             'the increment''s equilibrium iterations) and follows the node over the master ' // &
-            'surface from increment to increment (finite sliding).')], &
+            'surface from increment to increment (finite sliding).'), &
+          p('ADJUST', PARAM_TEXT, unit='length, or a node set', description='A clearance: slave nodes whose ' // &
+            'gap to the master surface (signed, along its normal) is at most this, penetrating ' // &
+            'ones included, are moved onto the master before the analysis (the mesh ' // &
+            'coordinates change; doc/theory.md 4.13). Or a node set: its slave nodes are ' // &
+            'moved, whatever their gap. Nodes whose projection falls on no master face stay.')], &
          data_required=.true.), &
       kw('TIE', CONTEXT_MODEL, 'CalculiX', 'Tie a slave surface to a master surface: no ' // &
          'relative motion ever. Between 4-node faces a segment-to-segment penalty tie ' // &

@@ -20,6 +20,7 @@ module fcs_driver
   use fcs_linear_solver, only: solver_stats_t
   use fcs_factor_reuse, only: reuse_settings_t
   use fcs_contact_friction_change, only: apply_friction_changes, apply_behavior_changes
+  use fcs_contact_adjust, only: adjust_report_t, adjust_pair_nodes
   use fcs_run_outputs, only: run_outputs_t, log_contact_totals
   use fcs_output_schedule, only: histories_due
   use fcs_echo, only: write_echo
@@ -185,6 +186,7 @@ contains
     do i = 1, size(model%warnings)
       call run%log%warn(model%warnings(i)%s)
     end do
+    call adjust_contact_nodes(run%log, model)
     if (len(options%solver) > 0) model%solver_name = to_upper(options%solver)
     if (options%reuse_tolerance >= 0.0_dp) model%reuse_tolerance = options%reuse_tolerance
     if (run%analysis%share%comm%size > 1 .and. len(options%solver) == 0 .and. .not. model%solver_chosen) &
@@ -197,6 +199,31 @@ contains
       str(run%analysis%share%comm%size) // ' processes (elements partitioned by METIS, solver ' // &
       model%solver_name // ')')
   end subroutine read_model
+
+  !> *CONTACT PAIR, ADJUST=: the slave nodes moved onto their master surfaces, pair by pair
+  !> in deck order, before anything is built on the coordinates (state, contact search,
+  !> results geometry), so that every output and a restart see the moved mesh.
+  subroutine adjust_contact_nodes(log, model)
+    type(logger_t), intent(inout) :: log
+    type(model_t), intent(inout) :: model
+    type(adjust_report_t) :: report
+    integer :: p
+    character(len=32) :: largest
+    do p = 1, size(model%contact_pairs)
+      associate (def => model%contact_pairs(p))
+        if (def%adjust_distance < 0.0_dp .and. def%adjust_set == 0) cycle
+        call adjust_pair_nodes(def, model%mesh, report)
+        if (report%moved == 0) then
+          call log%info('*CONTACT PAIR ' // def%name // ', ADJUST: no slave node moved')
+          cycle
+        end if
+        write (largest, '(es12.5)') report%largest
+        call log%info('*CONTACT PAIR ' // def%name // ', ADJUST: ' // str(report%moved) // &
+          ' slave node(s) moved onto the master surface, largest move ' // trim(adjustl(largest)) // &
+          ' (node ' // str(model%mesh%node_id(report%largest_node)) // ')')
+      end associate
+    end do
+  end subroutine adjust_contact_nodes
 
   subroutine describe_model(log, model, options)
     type(logger_t), intent(inout) :: log
