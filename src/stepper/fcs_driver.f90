@@ -209,6 +209,7 @@ contains
     type(adjust_report_t) :: report
     integer :: p
     character(len=32) :: largest
+    integer :: ios
     do p = 1, size(model%contact_pairs)
       associate (def => model%contact_pairs(p))
         if (def%adjust_distance < 0.0_dp .and. def%adjust_set == 0) cycle
@@ -217,7 +218,8 @@ contains
           call log%info('*CONTACT PAIR ' // def%name // ', ADJUST: no slave node moved')
           cycle
         end if
-        write (largest, '(es12.5)') report%largest
+        write (largest, '(es12.5)', iostat=ios) report%largest
+        if (ios /= 0) largest = '?'
         call log%info('*CONTACT PAIR ' // def%name // ', ADJUST: ' // str(report%moved) // &
           ' slave node(s) moved onto the master surface, largest move ' // trim(adjustl(largest)) // &
           ' (node ' // str(model%mesh%node_id(report%largest_node)) // ')')
