@@ -243,21 +243,7 @@ contains
     type(contact_node_t), intent(in) :: node
     class(log_rate_law_t), intent(in) :: law
     real(dp) :: f(15)
-    type(contact_update_t) :: u
-    type(segment_point_t) :: p, p_old
-    real(dp) :: xm_new(3, 4), xs_new(3), gap, total(3)
-    logical :: converged
-    integer :: i
-    xs_new = xs + du(1:3)
-    xm_new = xm + reshape(du(4:15), [3, 4])
-    call project_to_segment(xm_new, xs_new, xi0, p, gap, converged)
-    p_old = segment_point(xm_new, xi0)
-    u = contact_update(p, gap, p_old, node, PARAMS, law, dt)
-    total = u%normal_force * p%normal + u%friction(1) * p%e(:, 1) + u%friction(2) * p%e(:, 2)
-    f(1:3) = total
-    do i = 1, 4
-      f(3 * i + 1:3 * i + 3) = -p%shape(i) * total
-    end do
+    f = damped_forces_after(xm, xs, xi0, node, law, PARAMS, dt, du)
   end function rate_forces_after
 
   !> The slip tangent with a rate-dependent law (eq. 6 with dmu/dV: a spring E_t A in series
@@ -327,10 +313,12 @@ contains
     call suite%close_to(norm2(u%friction), MU * fn, 1.0e-12_dp, 'undamped return: |f| = mu f_n')
   end subroutine test_damped_return
 
-  !> Forces after moving the nodes by du from the slipping state `node`, with law, contact
-  !> parameters `params` (radiation damping) and time increment dt.
-  function damped_forces_after(xm, xs, xi0, node, law, params, dt, du) result(f)
+  !> Forces after moving the nodes by du from the state `node`, with law, contact parameters
+  !> `params` (radiation damping, VELOCITY=RELATIVE) and time increment dt; the projection
+  !> starts from xi_guess when given (else from xi0, the previous contact point).
+  function damped_forces_after(xm, xs, xi0, node, law, params, dt, du, xi_guess) result(f)
     real(dp), intent(in) :: xm(3, 4), xs(3), xi0(2), dt, du(15)
+    real(dp), intent(in), optional :: xi_guess(2)
     type(contact_node_t), intent(in) :: node
     class(log_rate_law_t), intent(in) :: law
     type(contact_params_t), intent(in) :: params
@@ -342,7 +330,11 @@ contains
     integer :: i
     xs_new = xs + du(1:3)
     xm_new = xm + reshape(du(4:15), [3, 4])
-    call project_to_segment(xm_new, xs_new, xi0, p, gap, converged)
+    if (present(xi_guess)) then
+      call project_to_segment(xm_new, xs_new, xi_guess, p, gap, converged)
+    else
+      call project_to_segment(xm_new, xs_new, xi0, p, gap, converged)
+    end if
     p_old = segment_point(xm_new, xi0)
     u = contact_update(p, gap, p_old, node, params, law, dt)
     total = u%normal_force * p%normal + u%friction(1) * p%e(:, 1) + u%friction(2) * p%e(:, 2)
@@ -464,31 +456,6 @@ contains
                         'explicit relative reading: |f| = mu(V_rel, previous) f_n')
   end subroutine test_relative_return
 
-  !> Forces after moving the nodes by du, for a slave that started the increment at xi0 with
-  !> state `node`, with `law`, contact parameters `params` and time increment dt.
-  function relative_forces_after(xm, xs, xi0, node, law, params, dt, du, xi_guess) result(f)
-    real(dp), intent(in) :: xm(3, 4), xs(3), xi0(2), dt, du(15), xi_guess(2)
-    type(contact_node_t), intent(in) :: node
-    class(log_rate_law_t), intent(in) :: law
-    type(contact_params_t), intent(in) :: params
-    real(dp) :: f(15)
-    type(contact_update_t) :: u
-    type(segment_point_t) :: p, p_old
-    real(dp) :: xm_new(3, 4), xs_new(3), gap, total(3)
-    logical :: converged
-    integer :: i
-    xs_new = xs + du(1:3)
-    xm_new = xm + reshape(du(4:15), [3, 4])
-    call project_to_segment(xm_new, xs_new, xi_guess, p, gap, converged)
-    p_old = segment_point(xm_new, xi0)
-    u = contact_update(p, gap, p_old, node, params, law, dt)
-    total = u%normal_force * p%normal + u%friction(1) * p%e(:, 1) + u%friction(2) * p%e(:, 2)
-    f(1:3) = total
-    do i = 1, 4
-      f(3 * i + 1:3 * i + 3) = -p%shape(i) * total
-    end do
-  end function relative_forces_after
-
   !> The slip tangent of VELOCITY=RELATIVE with an implicit rate (eqs. 6-9 with the
   !> d mu / d u~dot_eq term: mu follows the total relative motion s since the start of the
   !> increment, V = |s_t|/dt, not in series with E_t A) at an iterate that has moved from xi0
@@ -530,8 +497,8 @@ contains
     call random_number(v)
     v = v - 0.5_dp
     eps = 1.0e-6_dp
-    fd = (relative_forces_after(xm, xs, xi0, start, law, params_rel, DT, eps * v, p%xi) - &
-          relative_forces_after(xm, xs, xi0, start, law, params_rel, DT, -eps * v, p%xi)) / (2 * eps)
+    fd = (damped_forces_after(xm, xs, xi0, start, law, params_rel, DT, eps * v, p%xi) - &
+          damped_forces_after(xm, xs, xi0, start, law, params_rel, DT, -eps * v, p%xi)) / (2 * eps)
     call suite%close_array(matmul(lin%stiffness(1:15, 1:15), v), -fd, 1.0e-7_dp, &
                            'relative reading: K_f = -dF/du with the d mu/dV_eq term')
     k_fd = matmul(lin%stiffness(1:15, 1:15), v)
