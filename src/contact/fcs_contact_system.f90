@@ -178,11 +178,15 @@ module fcs_contact_system
     !> Offer the R-minimum events of the trial increment to the collector. The trial path is
     !> du(r) = du_fixed + r du_scaled (the out-of-balance correction is applied in full, the
     !> load increment scaled by r); contact quantities are linear in du (their linearisation).
-    module subroutine system_events(this, x, cstate, du_fixed, du_scaled, collector)
+    !> With `tangential` false (*RMIN, CONTACT EVENTS=NORMAL) a sticking node reaching the
+    !> cone and a node reaching a shared edge of its segment are no events: the equilibrium
+    !> iterations decide its stick or slip and its segment.
+    module subroutine system_events(this, x, cstate, du_fixed, du_scaled, collector, tangential)
       class(contact_system_t), intent(inout) :: this
       real(dp), intent(in) :: x(:, :), du_fixed(:), du_scaled(:)
       type(contact_state_t), intent(in) :: cstate
       type(rmin_collector_t), intent(inout) :: collector
+      logical, intent(in) :: tangential
     end subroutine system_events
 
     !> State changes at the very start of the trial increment (r = 0), handled as in

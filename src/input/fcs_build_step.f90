@@ -200,6 +200,7 @@ contains
     state%step%rmin%equilibrium_tolerance = balance
     state%step%rmin%max_iterations = iterations
     state%step%rmin%carry_unbalanced = param_upper(card, 'NO EQUILIBRIUM') == 'CARRY'
+    state%step%rmin%tangential_contact_events = param_upper(card, 'CONTACT EVENTS') /= 'NORMAL'
     state%step%rmin%max_log_rate_change = rate_change
     state%step%rmin%max_friction_change = mu_change
     state%step%rmin%max_state_change = state_change

@@ -228,6 +228,12 @@ module fcs_model
     !> (false) or is taken without them, its out-of-balance force carried into the next
     !> increment (true: NO EQUILIBRIUM=CARRY).
     logical :: carry_unbalanced = .false.
+    !> CONTACT EVENTS: the tangential contact changes (a node reaching the friction cone, a
+    !> node reaching a shared edge of its master segment) end the increment (true: ALL, the
+    !> paper's R-minimum events), or are left to the equilibrium iterations, which decide
+    !> stick or slip and the segment on the corrected solution (false: NORMAL; opening,
+    !> closing and leaving the master surface stay events).
+    logical :: tangential_contact_events = .true.
   end type rmin_settings_t
 
   !> *CHANGE FRICTION in a step: the Coulomb friction of interaction `interaction` from this

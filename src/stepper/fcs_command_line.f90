@@ -28,6 +28,7 @@ contains
     options%deck_path = ''
     options%solver = ''
     options%restart_file = ''
+    options%contact_events = ''
     output_dir = ''
     markdown = .false.
     list_keywords = .false.
@@ -54,7 +55,7 @@ contains
         options%check_only = .true.
       case ('-q', '--quiet')
         options%quiet = .true.
-      case ('--solver', '--restart', '-o', '--output-dir', '--reuse-tolerance')
+      case ('--solver', '--restart', '-o', '--output-dir', '--reuse-tolerance', '--contact-events')
         if (i == n) then
           call input_error(err, 'option ' // arg // ' needs a value (fcs3d --help)')
           return
@@ -78,6 +79,13 @@ contains
         case ('--reuse-tolerance')
           call parse_reuse_tolerance(argument(i), options, err)
           if (allocated(err)) return
+        case ('--contact-events')
+          options%contact_events = to_upper(argument(i))
+          if (options%contact_events /= 'ALL' .and. options%contact_events /= 'NORMAL') then
+            call input_error(err, '--contact-events ' // argument(i) // ': expected ' // &
+                             option_value_text('--contact-events'))
+            return
+          end if
         case default
           output_dir = argument(i)
         end select
@@ -124,6 +132,8 @@ contains
       text = 'the checkpoint to continue from, e.g. job.rst.h5; without --restart the run starts afresh'
     case ('--reuse-tolerance')
       text = 'a number in [0, 1e-3], e.g. 1e-10 (0: factorise every tangent)'
+    case ('--contact-events')
+      text = 'ALL or NORMAL (as *RMIN, CONTACT EVENTS)'
     case default
       text = 'an existing directory for the output files; without -o they go next to the deck'
     end select
@@ -187,6 +197,12 @@ contains
       '                        relative residual of a tangent solved by GMRES with the factors', &
       '                        of an earlier one (default 0: factorise every tangent; 1e-10', &
       '                        recommended when on); overrides *SOLVER, REUSE TOLERANCE', &
+      '  --contact-events ALL|NORMAL', &
+      '                        which contact state changes end an increment: ALL (the', &
+      '                        R-minimum default) or only opening and closing (NORMAL: onsets', &
+      '                        of slip and segment hand-overs left to the equilibrium', &
+      '                        iterations, fewer increments); overrides *RMIN, CONTACT EVENTS', &
+      '                        in every step', &
       '  -o, --output-dir DIR  write the output files into DIR (which must exist)', &
       '  -q, --quiet           no progress on the terminal (warnings and errors still shown)', &
       '', &

@@ -189,6 +189,8 @@ contains
     call adjust_contact_nodes(run%log, model)
     if (len(options%solver) > 0) model%solver_name = to_upper(options%solver)
     if (options%reuse_tolerance >= 0.0_dp) model%reuse_tolerance = options%reuse_tolerance
+    if (len(options%contact_events) > 0) &
+      model%steps(:)%rmin%tangential_contact_events = options%contact_events == 'ALL'
     if (run%analysis%share%comm%size > 1 .and. len(options%solver) == 0 .and. .not. model%solver_chosen) &
       model%solver_name = 'MUMPS'
     if (run%writer) call write_echo(options%job // '.echo', deck, model, err)
@@ -605,6 +607,7 @@ contains
     type(model_t), intent(in) :: model
     integer, intent(in) :: k
     type(error_t), allocatable, intent(out) :: err
+    character(len=:), allocatable :: onsets
     associate (state => run%analysis%state)
       if (model%has_temperature .and. state%step_time == 0.0_dp) &
         state%step_start_temperature = state%temperature
@@ -625,10 +628,13 @@ contains
         state%step_start_u = state%u
         state%step_increment = 0
       end if
+      onsets = ''
+      if (.not. model%steps(k)%rmin%tangential_contact_events) onsets = ', onsets of slip and ' // &
+        'segment hand-overs left to the equilibrium iterations (CONTACT EVENTS=NORMAL)'
       call run%log%info('step ' // str(k) // ' ("' // model%steps(k)%name // '"): period ' // &
         str(model%steps(k)%period) // ', increments between ' // str(model%steps(k)%min_increment) // &
         ' and ' // str(model%steps(k)%max_increment) // trim(merge(', NLGEOM', '        ', &
-        model%steps(k)%nlgeom)))
+        model%steps(k)%nlgeom)) // onsets)
     end associate
   end subroutine begin_step
 

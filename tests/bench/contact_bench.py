@@ -6,6 +6,7 @@ Usage: contact_bench.py --fcs3d BIN [--fcs3d-mpi BIN] [--sizes 13,24,35] [--work
                         [--threads 2] [--ranks 2] [--timeout 3600] [--skyline-limit 30000]
                         [--markdown FILE] [--skip 'ccx@35,...'] [--no-estimate]
                         [--solvers UMFPACK,MUMPS] [--reuse 0,1e-10]
+                        [--contact-events ALL,NORMAL] [--deck own|capped]
 
 For each size N, the deck of tests/bench/contact_deck.py (a block of N x N x (N+1)//2 C3D8
 pressed on a larger block with a non-matching mesh, then pushed sideways until it slides
@@ -18,11 +19,14 @@ runs, one run at a time, through
                            divided among the ranks (OMP_NUM_THREADS = threads / ranks);
   ccx                      CalculiX on the same file (CCX_NPROC_* = --threads);
   ccx own increments       CalculiX on the same model with *STATIC left to its own automatic
-                           incrementation (no maximum increment in step 2). The deck caps
-                           fcs3d's increments at 0.05 of step 2 because its explicit friction
-                           update overshoots mu N with longer ones (contact_deck.py); ccx's
-                           Newton iterations do not need the cap, so this row is the cost of
+                           incrementation (no maximum increment in step 2): the cost of
                            CalculiX as one would run it.
+fcs3d runs the deck without the cap (--deck own, the default: the file of "ccx own increments",
+each step *STATIC 1., 1.; since issue 21's equilibrium iterations fcs3d needs no cap, T/(mu N)
+ends within 0.5 %) or the capped one (--deck capped, the file of "ccx": increments at most 0.05
+of step 2, as make bench measured before). The ratios of each row are against CalculiX on the
+file fcs3d runs: "ccx own increments" with --deck own, "ccx" with --deck capped; that CalculiX
+row runs first.
 
 Figures per run:
   increments            fcs3d: "done: N increment(s)" of <job>.log (or the last "inc" line of a
@@ -48,8 +52,11 @@ Figures per run:
 of fcs3d; 0: factorise every tangent), labelled "reuse off" / "reuse 1e-10", one after the
 other in the same script run; without it fcs3d runs with its default. After the table, the
 "factorisation reuse" line of each fcs3d log (solves, GMRES iterations, factorisations) is
-printed. --solvers limits the fcs3d solvers (default: SKYLINE up to --skyline-limit, UMFPACK,
-MUMPS).
+printed. --contact-events ALL,NORMAL runs every fcs3d row once per value of --contact-events
+(*RMIN, CONTACT EVENTS: ALL, every contact change an R-minimum event, fcs3d's default; NORMAL,
+onsets of slip and segment hand-overs left to the equilibrium iterations; doc/theory.md 6.9),
+labelled "events ALL" / "events NORMAL". --solvers limits the fcs3d solvers (default: SKYLINE
+up to --skyline-limit, UMFPACK, MUMPS).
 Runs that exceed --timeout are stopped with SIGINT (fcs3d writes a checkpoint and exits; ccx
 stops); their row keeps the increments done, the time reached and the time per increment, and
 has no time to the final load. Memory guard as in tests/bench/bench.py: every run is limited to
@@ -194,8 +201,15 @@ def reuse_label(tolerance):
     return ", reuse off" if float(tolerance) == 0.0 else f", reuse {tolerance}"
 
 
-def run_fcs3d(binary, deck, solver, workdir, env, timeout, limit_mib, ranks=None, reuse=None):
-    label = f"fcs3d {solver}" + (f" {ranks} ranks" if ranks else "") + reuse_label(reuse)
+def events_label(events):
+    """', events NORMAL' for a --contact-events value, '' for fcs3d's default."""
+    return "" if events is None else f", events {events.upper()}"
+
+
+def run_fcs3d(binary, deck, solver, workdir, env, timeout, limit_mib, ranks=None, reuse=None,
+              events=None):
+    label = (f"fcs3d {solver}" + (f" {ranks} ranks" if ranks else "") + reuse_label(reuse) +
+             events_label(events))
     outdir = os.path.join(workdir, re.sub(r"[^a-z0-9.-]+", "_", label.split(" ", 1)[1].lower()))
     os.makedirs(outdir, exist_ok=True)
     job = os.path.splitext(os.path.basename(deck))[0]
@@ -203,6 +217,8 @@ def run_fcs3d(binary, deck, solver, workdir, env, timeout, limit_mib, ranks=None
     command = [binary, "-q", "--solver", solver, "-o", outdir, deck]
     if reuse is not None:
         command[2:2] = ["--reuse-tolerance", str(reuse)]
+    if events is not None:
+        command[2:2] = ["--contact-events", events.upper()]
     rank_name = None
     if ranks:
         command = ["mpirun", "--oversubscribe", "-np", str(ranks)] + command
@@ -357,8 +373,15 @@ def main():
                         "(default: SKYLINE up to --skyline-limit, UMFPACK, MUMPS)")
     parser.add_argument("--reuse", help="factorisation-reuse tolerances: each fcs3d run once "
                         "per value, e.g. '0,1e-10' (0: off); default: fcs3d's own default")
+    parser.add_argument("--contact-events", help="fcs3d's --contact-events: each fcs3d run once "
+                        "per value, e.g. 'ALL,NORMAL'; default: fcs3d's own default (ALL)")
+    parser.add_argument("--deck", choices=("own", "capped"), default="own",
+                        help="the deck fcs3d runs: without the increment cap (own, the file "
+                        "of 'ccx own increments') or with it (capped, the file of 'ccx')")
     args = parser.parse_args()
     tolerances = [t.strip() for t in args.reuse.split(",")] if args.reuse else [None]
+    event_modes = ([e.strip() for e in args.contact_events.split(",")]
+                   if args.contact_events else [None])
     skip = {item.strip() for item in args.skip.split(",") if item.strip()}
     threads = str(args.threads)
     env = dict(os.environ, OMP_NUM_THREADS=threads, OPENBLAS_NUM_THREADS=threads,
@@ -380,7 +403,9 @@ def main():
              f"memory limit per run: {limit_mib / 1024:.1f} GiB; timeout per run: "
              f"{args.timeout:.0f} s",
              f"model: tests/bench/contact_deck.py, mu = {contact_deck.MU}, final load at "
-             f"time {FINAL_TIME:g} (push {contact_deck.PUSH:g})"]
+             f"time {FINAL_TIME:g} (push {contact_deck.PUSH:g}); fcs3d runs the "
+             f"{'uncapped' if args.deck == 'own' else 'capped'} deck, ratios against "
+             f"{'ccx own increments' if args.deck == 'own' else 'ccx'}"]
     header = ("| DOF | program, solver | increments | factorisations | final time | "
               "wall to final load [s] | CPU [s] | peak memory [MiB] | per increment [s] | "
               "factorisations per increment | T = RF_x | T/(mu N) - 1 | T vs ccx | "
@@ -417,25 +442,30 @@ def main():
         own = os.path.join(workdir, "own", f"contact{n}.inp")
         os.makedirs(os.path.dirname(own), exist_ok=True)
         contact_deck.write_deck(n, own, cap=False)
-        reference = attempt("ccx", n, dofs,
-                            lambda: run_ccx(deck, workdir, "ccx", env, args.timeout, limit_mib))
+        ccx_runs = [("ccx", lambda: run_ccx(deck, workdir, "ccx", env, args.timeout,
+                                            limit_mib)),
+                    ("ccx own increments",
+                     lambda: run_ccx(own, workdir, "ccx own increments", env, args.timeout,
+                                     limit_mib))]
+        if args.deck == "own":
+            ccx_runs.reverse()
+        fcs_deck = own if args.deck == "own" else deck
+        reference = attempt(ccx_runs[0][0], n, dofs, ccx_runs[0][1])
         emit(dofs, reference, reference)
-        runs = [("ccx own increments",
-                 lambda: run_ccx(own, workdir, "ccx own increments", env, args.timeout,
-                                 limit_mib))]
+        runs = ccx_runs[1:]
         solvers = (["SKYLINE"] if dofs <= args.skyline_limit else []) + ["UMFPACK", "MUMPS"]
         if args.solvers:
             solvers = [s.strip().upper() for s in args.solvers.split(",")]
-        runs += [(f"fcs3d {s}{reuse_label(t)}",
-                  lambda s=s, t=t: run_fcs3d(args.fcs3d, deck, s, workdir, env, args.timeout,
-                                             limit_mib, reuse=t))
-                 for s in solvers for t in tolerances]
+        runs += [(f"fcs3d {s}{reuse_label(t)}{events_label(e)}",
+                  lambda s=s, t=t, e=e: run_fcs3d(args.fcs3d, fcs_deck, s, workdir, env,
+                                                  args.timeout, limit_mib, reuse=t, events=e))
+                 for s in solvers for e in event_modes for t in tolerances]
         if args.fcs3d_mpi:
-            runs += [(f"fcs3d MUMPS {args.ranks} ranks{reuse_label(t)}",
-                      lambda t=t: run_fcs3d(args.fcs3d_mpi, deck, "MUMPS", workdir, mpi_env,
-                                            args.timeout, limit_mib, ranks=args.ranks,
-                                            reuse=t))
-                     for t in tolerances]
+            runs += [(f"fcs3d MUMPS {args.ranks} ranks{reuse_label(t)}{events_label(e)}",
+                      lambda t=t, e=e: run_fcs3d(args.fcs3d_mpi, fcs_deck, "MUMPS", workdir,
+                                                 mpi_env, args.timeout, limit_mib,
+                                                 ranks=args.ranks, reuse=t, events=e))
+                     for e in event_modes for t in tolerances]
         for program, run in runs:
             emit(dofs, attempt(program, n, dofs, run), reference)
     if reuse_notes:
