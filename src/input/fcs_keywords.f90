@@ -628,8 +628,9 @@ contains
             'static-explicit scheme of the paper), marked (carried) in the log. A ' // &
             'velocity-weakening slip event has no quasi-static equilibrium: without radiation ' // &
             'damping only CARRY runs through it.'), &
-          p('CONTACT EVENTS', PARAM_CHOICE, default='ALL', choices=[s('ALL'), s('NORMAL')], &
-            description='Which contact state changes end an increment. ALL: every one (an ' // &
+          p('CONTACT EVENTS', PARAM_CHOICE, choices=[s('ALL'), s('NORMAL')], &
+            description='Which contact state changes end an increment. ALL (when absent): ' // &
+            'every one (an ' // &
             'R-minimum event, the paper''s method: each onset of slip and each hand-over of a ' // &
             'node to the next master segment resolved in time). NORMAL: only the normal ones ' // &
             '(closing, opening, leaving the master surface); a node that reaches the friction ' // &
@@ -639,7 +640,8 @@ contains
             'does: far fewer increments when many nodes start to slip or slide over segment ' // &
             'edges one after the other; onsets of slip are then known only to within an ' // &
             'increment (doc/theory.md section 6.9). The command line option --contact-events ' // &
-            'overrides it in every step.')]), &
+            'overrides it in every step. (Absent rather than a filled-in default, so that ' // &
+            'the checkpoints of decks written before it existed still match their steps.)')]), &
       kw('BOUNDARY', CONTEXT_ANY, 'CalculiX', 'Prescribed displacements (fixed or ' // &
          'given values) or velocities on nodes or node sets.', &
          'node or node set, first dof, last dof (default: first), value (default 0); ' // &
