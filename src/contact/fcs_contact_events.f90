@@ -41,7 +41,7 @@ contains
       call linearise(this, s, x, cstate, 0.0_dp, lin)
       p = segment_point(x(:, nodes(2:)), cstate%xi(:, s))
       call closed_node_events(this, s, p, cstate, lin, due_fixed(1:n_dof), due_scaled(1:n_dof), &
-                              collector, tangential)
+                              collector, events)
     end do
   end procedure system_events
 
@@ -121,11 +121,11 @@ contains
   end procedure system_switch_states
 
   !> Opening, stick-to-slip (the quadratic F(r) = 0 of eq. 3), segment exit, along the
-  !> path du_fixed + r du_scaled; with `tangential` false only opening and the exit from the
-  !> master surface (the end of the extension past a free edge), not stick-to-slip nor the
-  !> hand-over to the next segment.
+  !> path du_fixed + r du_scaled, as `events` (CONTACT_EVENTS_*) asks: stick-to-slip and the
+  !> hand-over to the next segment under ALL, opening and the exit from the master surface
+  !> (the end of the extension past a free edge) under ALL and NORMAL.
   subroutine closed_node_events(this, s, p, cstate, lin, due_fixed, due_scaled, collector, &
-                                tangential)
+                                events)
     type(contact_system_t), intent(inout) :: this
     integer, intent(in) :: s
     type(segment_point_t), intent(in) :: p
@@ -133,14 +133,16 @@ contains
     type(contact_linear_t), intent(in) :: lin
     real(dp), intent(in) :: due_fixed(:), due_scaled(:)
     type(rmin_collector_t), intent(inout) :: collector
-    logical, intent(in) :: tangential
+    integer, intent(in) :: events
     real(dp) :: fn, dfn, ft(3), dft(3), mu, qa, qb, qc, xi_start(2), dxi(2), r, fn_floor, bound
     integer :: alpha, edge, n_dof
     n_dof = size(due_fixed)
     associate (pair => this%pairs(this%slave_pair(s)))
       fn = cstate%normal_force(s) + dot_product(lin%dfn(1:n_dof), due_fixed)
       dfn = dot_product(lin%dfn(1:n_dof), due_scaled)
-      if (exponential(this, s)) then
+      if (events == CONTACT_EVENTS_CLOSING) then
+        continue
+      else if (exponential(this, s)) then
         call exponential_opening(this, s, p, cstate, due_fixed, due_scaled, collector)
       else
         fn_floor = normal_force_floor(this, s)
@@ -150,7 +152,7 @@ contains
       ft = cstate%friction(1, s) * p%e(:, 1) + cstate%friction(2, s) * p%e(:, 2) + &
            matmul(lin%dft_stick(:, 1:n_dof), due_fixed)
       mu = cone_mu(this, s, cstate)
-      if (cstate%status(s) == CONTACT_STICK .and. tangential) then
+      if (cstate%status(s) == CONTACT_STICK .and. events == CONTACT_EVENTS_ALL) then
         dft = matmul(lin%dft_stick(:, 1:n_dof), due_scaled)
         qa = dot_product(dft, dft) - mu**2 * dfn**2
         qb = 2.0_dp * (dot_product(ft, dft) - mu**2 * fn * dfn)
@@ -161,7 +163,7 @@ contains
       xi_start = cstate%xi(:, s) + matmul(lin%dxi(:, 1:n_dof), due_fixed)
       dxi = matmul(lin%dxi(:, 1:n_dof), due_scaled)
       if (is_triangle(p%n_nodes)) then
-        call triangle_edge_events(this, s, cstate, xi_start, dxi, collector, tangential)
+        call triangle_edge_events(this, s, cstate, xi_start, dxi, collector, events)
         return
       end if
       do alpha = 1, 2
@@ -175,11 +177,8 @@ contains
           edge = merge(1, 3, xi_start(alpha) + dxi(alpha) < 0.0_dp)
         end if
         bound = 1.0_dp
-        if (pair%free_edge(edge, cstate%face(s))) then
-          bound = 1.0_dp + EDGE_EXTENSION
-        else if (.not. tangential) then
-          cycle
-        end if
+        if (pair%free_edge(edge, cstate%face(s))) bound = 1.0_dp + EDGE_EXTENSION
+        if (.not. edge_is_event(events, bound > 1.0_dp)) cycle
         if (abs(cstate%xi(alpha, s)) < bound - SEGMENT_EDGE_TOLERANCE .and. &
             abs(xi_start(alpha) + dxi(alpha)) > bound) &
           call offer(this, collector, s, crossing(abs(xi_start(alpha)) - bound, &
@@ -209,15 +208,15 @@ contains
   !> Segment events of a node on a triangular segment along xi_start + r dxi: reaching an
   !> edge (excess 0, the hand-over to the next segment) or the end of the extension past a
   !> free edge (excess EDGE_EXTENSION, the node leaves the master surface), from strictly
-  !> before it (fcs_contact_search's edge excess, linear in xi); with `tangential` false
-  !> only the latter.
-  subroutine triangle_edge_events(this, s, cstate, xi_start, dxi, collector, tangential)
+  !> before it (fcs_contact_search's edge excess, linear in xi); which of them are events,
+  !> `events` says (edge_is_event).
+  subroutine triangle_edge_events(this, s, cstate, xi_start, dxi, collector, events)
     type(contact_system_t), intent(inout) :: this
     integer, intent(in) :: s
     type(contact_state_t), intent(in) :: cstate
     real(dp), intent(in) :: xi_start(2), dxi(2)
     type(rmin_collector_t), intent(inout) :: collector
-    logical, intent(in) :: tangential
+    integer, intent(in) :: events
     real(dp) :: now(4), start(4), finish(4), bound
     integer :: edge
     now = edge_excess(cstate%xi(:, s), 3)
@@ -225,16 +224,26 @@ contains
     finish = edge_excess(xi_start + dxi, 3)
     do edge = 1, 3
       bound = 0.0_dp
-      if (this%pairs(this%slave_pair(s))%free_edge(edge, cstate%face(s))) then
-        bound = EDGE_EXTENSION
-      else if (.not. tangential) then
-        cycle
-      end if
+      if (this%pairs(this%slave_pair(s))%free_edge(edge, cstate%face(s))) bound = EDGE_EXTENSION
+      if (.not. edge_is_event(events, bound > 0.0_dp)) cycle
       if (now(edge) < bound - SEGMENT_EDGE_TOLERANCE .and. finish(edge) > bound) &
         call offer(this, collector, s, crossing(start(edge) - bound, finish(edge) - bound), &
                    EVENT_SEGMENT_CHANGE)
     end do
   end subroutine triangle_edge_events
+
+  !> Is reaching an edge of the segment an event under `events` (CONTACT_EVENTS_*)? The end of
+  !> the extension past a free edge (`free`: the node leaves the master surface) is under ALL
+  !> and NORMAL, a shared edge (the hand-over to the next segment) under ALL only.
+  pure logical function edge_is_event(events, free)
+    integer, intent(in) :: events
+    logical, intent(in) :: free
+    if (free) then
+      edge_is_event = events /= CONTACT_EVENTS_CLOSING
+    else
+      edge_is_event = events == CONTACT_EVENTS_ALL
+    end if
+  end function edge_is_event
 
   !> Round-off level [force^2] of the cone function F(r) = |f_t + r df_t|^2 -
   !> mu^2 (f_n + r df_n)^2 and of its coefficients: 1e-10 of the square of the largest force

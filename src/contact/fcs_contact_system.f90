@@ -33,7 +33,7 @@ module fcs_contact_system
   use fcs_sparse, only: sparse_matrix_t
   use fcs_rmin_events, only: rmin_collector_t, EVENT_CONTACT_CLOSE, EVENT_CONTACT_OPEN, &
                              EVENT_STICK_TO_SLIP, EVENT_SEGMENT_CHANGE, &
-                             EVENT_NONE
+                             EVENT_NONE, CONTACT_EVENTS_ALL, CONTACT_EVENTS_CLOSING
   use fcs_sort, only: unique_sorted, argsort_integers
   use fcs_strings, only: str
   use fcs_diagnostics, only: format_location
@@ -178,15 +178,16 @@ module fcs_contact_system
     !> Offer the R-minimum events of the trial increment to the collector. The trial path is
     !> du(r) = du_fixed + r du_scaled (the out-of-balance correction is applied in full, the
     !> load increment scaled by r); contact quantities are linear in du (their linearisation).
-    !> With `tangential` false (*RMIN, CONTACT EVENTS=NORMAL) a sticking node reaching the
-    !> cone and a node reaching a shared edge of its segment are no events: the equilibrium
-    !> iterations decide its stick or slip and its segment.
-    module subroutine system_events(this, x, cstate, du_fixed, du_scaled, collector, tangential)
+    !> `events` (*RMIN, CONTACT EVENTS; CONTACT_EVENTS_* of fcs_rmin_events) says which changes
+    !> are offered: under NORMAL a sticking node reaching the cone and a node reaching a shared
+    !> edge of its segment are no events, under CLOSING an opening node and a node leaving the
+    !> master surface are not either: the equilibrium iterations decide those states.
+    module subroutine system_events(this, x, cstate, du_fixed, du_scaled, collector, events)
       class(contact_system_t), intent(inout) :: this
       real(dp), intent(in) :: x(:, :), du_fixed(:), du_scaled(:)
       type(contact_state_t), intent(in) :: cstate
       type(rmin_collector_t), intent(inout) :: collector
-      logical, intent(in) :: tangential
+      integer, intent(in) :: events
     end subroutine system_events
 
     !> State changes at the very start of the trial increment (r = 0), handled as in

@@ -13,6 +13,7 @@ module fcs_rmin_events
   public :: EVENT_SLIP_TO_STICK, EVENT_SEGMENT_CHANGE, EVENT_SLIP_RATE_CHANGE
   public :: EVENT_FRICTION_CHANGE, EVENT_STATE_CHANGE, EVENT_PENETRATION_LIMIT
   public :: EVENT_PLASTIC_STRAIN_LIMIT, EVENT_SLIP_INCREMENT
+  public :: CONTACT_EVENTS_ALL, CONTACT_EVENTS_NORMAL, CONTACT_EVENTS_CLOSING, contact_events_level
 
   !> Event kinds. FULL_INCREMENT: nothing limited the trial increment. STRAIN_LIMIT,
   !> ROTATION_LIMIT and PLASTIC_STRAIN_LIMIT are limits (never widened to near-simultaneous
@@ -22,6 +23,12 @@ module fcs_rmin_events
     EVENT_STICK_TO_SLIP = 7, EVENT_SLIP_TO_STICK = 8, EVENT_SEGMENT_CHANGE = 9, &
     EVENT_SLIP_RATE_CHANGE = 10, EVENT_FRICTION_CHANGE = 11, EVENT_STATE_CHANGE = 12, &
     EVENT_PENETRATION_LIMIT = 13, EVENT_PLASTIC_STRAIN_LIMIT = 14, EVENT_SLIP_INCREMENT = 15
+
+  !> Which contact state changes are events (*RMIN, CONTACT EVENTS; doc/theory.md 6.9): ALL of
+  !> them; NORMAL: closing, opening and leaving the master surface (onsets of slip and segment
+  !> hand-overs left to the equilibrium iterations); CLOSING: closing only (opening left to
+  !> them too). Ordered: a change is an event when the setting is at most its level.
+  integer, parameter :: CONTACT_EVENTS_ALL = 1, CONTACT_EVENTS_NORMAL = 2, CONTACT_EVENTS_CLOSING = 3
 
   !> One event: its fraction r of the trial increment, kind, and the entity (element or node
   !> index) with a detail (integration point, contact pair).
@@ -177,5 +184,19 @@ contains
       name = 'none'
     end select
   end function event_kind_name
+
+  !> The CONTACT_EVENTS_* level of a value of *RMIN, CONTACT EVENTS or --contact-events (ALL
+  !> when absent; the keyword table has checked the value).
+  pure integer function contact_events_level(value) result(level)
+    character(len=*), intent(in) :: value
+    select case (value)
+    case ('NORMAL')
+      level = CONTACT_EVENTS_NORMAL
+    case ('CLOSING')
+      level = CONTACT_EVENTS_CLOSING
+    case default
+      level = CONTACT_EVENTS_ALL
+    end select
+  end function contact_events_level
 
 end module fcs_rmin_events

@@ -9,6 +9,7 @@
 !> both lines, where CalculiX would silently keep the later.
 module fcs_build_step
   use fcs_kinds, only: dp
+  use fcs_rmin_events, only: contact_events_level
   use fcs_deck_lexer, only: card_t, data_line_t
   use fcs_deck_fields, only: param_upper, param_value, has_flag, line_real, line_int, &
                              line_optional_real, resolve_nodes, resolve_elements, is_integer_text
@@ -200,7 +201,7 @@ contains
     state%step%rmin%equilibrium_tolerance = balance
     state%step%rmin%max_iterations = iterations
     state%step%rmin%carry_unbalanced = param_upper(card, 'NO EQUILIBRIUM') == 'CARRY'
-    state%step%rmin%tangential_contact_events = param_upper(card, 'CONTACT EVENTS') /= 'NORMAL'
+    state%step%rmin%contact_events = contact_events_level(param_upper(card, 'CONTACT EVENTS'))
     state%step%rmin%max_log_rate_change = rate_change
     state%step%rmin%max_friction_change = mu_change
     state%step%rmin%max_state_change = state_change

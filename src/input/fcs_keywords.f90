@@ -628,20 +628,23 @@ contains
             'static-explicit scheme of the paper), marked (carried) in the log. A ' // &
             'velocity-weakening slip event has no quasi-static equilibrium: without radiation ' // &
             'damping only CARRY runs through it.'), &
-          p('CONTACT EVENTS', PARAM_CHOICE, choices=[s('ALL'), s('NORMAL')], &
+          p('CONTACT EVENTS', PARAM_CHOICE, choices=[s('ALL'), s('NORMAL'), s('CLOSING')], &
             description='Which contact state changes end an increment. ALL (when absent): ' // &
-            'every one (an ' // &
-            'R-minimum event, the paper''s method: each onset of slip and each hand-over of a ' // &
-            'node to the next master segment resolved in time). NORMAL: only the normal ones ' // &
-            '(closing, opening, leaving the master surface); a node that reaches the friction ' // &
-            'cone or a shared edge of its segment does not end the increment, the equilibrium ' // &
-            'iterations decide its stick or slip (the return mapping of eq. 5 from the start ' // &
-            'of the increment) and its segment on the corrected solution, as an implicit code ' // &
-            'does: far fewer increments when many nodes start to slip or slide over segment ' // &
-            'edges one after the other; onsets of slip are then known only to within an ' // &
-            'increment (doc/theory.md section 6.9). The command line option --contact-events ' // &
-            'overrides it in every step. (Absent rather than a filled-in default, so that ' // &
-            'the checkpoints of decks written before it existed still match their steps.)')]), &
+            'every one (an R-minimum event, the paper''s method: each onset of slip, each ' // &
+            'hand-over of a node to the next master segment, each opening resolved in time). ' // &
+            'NORMAL: only closing, opening and leaving the master surface; a node that ' // &
+            'reaches the friction cone or a shared edge of its segment does not end the ' // &
+            'increment, the equilibrium iterations decide its stick or slip (the return ' // &
+            'mapping of eq. 5 from the start of the increment) and its segment on the ' // &
+            'corrected solution, as an implicit code does. CLOSING: only closing; a node ' // &
+            'whose normal force falls to zero, or that slides off the master surface, opens ' // &
+            'in the iterations too (a node held closed that ends in tension is opened and the ' // &
+            'iterations go on). Far fewer increments when many nodes start to slip, slide over ' // &
+            'segment edges or lift off one after the other; those changes are then known only ' // &
+            'to within an increment (doc/theory.md section 6.9). The command line option ' // &
+            '--contact-events overrides it in every step. (Absent rather than a filled-in ' // &
+            'default, so that the checkpoints of decks written before it existed still match ' // &
+            'their steps.)')]), &
       kw('BOUNDARY', CONTEXT_ANY, 'CalculiX', 'Prescribed displacements (fixed or ' // &
          'given values) or velocities on nodes or node sets.', &
          'node or node set, first dof, last dof (default: first), value (default 0); ' // &

@@ -3,6 +3,7 @@
 !> changes it. Units are the deck's own (consistent units, e.g. mm, s, MPa, N).
 module fcs_model
   use fcs_kinds, only: dp
+  use fcs_rmin_events, only: CONTACT_EVENTS_ALL
   use fcs_mesh, only: mesh_t
   use fcs_diagnostics, only: source_loc_t
   use fcs_strings, only: string_t
@@ -228,12 +229,11 @@ module fcs_model
     !> (false) or is taken without them, its out-of-balance force carried into the next
     !> increment (true: NO EQUILIBRIUM=CARRY).
     logical :: carry_unbalanced = .false.
-    !> CONTACT EVENTS: the tangential contact changes (a node reaching the friction cone, a
-    !> node reaching a shared edge of its master segment) end the increment (true: ALL, the
-    !> paper's R-minimum events), or are left to the equilibrium iterations, which decide
-    !> stick or slip and the segment on the corrected solution (false: NORMAL; opening,
-    !> closing and leaving the master surface stay events).
-    logical :: tangential_contact_events = .true.
+    !> CONTACT EVENTS: which contact changes end the increment (CONTACT_EVENTS_* of
+    !> fcs_rmin_events): ALL (the paper's R-minimum events), NORMAL (onsets of slip and segment
+    !> hand-overs left to the equilibrium iterations), CLOSING (opening and leaving the master
+    !> surface left to them too).
+    integer :: contact_events = CONTACT_EVENTS_ALL
   end type rmin_settings_t
 
   !> *CHANGE FRICTION in a step: the Coulomb friction of interaction `interaction` from this

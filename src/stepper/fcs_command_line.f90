@@ -81,7 +81,7 @@ contains
           if (allocated(err)) return
         case ('--contact-events')
           options%contact_events = to_upper(argument(i))
-          if (options%contact_events /= 'ALL' .and. options%contact_events /= 'NORMAL') then
+          if (all(options%contact_events /= [character(len=7) :: 'ALL', 'NORMAL', 'CLOSING'])) then
             call input_error(err, '--contact-events ' // argument(i) // ': expected ' // &
                              option_value_text('--contact-events'))
             return
@@ -133,7 +133,7 @@ contains
     case ('--reuse-tolerance')
       text = 'a number in [0, 1e-3], e.g. 1e-10 (0: factorise every tangent)'
     case ('--contact-events')
-      text = 'ALL or NORMAL (as *RMIN, CONTACT EVENTS)'
+      text = 'ALL, NORMAL or CLOSING (as *RMIN, CONTACT EVENTS)'
     case default
       text = 'an existing directory for the output files; without -o they go next to the deck'
     end select
@@ -197,12 +197,12 @@ contains
       '                        relative residual of a tangent solved by GMRES with the factors', &
       '                        of an earlier one (default 0: factorise every tangent; 1e-10', &
       '                        recommended when on); overrides *SOLVER, REUSE TOLERANCE', &
-      '  --contact-events ALL|NORMAL', &
+      '  --contact-events ALL|NORMAL|CLOSING', &
       '                        which contact state changes end an increment: ALL (the', &
-      '                        R-minimum default) or only opening and closing (NORMAL: onsets', &
+      '                        R-minimum default), only opening and closing (NORMAL: onsets', &
       '                        of slip and segment hand-overs left to the equilibrium', &
-      '                        iterations, fewer increments); overrides *RMIN, CONTACT EVENTS', &
-      '                        in every step', &
+      '                        iterations, fewer increments) or only closing (CLOSING: openings', &
+      '                        too); overrides *RMIN, CONTACT EVENTS in every step', &
       '  -o, --output-dir DIR  write the output files into DIR (which must exist)', &
       '  -q, --quiet           no progress on the terminal (warnings and errors still shown)', &
       '', &

@@ -27,7 +27,8 @@ module fcs_driver
   use fcs_log, only: logger_t, format_duration
   use fcs_timer, only: wall_time, peak_memory_mib
   use fcs_rmin_events, only: event_kind_name, EVENT_FULL_INCREMENT, EVENT_STRAIN_LIMIT, &
-                             EVENT_ROTATION_LIMIT, EVENT_YIELD, EVENT_PLASTIC_STRAIN_LIMIT
+                             EVENT_ROTATION_LIMIT, EVENT_YIELD, EVENT_PLASTIC_STRAIN_LIMIT, &
+                             CONTACT_EVENTS_NORMAL, CONTACT_EVENTS_CLOSING, contact_events_level
   use fcs_strings, only: str, to_upper
   use fcs_signals, only: install_signal_handlers, signal_received
   use fcs_heap_policy, only: keep_freed_memory
@@ -190,7 +191,7 @@ contains
     if (len(options%solver) > 0) model%solver_name = to_upper(options%solver)
     if (options%reuse_tolerance >= 0.0_dp) model%reuse_tolerance = options%reuse_tolerance
     if (len(options%contact_events) > 0) &
-      model%steps(:)%rmin%tangential_contact_events = options%contact_events == 'ALL'
+      model%steps(:)%rmin%contact_events = contact_events_level(options%contact_events)
     if (run%analysis%share%comm%size > 1 .and. len(options%solver) == 0 .and. .not. model%solver_chosen) &
       model%solver_name = 'MUMPS'
     if (run%writer) call write_echo(options%job // '.echo', deck, model, err)
@@ -629,8 +630,14 @@ contains
         state%step_increment = 0
       end if
       onsets = ''
-      if (.not. model%steps(k)%rmin%tangential_contact_events) onsets = ', onsets of slip and ' // &
-        'segment hand-overs left to the equilibrium iterations (CONTACT EVENTS=NORMAL)'
+      select case (model%steps(k)%rmin%contact_events)
+      case (CONTACT_EVENTS_NORMAL)
+        onsets = ', onsets of slip and segment hand-overs left to the equilibrium iterations ' // &
+                 '(CONTACT EVENTS=NORMAL)'
+      case (CONTACT_EVENTS_CLOSING)
+        onsets = ', onsets of slip, segment hand-overs and openings left to the equilibrium ' // &
+                 'iterations (CONTACT EVENTS=CLOSING)'
+      end select
       call run%log%info('step ' // str(k) // ' ("' // model%steps(k)%name // '"): period ' // &
         str(model%steps(k)%period) // ', increments between ' // str(model%steps(k)%min_increment) // &
         ' and ' // str(model%steps(k)%max_increment) // trim(merge(', NLGEOM', '        ', &

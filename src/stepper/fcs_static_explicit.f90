@@ -1031,7 +1031,7 @@ contains
     type(error_t), allocatable, intent(out) :: err
     call a%trial%collector%reset()
     if (a%contact%n_slaves() > 0) call a%contact%events(a%x_contact, a%state%contact, a%sys%du_residual, &
-      a%sys%du_load, a%trial%collector, step%rmin%tangential_contact_events)
+      a%sys%du_load, a%trial%collector, step%rmin%contact_events)
     if (allocated(a%state%temperature) .and. allocated(a%trial%temperature)) then
       call a%elements%collect_events(a%state%x, a%sys%du_load, a%sys%du_residual, a%state%elements, &
         step%nlgeom, event_limits_t(step%rmin%max_strain_increment, &
