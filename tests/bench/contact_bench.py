@@ -365,7 +365,8 @@ def main():
     parser.add_argument("--markdown")
     parser.add_argument("--skip", default="",
                         help="runs not to start, e.g. 'ccx@35,fcs3d UMFPACK@35,"
-                             "fcs3d MUMPS 2 ranks@35,ccx own increments@13'")
+                             "fcs3d MUMPS 2 ranks@35,ccx own increments@13'; separated by ';' "
+                             "when a label holds a comma, e.g. 'ccx@24;fcs3d MUMPS, events ALL@24'")
     parser.add_argument("--no-estimate", action="store_true",
                         help="start every run, even when the scaled memory would not fit "
                              "(the memory limit still applies)")
@@ -382,7 +383,10 @@ def main():
     tolerances = [t.strip() for t in args.reuse.split(",")] if args.reuse else [None]
     event_modes = ([e.strip() for e in args.contact_events.split(",")]
                    if args.contact_events else [None])
-    skip = {item.strip() for item in args.skip.split(",") if item.strip()}
+    # Labels may hold commas ("fcs3d MUMPS, events CLOSING"): with a ";" in it, --skip is a
+    # ";"-separated list.
+    skip = {item.strip() for item in args.skip.split(";" if ";" in args.skip else ",")
+            if item.strip()}
     threads = str(args.threads)
     env = dict(os.environ, OMP_NUM_THREADS=threads, OPENBLAS_NUM_THREADS=threads,
                MKL_NUM_THREADS=threads, CCX_NPROC_EQUATION_SOLVER=threads,
