@@ -164,7 +164,20 @@ contains
             'the results agree with those of fresh factorisations within 1e-12 of their ' // &
             'scale. A restarted run starts from a fresh factorisation, so with reuse on it ' // &
             'agrees with the uninterrupted run to that level, not bit for bit. Range ' // &
-            '[0, 1e-3]. The command line option --reuse-tolerance overrides it.')]) &
+            '[0, 1e-3]. The command line option --reuse-tolerance overrides it.'), &
+          p('LOW RANK TOLERANCE', PARAM_REAL, default='0', unit='-', description='Block ' // &
+            'low-rank (BLR) factorisation with MUMPS (TYPE=MUMPS only): the dropping parameter ' // &
+            'eps of the low-rank compressions of the frontal matrices (MUMPS ICNTL(35)=2, ' // &
+            'CNTL(7)=eps). 0 (default): the exact, full-rank factorisation. The factors are then ' // &
+            'approximate: a solve with them has a relative error of order eps times a ' // &
+            'condition factor. The equilibrium iterations of each increment correct the ' // &
+            'out-of-balance force to the EQUILIBRIUM TOLERANCE of *RMIN (1e-3 of the force ' // &
+            'scale by default), so the converged answers stay within that tolerance; the ' // &
+            'R-minimum event fractions, which come from the trial solve, move by about eps ' // &
+            'relative. Smaller factors and fewer operations on large models (doc/performance.md ' // &
+            'section 10 has the figures); the run summary gives the effective entries and ' // &
+            'flops. Range [0, 1e-2]; 1e-8 keeps the answers within 1e-6 of the full-rank ones ' // &
+            'on the test decks. The command line option --low-rank-tolerance overrides it.')]) &
       ]
   end function model_keywords
 

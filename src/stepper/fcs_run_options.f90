@@ -16,6 +16,8 @@ module fcs_run_options
     character(len=:), allocatable :: restart_file
     !> *SOLVER, REUSE TOLERANCE given on the command line (negative: the deck's).
     real(dp) :: reuse_tolerance = -1.0_dp
+    !> *SOLVER, LOW RANK TOLERANCE given on the command line (negative: the deck's).
+    real(dp) :: low_rank_tolerance = -1.0_dp
     logical :: quiet = .false.
     logical :: check_only = .false.
   end type run_options_t
