@@ -9,11 +9,11 @@
 #    factor, and the equilibrium iterations of each increment correct the out-of-balance force
 #    only down to the EQUILIBRIUM TOLERANCE of *RMIN, 1e-3 of the force scale; that is the
 #    accuracy the run promises for any approximate solve, so it is the bound a BLR run must
-#    meet. eps = 1e-8 is the setting doc/performance.md section 10 recommends (factors and
-#    answers of the contact benchmark unchanged to the digits printed). On this small deck
-#    (255,600 factor entries) MUMPS finds nothing to compress (its fronts are below the BLR
-#    block size), so the measured difference is round-off, about 4e-13: the test checks the
-#    path (deck and command line into MUMPS, the log's BLR figures), section 10 the gain;
+#    meet. eps = 1e-8: on the contact benchmark (doc/performance.md section 10) it kept the
+#    limiting events and event counts of the first increments of the full-rank run. On this
+#    small deck (2.6e5 factor entries) MUMPS compresses nothing (its fronts are too small), so
+#    the measured difference is round-off, about 4e-13: the test checks the path (deck and
+#    command line into MUMPS, the log's BLR figures), section 10 the gain;
 #  - the log of the BLR run reports BLR on (eps, effective entries and flops, at most 100 % of
 #    full rank) and one analysis for all factorisations (the analysis, where MUMPS clusters
 #    the variables for BLR, is kept while the sparsity pattern stays); the full-rank log
