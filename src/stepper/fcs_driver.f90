@@ -758,8 +758,9 @@ contains
     call run%log%info(line)
   end subroutine log_solver_stats
 
-  !> "block low-rank (eps 1e-08) on: 1.23e+06 entries (45.6% of full rank), 7.89e+09 flops
-  !> (12.3%)": what the compression of the last factorisation kept.
+  !> "block low-rank (eps 1E-08) on: 1.23E+06 entries (45.6% of full rank), 7.89E+09 flops
+  !> (12.3%)": what the compression of the last factorisation kept (MUMPS's INFOG(35) and
+  !> RINFOG(14) against the full-rank INFOG(29) and RINFOG(3)).
   function low_rank_text(stats) result(text)
     type(solver_stats_t), intent(in) :: stats
     character(len=:), allocatable :: text
