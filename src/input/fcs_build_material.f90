@@ -395,10 +395,12 @@ contains
     end associate
   end subroutine handle_restart
 
-  !> *SOLVER, TYPE=, REUSE TOLERANCE=.
+  !> *SOLVER, TYPE=, REUSE TOLERANCE=, LOW RANK TOLERANCE=.
   subroutine handle_solver(card, model, diag)
     use fcs_deck_fields, only: param_value
     use fcs_strings, only: parse_real
+    use fcs_solver_factory, only: solver_has_low_rank, low_rank_solver_names_text
+    use fcs_linear_solver, only: MAX_LOW_RANK_TOLERANCE
     type(card_t), intent(in) :: card
     type(model_t), intent(inout) :: model
     type(diagnostics_t), intent(inout) :: diag
@@ -410,9 +412,24 @@ contains
     if (.not. ok .or. .not. (tolerance >= 0.0_dp .and. tolerance <= 1.0e-3_dp)) then
       call diag%report(card%loc, '*SOLVER: REUSE TOLERANCE must lie in [0, 1e-3] (0: factorise ' // &
                        'every tangent)')
+    else
+      model%reuse_tolerance = tolerance
+    end if
+    call parse_real(param_value(card, 'LOW RANK TOLERANCE'), tolerance, ok)
+    if (.not. ok .or. .not. (tolerance >= 0.0_dp .and. tolerance <= MAX_LOW_RANK_TOLERANCE)) then
+      call diag%report(card%loc, '*SOLVER: LOW RANK TOLERANCE must lie in [0, 1e-2] (0: ' // &
+                       'full-rank factorisation)')
       return
     end if
-    model%reuse_tolerance = tolerance
+    if (tolerance > 0.0_dp) then
+      if (.not. solver_has_low_rank(model%solver_name)) then
+        call diag%report(card%loc, '*SOLVER: LOW RANK TOLERANCE needs TYPE=' // &
+                         low_rank_solver_names_text() // ' (block low-rank factorisation); ' // &
+                         'TYPE=' // model%solver_name // ' has none')
+        return
+      end if
+    end if
+    model%low_rank_tolerance = tolerance
   end subroutine handle_solver
 
 end module fcs_build_material

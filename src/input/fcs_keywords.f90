@@ -164,7 +164,24 @@ contains
             'the results agree with those of fresh factorisations within 1e-12 of their ' // &
             'scale. A restarted run starts from a fresh factorisation, so with reuse on it ' // &
             'agrees with the uninterrupted run to that level, not bit for bit. Range ' // &
-            '[0, 1e-3]. The command line option --reuse-tolerance overrides it.')]) &
+            '[0, 1e-3]. The command line option --reuse-tolerance overrides it.'), &
+          p('LOW RANK TOLERANCE', PARAM_REAL, default='0', unit='-', description='Block ' // &
+            'low-rank (BLR) factorisation with MUMPS (TYPE=MUMPS only): the dropping parameter ' // &
+            'eps of the low-rank compressions of the frontal matrices (MUMPS ICNTL(35)=2, ' // &
+            'CNTL(7)=eps). 0 (default): the exact, full-rank factorisation. With eps > 0 the ' // &
+            'factors are approximate: a solve with them has a relative error of order eps times a ' // &
+            'condition factor. The equilibrium iterations of each increment correct the ' // &
+            'out-of-balance force to the EQUILIBRIUM TOLERANCE of *RMIN (1e-3 of the force ' // &
+            'scale by default), so the converged answers stay within that tolerance; the ' // &
+            'R-minimum event fractions, which come from the trial solve, move by about eps ' // &
+            'relative times a condition factor, so near-simultaneous events may be taken in ' // &
+            'another order. The gain grows with the size of the fronts; on the contact benchmark ' // &
+            'at 102,408 ' // &
+            'degrees of freedom (doc/performance.md section 10) eps = 1e-6 cut the factor ' // &
+            'entries to 78 % and the peak memory to 89 %, but no factorisation was faster ' // &
+            'than full rank (MUMPS 5.5.1, one thread). The run summary gives the effective entries and flops. MUMPS ' // &
+            '5.5.1''s BLR factors are repeatable only to round-off from run to run. Range ' // &
+            '[0, 1e-2]. The command line option --low-rank-tolerance overrides it.')]) &
       ]
   end function model_keywords
 

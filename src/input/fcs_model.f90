@@ -367,6 +367,9 @@ module fcs_model
     logical :: solver_chosen = .false.
     !> *SOLVER, REUSE TOLERANCE: relative residual of a solve with reused factors (0: off).
     real(dp) :: reuse_tolerance = 0.0_dp
+    !> *SOLVER, LOW RANK TOLERANCE: dropping parameter of MUMPS's block low-rank
+    !> factorisation (0: full rank, the exact factorisation).
+    real(dp) :: low_rank_tolerance = 0.0_dp
     type(interaction_def_t), allocatable :: interactions(:)
     !> Linear constraints between displacement components (*EQUATION), in global axes; the
     !> first term of each is its dependent degree of freedom (eliminated, doc/theory.md 6.2).

@@ -9,8 +9,9 @@
 !> Capabilities beyond that protocol are type-bound hooks with defaults here, so that callers
 !> never ask which solver they hold: `set_comm` (run on a communicator's processes; the default
 !> accepts one process only), `runs_in_parallel` (false by default), `takes_ordering` and
-!> `set_ordering` (a fill-reducing ordering computed by the caller; ignored by default).
-!> MUMPS overrides all four.
+!> `set_ordering` (a fill-reducing ordering computed by the caller; ignored by default),
+!> `has_low_rank` and `set_low_rank_tolerance` (an approximate, block low-rank factorisation;
+!> none by default). MUMPS overrides all six.
 module fcs_linear_solver
   use fcs_kinds, only: dp
   use fcs_error, only: error_t
@@ -18,7 +19,7 @@ module fcs_linear_solver
   use fcs_comm, only: comm_t
   implicit none
   private
-  public :: linear_solver_t, solver_stats_t, NEAR_SINGULAR_PIVOT_RATIO
+  public :: linear_solver_t, solver_stats_t, NEAR_SINGULAR_PIVOT_RATIO, MAX_LOW_RANK_TOLERANCE
 
   !> A factorisation whose smallest pivot is below NEAR_SINGULAR_PIVOT_RATIO times the scale
   !> of its matrix (UMFPACK: the reciprocal condition estimate min|u_ii| / max|u_ii|; MUMPS:
@@ -28,6 +29,12 @@ module fcs_linear_solver
   !> significant digits, so nothing usable is lost. The skyline solver's own test is
   !> SKYLINE_PIVOT_TOLERANCE (row-scaled).
   real(dp), parameter :: NEAR_SINGULAR_PIVOT_RATIO = 1.0e-13_dp
+
+  !> Largest dropping parameter of a block low-rank factorisation (*SOLVER, LOW RANK
+  !> TOLERANCE; --low-rank-tolerance): a solve with the factors then has a relative error of
+  !> order 1e-2 times a condition factor, beyond which the equilibrium iterations that correct
+  !> it would converge slowly, if at all.
+  real(dp), parameter :: MAX_LOW_RANK_TOLERANCE = 1.0e-2_dp
 
   !> Figures a solver reports about its last factorisation (0 when unknown).
   type :: solver_stats_t
@@ -41,6 +48,12 @@ module fcs_linear_solver
     !> INFOG(22), the total over the processes; UMFPACK: Info[UMFPACK_PEAK_MEMORY]; 0: not
     !> reported).
     real(dp) :: factor_memory_mib = 0.0_dp
+    !> Block low-rank factorisation (0: off, full rank): its dropping parameter, and the
+    !> effective entries and flops of the last factorisation with the low-rank blocks
+    !> compressed (factor_entries and factor_flops are then those of the full-rank one).
+    real(dp) :: low_rank_tolerance = 0.0_dp
+    real(dp) :: low_rank_entries = 0.0_dp
+    real(dp) :: low_rank_flops = 0.0_dp
     !> The fill-reducing ordering used by the last analysis, as the solver names it.
     character(len=16) :: ordering = ''
     integer :: n_analyses = 0
@@ -61,6 +74,8 @@ module fcs_linear_solver
     procedure :: runs_in_parallel => default_runs_in_parallel
     procedure :: takes_ordering => default_takes_ordering
     procedure :: set_ordering => default_set_ordering
+    procedure :: has_low_rank => default_has_low_rank
+    procedure :: set_low_rank_tolerance => default_set_low_rank_tolerance
   end type linear_solver_t
 
   abstract interface
@@ -121,5 +136,19 @@ contains
     class(linear_solver_t), intent(inout) :: this
     integer, intent(in) :: position(:)
   end subroutine default_set_ordering
+
+  !> Whether the solver has a block low-rank (approximate) factorisation.
+  pure logical function default_has_low_rank(this) result(has)
+    class(linear_solver_t), intent(in) :: this
+    has = .false.
+  end function default_has_low_rank
+
+  !> The dropping parameter of the block low-rank factorisation, in [0,
+  !> MAX_LOW_RANK_TOLERANCE] (0: full rank), set before the first factorisation. A solver
+  !> without one (`has_low_rank` false) is only ever given 0, which it ignores.
+  subroutine default_set_low_rank_tolerance(this, tolerance)
+    class(linear_solver_t), intent(inout) :: this
+    real(dp), intent(in) :: tolerance
+  end subroutine default_set_low_rank_tolerance
 
 end module fcs_linear_solver

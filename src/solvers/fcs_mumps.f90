@@ -9,6 +9,15 @@
 !> changes, JOB = 2 (factorisation) at every `factor`, JOB = 3 (solve), JOB = -2 in `free`.
 !> All MUMPS output is silenced; INFOG(1) is checked after every call and turned into words.
 !>
+!> Block low-rank (BLR) factorisation, on when `set_low_rank_tolerance` gives eps > 0 (*SOLVER,
+!> LOW RANK TOLERANCE; --low-rank-tolerance): the off-diagonal blocks of the large frontal
+!> matrices are compressed to low rank, dropping what is below eps (P. R. Amestoy, C. Ashcraft,
+!> O. Boiteau, A. Buttari, J.-Y. L'Excellent and C. Weisbecker, "Improving multifrontal methods
+!> by means of block low-rank representations", SIAM J. Sci. Comput. 37(3), A1451-A1474,
+!> 2015). The factorisation is then approximate, with a backward error of order eps (N. J.
+!> Higham and T. Mary, "Solving block low-rank linear systems by LU factorization is
+!> numerically stable", IMA J. Numer. Anal. 42(2), 951-980, 2022).
+!>
 !> The MUMPS instance is the library's own derived type DMUMPS_STRUC, taken from its header
 !> /usr/include/dmumps_struc.h: this is the only `include` line of fcs3d, allowed here because
 !> the layout must be exactly the library's. Its pointer components IRN, JCN, A and RHS are
@@ -59,6 +68,21 @@ module fcs_mumps
   !> relaxation ICNTL(14) (percent of extra workspace over the analysis estimate).
   integer, parameter :: MAX_WORKSPACE_RETRIES = 2
   integer, parameter :: MINIMUM_RELAXATION_PERCENT = 20
+  !> ICNTL(35), the BLR feature (MUMPS 5.5 User's Guide, ICNTL(35)): 0 off (full rank); 1 on,
+  !> the option chosen by MUMPS (currently 2); 2 on in the factorisation and the solve, the
+  !> factors stored in low-rank form (memory gains); 3 on in the factorisation only, the
+  !> factors kept full rank (no memory gain). We ask for 2 by name rather than 1, so that the
+  !> factors' storage does not change with a later MUMPS's automatic choice. It must be set
+  !> before the analysis, which clusters the variables into blocks (INFOG(1) = -54 otherwise).
+  integer, parameter :: MUMPS_BLR_FACTORS_AND_SOLVE = 2
+  !> The guide's other BLR controls keep their defaults: ICNTL(36) = 0, the standard UFSC
+  !> variant (ICNTL(36) = 1, UCFS, compresses before the pivots are chosen, which the guide
+  !> says "may have a numerical impact"; our unsymmetric contact tangents rely on threshold
+  !> pivoting, CNTL(1)); ICNTL(38) = 600, the compression rate of the factors (per mille)
+  !> that the analysis assumes for its memory estimates INFOG(36..39), a figure only: a
+  !> factorisation that needs more workspace gets it (dynamic storage since MUMPS 5.2, and
+  !> our retries with a larger ICNTL(14)). ICNTL(37) (compression of the contribution
+  !> blocks) is unused in 5.5.1: its ChangeLog has no such feature.
 
   !> Error values of INFOG(1) (MUMPS 5.5 User's Guide, section "Error diagnostics").
   integer, parameter :: MUMPS_ERROR_NNZ_RANGE = -2, MUMPS_ERROR_JOB = -3
@@ -119,6 +143,8 @@ module fcs_mumps
     procedure :: set_comm => mumps_set_comm
     procedure :: runs_in_parallel => mumps_runs_in_parallel
     procedure :: takes_ordering => mumps_takes_ordering
+    procedure :: has_low_rank => mumps_has_low_rank
+    procedure :: set_low_rank_tolerance => mumps_set_low_rank_tolerance
   end type mumps_solver_t
 
 contains
@@ -161,8 +187,15 @@ contains
     this%factored = .true.
     this%stats%factor_seconds = wall_time() - started
     this%stats%n_factorisations = this%stats%n_factorisations + 1
+    ! INFOG(29), RINFOG(3): entries and flops of the full-rank factorisation, also with BLR on
+    ! (its theoretical figures); INFOG(35), RINFOG(14): the effective ones, with the low-rank
+    ! blocks compressed (equal to the former with BLR off).
     this%stats%factor_entries = factor_entries(this%id%INFOG(29))
     this%stats%factor_flops = real(this%id%RINFOG(3), dp)
+    if (this%stats%low_rank_tolerance > 0.0_dp) then
+      this%stats%low_rank_entries = factor_entries(this%id%INFOG(35))
+      this%stats%low_rank_flops = real(this%id%RINFOG(14), dp)
+    end if
     ! INFOG(22): millions of bytes effectively used by the factorisation, all processes.
     this%stats%factor_memory_mib = real(this%id%INFOG(22), dp) * 1.0e6_dp / 2.0_dp**20
   end subroutine mumps_factor
@@ -198,6 +231,20 @@ contains
     takes = .true.
   end function mumps_takes_ordering
 
+  !> MUMPS has a block low-rank factorisation (ICNTL(35), CNTL(7)).
+  pure logical function mumps_has_low_rank(this) result(has)
+    class(mumps_solver_t), intent(in) :: this
+    has = .true.
+  end function mumps_has_low_rank
+
+  !> BLR with dropping parameter `tolerance` (0: full rank), from the next initialisation on:
+  !> set before the first factorisation, since the analysis must know it.
+  subroutine mumps_set_low_rank_tolerance(this, tolerance)
+    class(mumps_solver_t), intent(inout) :: this
+    real(dp), intent(in) :: tolerance
+    this%stats%low_rank_tolerance = max(tolerance, 0.0_dp)
+  end subroutine mumps_set_low_rank_tolerance
+
   !> True when `matrix` is not the pattern analysed last.
   pure logical function needs_analysis(this, matrix)
     class(mumps_solver_t), intent(in) :: this
@@ -232,6 +279,11 @@ contains
     this%id%ICNTL(28) = MUMPS_SEQUENTIAL_ANALYSIS
     this%id%ICNTL(7) = MUMPS_ORDERING_GIVEN
     this%id%CNTL(3) = NEAR_SINGULAR_PIVOT_RATIO
+    if (this%stats%low_rank_tolerance > 0.0_dp) then
+      this%id%ICNTL(35) = MUMPS_BLR_FACTORS_AND_SOLVE
+      ! CNTL(7): the dropping parameter eps of the low-rank compressions (default 0, no BLR).
+      this%id%CNTL(7) = this%stats%low_rank_tolerance
+    end if
   end subroutine mumps_initialise
 
   !> JOB = 1: coordinate copy of the pattern (and the current values, which the automatic

@@ -18,6 +18,7 @@ module fcs_solver_factory
   private
   public :: create_linear_solver, DEFAULT_LINEAR_SOLVER
   public :: linear_solver_names, linear_solver_names_text, is_linear_solver
+  public :: solver_has_low_rank, low_rank_solver_names_text
   public :: solver_registry_t, linear_solver_entry_t, solver_constructor, builtin_solver_registry
 
   !> The solver used when the deck names none.
@@ -127,6 +128,36 @@ contains
     solvers = registry_or_builtin(registry)
     is_linear_solver = solvers%find(name) /= 0
   end function is_linear_solver
+
+  !> Whether the solver called `name` (case and surrounding blanks ignored) of `registry` has a
+  !> block low-rank factorisation (false for an unknown name).
+  logical function solver_has_low_rank(name, registry) result(has)
+    character(len=*), intent(in) :: name
+    type(solver_registry_t), intent(in), optional :: registry
+    type(solver_registry_t) :: solvers
+    class(linear_solver_t), allocatable :: solver
+    integer :: k
+    solvers = registry_or_builtin(registry)
+    has = .false.
+    k = solvers%find(name)
+    if (k == 0) return
+    call solvers%solvers(k)%construct(solver)
+    has = solver%has_low_rank()
+  end function solver_has_low_rank
+
+  !> The names of the solvers with a block low-rank factorisation, "MUMPS", for messages.
+  function low_rank_solver_names_text(registry) result(text)
+    type(solver_registry_t), intent(in), optional :: registry
+    character(len=:), allocatable :: text
+    type(string_t), allocatable :: names(:), with_low_rank(:)
+    integer :: i
+    names = linear_solver_names(registry)
+    allocate (with_low_rank(0))
+    do i = 1, size(names)
+      if (solver_has_low_rank(names(i)%s, registry)) with_low_rank = [with_low_rank, names(i)]
+    end do
+    text = join_strings(with_low_rank, ' or ')
+  end function low_rank_solver_names_text
 
   !> The built-in solvers.
   subroutine registry_init(this)

@@ -5,6 +5,7 @@ module fcs_command_line
   use fcs_run_options, only: run_options_t
   use fcs_solver_factory, only: is_linear_solver, linear_solver_names_text, DEFAULT_LINEAR_SOLVER
   use fcs_kinds, only: dp
+  use fcs_linear_solver, only: MAX_LOW_RANK_TOLERANCE
   use fcs_strings, only: to_upper, basename, path_stem, join_path, parse_real, str
   use fcs_version, only: FCS3D_IDENTITY
   use fcs_files, only: directory_exists
@@ -55,7 +56,8 @@ contains
         options%check_only = .true.
       case ('-q', '--quiet')
         options%quiet = .true.
-      case ('--solver', '--restart', '-o', '--output-dir', '--reuse-tolerance', '--contact-events')
+      case ('--solver', '--restart', '-o', '--output-dir', '--reuse-tolerance', '--contact-events', &
+            '--low-rank-tolerance')
         if (i == n) then
           call input_error(err, 'option ' // arg // ' needs a value (fcs3d --help)')
           return
@@ -86,6 +88,9 @@ contains
                              option_value_text('--contact-events'))
             return
           end if
+        case ('--low-rank-tolerance')
+          call parse_low_rank_tolerance(argument(i), options, err)
+          if (allocated(err)) return
         case default
           output_dir = argument(i)
         end select
@@ -134,6 +139,8 @@ contains
       text = 'a number in [0, 1e-3], e.g. 1e-10 (0: factorise every tangent)'
     case ('--contact-events')
       text = 'ALL, NORMAL or CLOSING (as *RMIN, CONTACT EVENTS)'
+    case ('--low-rank-tolerance')
+      text = 'a number in [0, 1e-2], e.g. 1e-8 (0: full-rank factorisation)'
     case default
       text = 'an existing directory for the output files; without -o they go next to the deck'
     end select
@@ -154,6 +161,23 @@ contains
     end if
     options%reuse_tolerance = value
   end subroutine parse_reuse_tolerance
+
+  !> --low-rank-tolerance VALUE: the BLR dropping parameter in [0, MAX_LOW_RANK_TOLERANCE] (as
+  !> *SOLVER, LOW RANK TOLERANCE); whether the run's solver has BLR is checked with the deck.
+  subroutine parse_low_rank_tolerance(text, options, err)
+    character(len=*), intent(in) :: text
+    type(run_options_t), intent(inout) :: options
+    type(error_t), allocatable, intent(out) :: err
+    real(dp) :: value
+    logical :: ok
+    call parse_real(text, value, ok)
+    if (.not. ok .or. .not. (value >= 0.0_dp .and. value <= MAX_LOW_RANK_TOLERANCE)) then
+      call input_error(err, '--low-rank-tolerance ' // text // ': expected ' // &
+                       option_value_text('--low-rank-tolerance'))
+      return
+    end if
+    options%low_rank_tolerance = value
+  end subroutine parse_low_rank_tolerance
 
   subroutine print_keywords(markdown)
     use fcs_keyword_docs, only: print_keyword_list, print_keyword_reference
@@ -203,6 +227,11 @@ contains
       '                        of slip and segment hand-overs left to the equilibrium', &
       '                        iterations, fewer increments) or only closing (CLOSING: openings', &
       '                        too); overrides *RMIN, CONTACT EVENTS in every step', &
+      '  --low-rank-tolerance EPS', &
+      '                        MUMPS block low-rank factorisation with dropping parameter EPS', &
+      '                        in [0, 1e-2] (default 0: full rank; approximate factors, which', &
+      '                        the equilibrium iterations correct); overrides *SOLVER, LOW', &
+      '                        RANK TOLERANCE; needs the MUMPS solver', &
       '  -o, --output-dir DIR  write the output files into DIR (which must exist)', &
       '  -q, --quiet           no progress on the terminal (warnings and errors still shown)', &
       '', &

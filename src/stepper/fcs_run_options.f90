@@ -18,6 +18,8 @@ module fcs_run_options
     real(dp) :: reuse_tolerance = -1.0_dp
     !> *RMIN, CONTACT EVENTS for every step, from the command line ('' = each step's own).
     character(len=:), allocatable :: contact_events
+    !> *SOLVER, LOW RANK TOLERANCE given on the command line (negative: the deck's).
+    real(dp) :: low_rank_tolerance = -1.0_dp
     logical :: quiet = .false.
     logical :: check_only = .false.
   end type run_options_t

@@ -9,7 +9,8 @@ program test_fcs_solver_factory
   use fcs_linear_solver, only: linear_solver_t
   use fcs_strings, only: string_t
   use fcs_solver_factory, only: create_linear_solver, linear_solver_names, DEFAULT_LINEAR_SOLVER, &
-    linear_solver_names_text, is_linear_solver, solver_registry_t
+    linear_solver_names_text, is_linear_solver, solver_registry_t, solver_has_low_rank, &
+    low_rank_solver_names_text
   use fcs_test_dense_solver, only: dense_solver_entry, DENSE_SOLVER_NAME
   use fcs_test_assertions, only: test_suite_t
   use fcs_test_matrices, only: test_mesh_t, make_grid_mesh, build_pattern, fill_random_dominant, &
@@ -46,6 +47,11 @@ contains
     call suite%check(is_linear_solver(DEFAULT_LINEAR_SOLVER), 'default is a valid name')
     call suite%check(linear_solver_names_text() == 'SKYLINE, UMFPACK, MUMPS', 'names as text')
     call suite%check(DEFAULT_LINEAR_SOLVER == 'UMFPACK', 'default is UMFPACK')
+    call suite%check(solver_has_low_rank(' mumps '), 'MUMPS has a block low-rank factorisation')
+    call suite%check(.not. solver_has_low_rank('UMFPACK') .and. .not. solver_has_low_rank('SKYLINE'), &
+                     'UMFPACK and SKYLINE have none')
+    call suite%check(.not. solver_has_low_rank('PARDISO'), 'an unknown name has none')
+    call suite%check(low_rank_solver_names_text() == 'MUMPS', 'the solvers with one, as text')
   end subroutine check_names
 
   subroutine check_unknown_name(suite)
