@@ -13,6 +13,9 @@
 # BENCH_SIZES (cube edge counts, default 20,40,61),
 # BENCH_CONTACT_SIZES (contact_deck.py sizes N, default 13,24,35),
 # BENCH_THREADS (default 2: OMP_NUM_THREADS, OPENBLAS_NUM_THREADS, CCX_NPROC_*),
+# BENCH_CONTACT_EVENTS (fcs3d's --contact-events values of the contact bench, each fcs3d run
+# once per value; default ALL,CLOSING: the R-minimum events and the contact changes left to
+# the equilibrium iterations, doc/performance.md section 11),
 # BENCH_WORK (scratch directory, default a new one under $TMPDIR, kept for inspection),
 # BENCH_TIMEOUT (seconds per run, default 3600; a contact run that exceeds it is stopped and
 # reported with the increments it did), BENCH_SKIP (contact runs not to start, e.g.
@@ -35,6 +38,7 @@ if [ "$only" != cube ]; then
   set -- --fcs3d "$FCS3D" --work "$work" --sizes "${BENCH_CONTACT_SIZES:-13,24,35}" \
     --threads "${BENCH_THREADS:-2}" --ranks "${BENCH_RANKS:-2}" \
     --timeout "${BENCH_TIMEOUT:-3600}" --skip "${BENCH_SKIP:-}" \
+    --contact-events "${BENCH_CONTACT_EVENTS:-ALL,CLOSING}" \
     --markdown "$work/contact_bench.md"
   if [ -n "${FCS3D_MPI:-}" ]; then
     set -- "$@" --fcs3d-mpi "$FCS3D_MPI"
