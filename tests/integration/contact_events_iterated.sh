@@ -8,8 +8,10 @@
 #  - NORMAL's and CLOSING's T at 20 sample times of the push within 1 % of mu N of ALL's;
 #  - each takes fewer increments than ALL, none limited by an event it leaves to the iterations;
 #  - the deck parameter and the command line option give identical .dat and history files;
+#  - CLOSING restarted from its end-of-step-1 checkpoint repeats its .dat and history byte
+#    for byte;
 #  - --contact-events with another value is a command-line error (exit 2).
-# About 45 s.
+# About 50 s.
 set -u
 tests=$(cd "$(dirname "$0")/.." && pwd)
 py=${PYTHON:-/usr/bin/python3}
@@ -33,6 +35,15 @@ for f in .dat _h.csv; do
     echo "FAIL  --contact-events NORMAL and *RMIN, CONTACT EVENTS=NORMAL: the $f files differ"; fail=1
   fi
 done
+# A restart of the CLOSING run from its end-of-step-1 checkpoint (the older generation), with
+# the same option (the command line is not in the checkpoint), continues bit for bit.
+cp closing.dat closing_once.dat && cp closing_h.csv closing_once_h.csv || exit 1
+if "$FCS3D" -q --contact-events CLOSING --restart closing.rst.1.h5 closing.inp &&
+   cmp -s closing.dat closing_once.dat && cmp -s closing_h.csv closing_once_h.csv; then
+  echo "PASS  CLOSING restarted from the step-1 checkpoint: identical .dat and history"
+else
+  echo "FAIL  CLOSING restarted from the step-1 checkpoint: not the run in one go"; fail=1
+fi
 out=$("$FCS3D" --check --contact-events some all.inp 2>&1); status=$?
 if [ "$status" -eq 2 ] && printf '%s' "$out" | grep -qF -- '--contact-events some: expected ALL, NORMAL or CLOSING'; then
   echo "PASS  --contact-events some refused (exit 2)"
