@@ -25,7 +25,8 @@ module fcs_static_explicit
   use fcs_rmin_events, only: rmin_collector_t, rmin_event_t, EVENT_STRAIN_LIMIT, &
                              EVENT_ROTATION_LIMIT, event_kind_name, &
                              EVENT_FULL_INCREMENT, EVENT_SLIP_RATE_CHANGE, EVENT_FRICTION_CHANGE, &
-                             EVENT_STATE_CHANGE, EVENT_PLASTIC_STRAIN_LIMIT, EVENT_SLIP_INCREMENT
+                             EVENT_STATE_CHANGE, EVENT_PLASTIC_STRAIN_LIMIT, EVENT_SLIP_INCREMENT, &
+                             CONTACT_EVENTS_ALL
   use fcs_timer, only: phase_timer_t
   use fcs_contact_system, only: contact_system_t
   use fcs_comm, only: comm_t
@@ -267,7 +268,9 @@ contains
   end subroutine ensure_pattern
 
   !> The trial solution du_residual + du_load on the current state (10a-b), solved again
-  !> with switched tangents while contact nodes switch between stick and slip at its start.
+  !> with switched tangents while contact nodes switch between stick and slip at its start
+  !> (not under CONTACT EVENTS=NORMAL or CLOSING, where the equilibrium iterations decide
+  !> stick and slip: doc/theory.md 6.3) or plastic points unload.
   subroutine trial_solution(a, model, step, t0, dt, record, err)
     type(analysis_t), intent(inout) :: a
     type(model_t), intent(in) :: model
@@ -293,7 +296,7 @@ contains
       if (a%contact%n_slaves() == 0 .and. .not. a%elements%has_states()) exit
       a%sys%du = a%sys%du_residual + a%sys%du_load
       n_switched = 0
-      if (a%contact%n_slaves() > 0) &
+      if (a%contact%n_slaves() > 0 .and. step%rmin%contact_events == CONTACT_EVENTS_ALL) &
         call a%contact%switch_states(a%x_contact, a%state%contact, a%sys%du, n_switched)
       if (a%elements%has_states()) call switch_unloading(a, step%nlgeom, n_switched)
       record%n_switches = record%n_switches + n_switched
