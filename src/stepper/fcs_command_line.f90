@@ -79,7 +79,7 @@ contains
         case ('--restart')
           options%restart_file = argument(i)
         case ('--reuse-tolerance')
-          call parse_reuse_tolerance(argument(i), options, err)
+          call parse_tolerance(arg, argument(i), 1.0e-3_dp, options%reuse_tolerance, err)
           if (allocated(err)) return
         case ('--contact-events')
           options%contact_events = to_upper(argument(i))
@@ -89,7 +89,8 @@ contains
             return
           end if
         case ('--low-rank-tolerance')
-          call parse_low_rank_tolerance(argument(i), options, err)
+          call parse_tolerance(arg, argument(i), MAX_LOW_RANK_TOLERANCE, &
+                               options%low_rank_tolerance, err)
           if (allocated(err)) return
         case default
           output_dir = argument(i)
@@ -146,38 +147,20 @@ contains
     end select
   end function option_value_text
 
-  !> --reuse-tolerance VALUE: a relative residual in [0, 1e-3] (as *SOLVER, REUSE TOLERANCE).
-  subroutine parse_reuse_tolerance(text, options, err)
-    character(len=*), intent(in) :: text
-    type(run_options_t), intent(inout) :: options
+  !> The value of option `name` (--reuse-tolerance: a relative residual in [0, 1e-3], as
+  !> *SOLVER, REUSE TOLERANCE; --low-rank-tolerance: the BLR dropping parameter in [0,
+  !> MAX_LOW_RANK_TOLERANCE], as *SOLVER, LOW RANK TOLERANCE, whether the run's solver has BLR
+  !> being checked with the deck): a number in [0, upper], else a command-line error.
+  subroutine parse_tolerance(name, text, upper, value, err)
+    character(len=*), intent(in) :: name, text
+    real(dp), intent(in) :: upper
+    real(dp), intent(out) :: value
     type(error_t), allocatable, intent(out) :: err
-    real(dp) :: value
     logical :: ok
     call parse_real(text, value, ok)
-    if (.not. ok .or. .not. (value >= 0.0_dp .and. value <= 1.0e-3_dp)) then
-      call input_error(err, '--reuse-tolerance ' // text // ': expected ' // &
-                       option_value_text('--reuse-tolerance'))
-      return
-    end if
-    options%reuse_tolerance = value
-  end subroutine parse_reuse_tolerance
-
-  !> --low-rank-tolerance VALUE: the BLR dropping parameter in [0, MAX_LOW_RANK_TOLERANCE] (as
-  !> *SOLVER, LOW RANK TOLERANCE); whether the run's solver has BLR is checked with the deck.
-  subroutine parse_low_rank_tolerance(text, options, err)
-    character(len=*), intent(in) :: text
-    type(run_options_t), intent(inout) :: options
-    type(error_t), allocatable, intent(out) :: err
-    real(dp) :: value
-    logical :: ok
-    call parse_real(text, value, ok)
-    if (.not. ok .or. .not. (value >= 0.0_dp .and. value <= MAX_LOW_RANK_TOLERANCE)) then
-      call input_error(err, '--low-rank-tolerance ' // text // ': expected ' // &
-                       option_value_text('--low-rank-tolerance'))
-      return
-    end if
-    options%low_rank_tolerance = value
-  end subroutine parse_low_rank_tolerance
+    if (.not. ok .or. .not. (value >= 0.0_dp .and. value <= upper)) &
+      call input_error(err, name // ' ' // text // ': expected ' // option_value_text(name))
+  end subroutine parse_tolerance
 
   subroutine print_keywords(markdown)
     use fcs_keyword_docs, only: print_keyword_list, print_keyword_reference
