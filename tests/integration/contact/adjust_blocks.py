@@ -28,7 +28,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from exponential_blocks import E, NU, block, read_contact  # noqa: E402
+from exponential_blocks import E, NU, block, read_contact, two_block_cards  # noqa: E402
 
 H_LOWER, H_UPPER = 1.0, 0.5
 
@@ -52,20 +52,9 @@ def write_deck(path, mode, adjust, d, stiffness):
         if k == 0:
             x, y, z = upper_nodes[ident]
             upper_nodes[ident] = (x, y, z + gaps[(i, j)])
-    lines = ["** Two blocks, *CONTACT PAIR, ADJUST= (tests/integration/contact/adjust_blocks.py)",
-             "*NODE, NSET=NALL"]
-    for ident, (x, y, z) in {**lower_nodes, **upper_nodes}.items():
-        lines.append(f"{ident}, {x:.12g}, {y:.12g}, {z:.12g}")
-    lines.append("*ELEMENT, TYPE=C3D8, ELSET=LOWER")
-    lines += [f"{e}, " + ", ".join(map(str, c)) for e, c in lower_el.items()]
-    lines.append("*ELEMENT, TYPE=C3D8, ELSET=UPPER")
-    lines += [f"{e}, " + ", ".join(map(str, c)) for e, c in upper_el.items()]
-    lines.append("*ELSET, ELSET=LOWER_TOP")
-    lines.append(", ".join(str(e) for e in list(lower_el)[4:]))
-    lines.append("*ELSET, ELSET=UPPER_ALL")
-    lines.append(", ".join(str(e) for e in upper_el))
-    lines.append("*NSET, NSET=BASE")
-    lines.append(", ".join(str(v) for (i, j, k), v in lower_ids.items() if k == 0))
+    lines = two_block_cards("** Two blocks, *CONTACT PAIR, ADJUST= "
+                            "(tests/integration/contact/adjust_blocks.py)",
+                            (lower_nodes, lower_ids, lower_el), (upper_nodes, upper_ids, upper_el))
     lines.append("*NSET, NSET=TOP")
     lines.append(", ".join(str(v) for (i, j, k), v in upper_ids.items() if k == 1))
     lines.append("*NSET, NSET=SLAVE_NODES")

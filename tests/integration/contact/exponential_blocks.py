@@ -50,11 +50,11 @@ def block(n, nz, height, z0, first_node, first_element):
     return nodes, ids, elements
 
 
-def write_deck(path, load, p0, c0, stiffness=None):
-    lower_nodes, lower_ids, lower_el = block(2, 2, 1.0, 0.0, 1, 1)
-    upper_nodes, upper_ids, upper_el = block(2, 1, 0.5, 1.0, 101, 101)
-    lines = ["** Two blocks, exponential pressure-overclosure (tests/integration/contact/exponential_blocks.py)",
-             "*NODE, NSET=NALL"]
+def two_block_cards(title, lower, upper):
+    """The cards of the two blocks (each a block() result): nodes, elements LOWER and UPPER,
+    the element sets LOWER_TOP and UPPER_ALL, the node set BASE."""
+    (lower_nodes, lower_ids, lower_el), (upper_nodes, _, upper_el) = lower, upper
+    lines = [title, "*NODE, NSET=NALL"]
     for ident, (x, y, z) in {**lower_nodes, **upper_nodes}.items():
         lines.append(f"{ident}, {x:.12g}, {y:.12g}, {z:.12g}")
     lines.append("*ELEMENT, TYPE=C3D8, ELSET=LOWER")
@@ -67,6 +67,14 @@ def write_deck(path, load, p0, c0, stiffness=None):
     lines.append(", ".join(str(e) for e in upper_el))
     lines.append("*NSET, NSET=BASE")
     lines.append(", ".join(str(v) for (i, j, k), v in lower_ids.items() if k == 0))
+    return lines
+
+
+def write_deck(path, load, p0, c0, stiffness=None):
+    lower = block(2, 2, 1.0, 0.0, 1, 1)
+    upper = block(2, 1, 0.5, 1.0, 101, 101)
+    lines = two_block_cards("** Two blocks, exponential pressure-overclosure "
+                            "(tests/integration/contact/exponential_blocks.py)", lower, upper)
     lines += ["*SURFACE, NAME=MASTER", "LOWER_TOP, S2", "*SURFACE, NAME=SLAVE", "UPPER_ALL, S1",
               "*MATERIAL, NAME=STEEL", "*ELASTIC", f"{E}, {NU}",
               "*SOLID SECTION, ELSET=LOWER, MATERIAL=STEEL",
