@@ -128,6 +128,9 @@ contains
           'nonlinear geometric effects on for *HYPERELASTIC and *HYPERFOAM)')
       else
         model%steps(k)%nlgeom = .true.
+        call diag%warn(model%steps(k)%loc, '*STEP: NLGEOM is turned on: material ' // &
+          model%materials(first)%name // ' is hyperelastic (as CalculiX: "nonlinear geometric ' // &
+          'effects are turned on")')
       end if
     end do
     do k = 1, size(model%sections)
