@@ -238,7 +238,8 @@ contains
          'lambdabar_3^alpha_i - 3); volumetric sum (J - 1)^(2i)/D_i. As CalculiX, NLGEOM is ' // &
          'turned on in every step (NLGEOM=NO is refused) and a D_i given as 0 becomes ' // &
          '(0.1/mu_0)^i (an initial Poisson''s ratio of 0.475), with a warning. Not with ' // &
-         'plasticity, *EXPANSION or C3D8I elements; VAN DER WAALS is not available.', &
+         'plasticity, *EXPANSION, C3D8I elements or *EL PRINT ENER/ELSE; VAN DER WAALS is ' // &
+         'not available.', &
          'ARRUDA-BOYCE: mu, lambda_m, D. MOONEY-RIVLIN: C10, C01, D1. NEO HOOKE: C10, D1. ' // &
          'OGDEN, N=1: mu_1, alpha_1, D1; N=2: mu_1, alpha_1, mu_2, alpha_2, D1, D2; N=3: a ' // &
          'pair of lines, mu_1, alpha_1, mu_2, alpha_2, mu_3, alpha_3, D1, D2 / D3. POLYNOMIAL, ' // &
@@ -262,7 +263,7 @@ contains
          'lambda_2^alpha_i + lambda_3^alpha_i - 3 + (J^(-alpha_i beta_i) - 1)/beta_i) of the ' // &
          'principal stretches, beta_i = nu_i/(1 - 2 nu_i) (doc/theory.md section 2.11). As ' // &
          'CalculiX, NLGEOM is turned on in every step (NLGEOM=NO is refused). Not with ' // &
-         'plasticity, *EXPANSION or C3D8I elements.', 'N=1: mu_1, alpha_1, nu_1; N=2: mu_1, ' // &
+         'plasticity, *EXPANSION, C3D8I elements or *EL PRINT ENER/ELSE.', 'N=1: mu_1, alpha_1, nu_1; N=2: mu_1, ' // &
          'alpha_1, mu_2, alpha_2, nu_1, nu_2; N=3: a pair of lines, mu_1, alpha_1, mu_2, ' // &
          'alpha_2, mu_3, alpha_3, nu_1, nu_2 / nu_3; each set ends with an optional ' // &
          'temperature; one set only (constants that depend on temperature are refused).', &
