@@ -150,7 +150,42 @@ contains
         end associate
       end associate
     end do
+    call check_hyperelastic_initial_states(model, diag)
   end subroutine check_hyperelastic
+
+  !> Initial stresses and plastic strains (*INITIAL CONDITIONS) are not in the hyperelastic
+  !> stress, a function of F alone: refused on elements of hyperelastic materials.
+  subroutine check_hyperelastic_initial_states(model, diag)
+    type(model_t), intent(in) :: model
+    type(diagnostics_t), intent(inout) :: diag
+    integer :: k, s
+    if (allocated(model%initial_stresses)) then
+      do k = 1, size(model%initial_stresses)
+        s = model%element_section(model%initial_stresses(k)%element)
+        if (s <= 0) cycle
+        associate (m => model%materials(model%sections(s)%material))
+          if (m%hyperelastic%family == HYPER_NONE) cycle
+          call diag%report(m%hyperelastic_loc, '*' // trim(hyper_keyword(m%hyperelastic%family)) // &
+            ': material ' // m%name // ' is hyperelastic: initial stresses on its elements ' // &
+            '(*INITIAL CONDITIONS, TYPE=STRESS, element ' // &
+            str(model%mesh%element_id(model%initial_stresses(k)%element)) // ') are not available')
+          exit
+        end associate
+      end do
+    end if
+    if (.not. allocated(model%initial_plastic_strains)) return
+    do k = 1, size(model%initial_plastic_strains)
+      s = model%element_section(model%initial_plastic_strains(k)%element)
+      if (s <= 0) cycle
+      associate (m => model%materials(model%sections(s)%material))
+        if (m%hyperelastic%family == HYPER_NONE) cycle
+        call diag%report(model%initial_plastic_strains(k)%loc, '*INITIAL CONDITIONS, TYPE=' // &
+          'PLASTIC STRAIN: material ' // m%name // ' is hyperelastic: initial plastic strains ' // &
+          'are not available for it')
+        exit
+      end associate
+    end do
+  end subroutine check_hyperelastic_initial_states
 
   pure function hyper_keyword(family) result(keyword)
     integer, intent(in) :: family
