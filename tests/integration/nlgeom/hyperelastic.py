@@ -17,6 +17,12 @@ is then sigma_11 mu^2 (the current area of the unit face), and the far corner mo
    (mu_0 = mu_1 + mu_2) that ccx substitutes, so mu_0 / K_0 = 1/20, nearly incompressible;
 3. HYPERFOAM, N=1 mu = 0.2, alpha = 6, nu = 0.1 (a compressible foam).
 
+Restart: the Ogden run writes a checkpoint every 5 increments (*RESTART, WRITE); a copy of the
+job restarted from the middle one of its checkpoints (with the .dat and .h5 the run had written) ends with
+the one-go run's .dat byte for byte and every dataset and attribute of its .h5 bit for bit
+(restart_common.compare_h5; skipped without h5py): the hyperelastic stress is a function of F
+alone, so the checkpoint needs no state of its own.
+
 Tolerance 1e-4 relative: the deformation is homogeneous (each point sees the same F, whatever
 the increments), so the only error is the out-of-balance the equilibrium iterations leave, of
 order 1e-5 of the nodal forces (doc/theory.md 6.8); the closed form itself is exact to 1e-10.
@@ -28,6 +34,8 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import fcs_check as fc  # noqa: E402
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'restart'))
 
 STRETCH = 1.5
 TOLERANCE = 1e-4
@@ -102,6 +110,8 @@ def main():
         lines = ['*HEADING', 'Hyperelastic uniaxial stretch, %s (hyperelastic.py)' % name]
         lines += block.mesh_cards(sets) + ['*MATERIAL, NAME=RUBBER'] + cards
         lines += ['*SOLID SECTION, ELSET=ALL_ELEMENTS, MATERIAL=RUBBER']
+        if name == 'ogden':
+            lines += ['*RESTART, WRITE, FREQUENCY=5, GENERATIONS=100']
         lines += ['*STEP, NLGEOM', '*STATIC', '*BOUNDARY', 'X0, 1, 1, 0.', 'Y0, 2, 2, 0.',
                   'Z0, 3, 3, 0.', 'X1, 1, 1, %.17g' % (STRETCH - 1.0),
                   '*NODE PRINT, NSET=X1', 'RF', '*NODE PRINT, NSET=ALL_NODES', 'U', '*END STEP']
@@ -120,7 +130,38 @@ def main():
         u = rows[rows[:, 0] == corner][0, 1:4]
         checker.relative('%s: lateral displacement of the far corner = mu - 1' % name, u[1],
                          mu - 1.0, TOLERANCE)
+    check_restart(checker)
     checker.finish()
+
+
+def check_restart(checker):
+    """The Ogden job restarted from a checkpoint half-way ends as the one-go run."""
+    import filecmp
+    import glob
+    import shutil
+    try:
+        import h5py  # noqa: F401
+    except ImportError:
+        print('skip restart: h5py not available')
+        return
+    import restart_common as rc
+    os.makedirs('restarted', exist_ok=True)
+    for name in ('ogden.inp', 'ogden.dat', 'ogden.h5'):
+        shutil.copy(name, os.path.join('restarted', name))
+    # The middle one of the checkpoints kept (ogden.rst.<n>.h5, n counting back in time).
+    kept = sorted(glob.glob('ogden.rst.*.h5'), key=lambda n: int(n.split('.')[2]))
+    if not kept:
+        fc.fail('restart: the Ogden run wrote no checkpoints')
+    shutil.copy(kept[len(kept) // 2], os.path.join('restarted', 'checkpoint.h5'))
+    print('restart from %s (of %d kept)' % (kept[len(kept) // 2], len(kept)))
+    os.chdir('restarted')
+    fc.run_fcs3d('ogden.inp', '--restart', 'checkpoint.h5')
+    os.chdir('..')
+    checker.check(filecmp.cmp('ogden.dat', os.path.join('restarted', 'ogden.dat'), shallow=False),
+                  'restart from a checkpoint: ogden.dat byte for byte')
+    problems = rc.compare_h5('ogden.h5', os.path.join('restarted', 'ogden.h5'))
+    checker.check(not problems, 'restart from a checkpoint: ogden.h5 bit for bit%s'
+                  % ('' if not problems else ': ' + '; '.join(problems[:3])))
 
 
 if __name__ == '__main__':
