@@ -45,6 +45,8 @@ module fcs_element_loops
   use fcs_material, only: material_t, material_slot_t
   use fcs_voigt, only: spin_rotation, rotate_stress_like, rotate_strain_like
   use fcs_simo_plasticity, only: simo_plasticity_t
+  use fcs_hyperelastic, only: hyperelastic_stress, hyperelastic_jaumann_tangent
+  use fcs_hyperelastic_material, only: hyperelastic_t
   use fcs_st_venant_kirchhoff, only: green_lagrange_strain, cauchy_from_pk2, pk2_from_cauchy, &
                                      svk_jaumann_tangent, determinant_of
   use fcs_orientation, only: orientation_t, orientation_axes, stress_to_global, strain_to_local, &
@@ -531,8 +533,11 @@ contains
         end if
         if (.not. present(matrix)) cycle
         associate (material => this%materials(this%material(e))%m)
-          if (takes_svk(this, e, nlgeom) .or. takes_simo(this, e, nlgeom)) then
-            if (takes_svk(this, e, nlgeom)) then
+          if (takes_svk(this, e, nlgeom) .or. takes_simo(this, e, nlgeom) .or. &
+              takes_hyperelastic(this, e, nlgeom)) then
+            if (takes_hyperelastic(this, e, nlgeom)) then
+              call hyperelastic_tangents(this, e, xe(:, 1:n), c, err)
+            else if (takes_svk(this, e, nlgeom)) then
               call svk_tangents(this, e, xe(:, 1:n), fields%stress(:, :, e), c, err, temperature)
             else
               call simo_tangents(this, e, xe(:, 1:n), fields, c, err, elastic, temperature)
@@ -620,7 +625,11 @@ contains
         associate (material => this%materials(this%material(e))%m)
           thermal = present(temperature_start) .and. present(temperature_end)
           if (thermal) thermal = material%thermal%is_active()
-          if (takes_simo(this, e, nlgeom)) then
+          if (takes_hyperelastic(this, e, nlgeom)) then
+            call element_x(this, e, x, nlgeom, xe)
+            call update_hyperelastic(this, e, xe(:, 1:n) + du_e(:, 1:n), fields, err)
+            if (allocated(err)) return
+          else if (takes_simo(this, e, nlgeom)) then
             call element_x(this, e, x, nlgeom, xe)
             xe(:, 1:n) = xe(:, 1:n) + du_e(:, 1:n)
             if (thermal) then
@@ -695,6 +704,68 @@ contains
     svk = this%materials(this%material(e))%m%st_venant_kirchhoff .and. &
           this%catalogue%kinds(this%kind(e))%n_modes == 0
   end function takes_svk
+
+  !> Whether element e takes a hyperelastic law (fcs_hyperelastic, doc/theory.md 2.11): under
+  !> NLGEOM, a hyperelastic_t material in an element without incompatible modes (the model
+  !> checks refuse C3D8I with these materials: its modes are found anew in every increment,
+  !> so the total deformation gradient with the modes is not known; takes_svk).
+  pure logical function takes_hyperelastic(this, e, nlgeom) result(hyper)
+    class(element_loops_t), intent(in) :: this
+    integer, intent(in) :: e
+    logical, intent(in) :: nlgeom
+    hyper = nlgeom
+    if (.not. hyper) return
+    hyper = this%catalogue%kinds(this%kind(e))%n_modes == 0
+    if (.not. hyper) return
+    select type (material => this%materials(this%material(e))%m)
+    type is (hyperelastic_t)
+    class default
+      hyper = .false.
+    end select
+  end function takes_hyperelastic
+
+  !> Hyperelastic update of element e whose nodes have reached xe (3, n): each point's Cauchy
+  !> stress is the law's at its deformation gradient F (hyperelastic_stress: a total form, a
+  !> function of F alone, so that iterations and restarts recompute it exactly); its strain
+  !> the Green-Lagrange strain of F (CalculiX's E under NLGEOM).
+  subroutine update_hyperelastic(this, e, xe, fields, err)
+    class(element_loops_t), intent(in) :: this
+    integer, intent(in) :: e
+    real(dp), intent(in) :: xe(:, :)
+    type(element_state_t), intent(inout) :: fields
+    type(error_t), allocatable, intent(out) :: err
+    real(dp) :: f(3, 3, MAX_POINTS)
+    integer :: q
+    call deformation_gradients(this, e, xe, f, err)
+    if (allocated(err)) return
+    select type (material => this%materials(this%material(e))%m)
+    type is (hyperelastic_t)
+      do q = 1, this%catalogue%kinds(this%kind(e))%n_points
+        fields%stress(:, q, e) = hyperelastic_stress(material%law, f(:, :, q))
+        fields%strain(:, q, e) = green_lagrange_strain(f(:, :, q))
+      end do
+    end select
+  end subroutine update_hyperelastic
+
+  !> The tangents c(:, :, q) of element e's hyperelastic law at its nodes xe
+  !> (hyperelastic_jaumann_tangent: Miehe's numerical tangent of the Jaumann rate).
+  subroutine hyperelastic_tangents(this, e, xe, c, err)
+    class(element_loops_t), intent(in) :: this
+    integer, intent(in) :: e
+    real(dp), intent(in) :: xe(:, :)
+    real(dp), intent(out) :: c(:, :, :)
+    type(error_t), allocatable, intent(out) :: err
+    real(dp) :: f(3, 3, MAX_POINTS)
+    integer :: q
+    call deformation_gradients(this, e, xe, f, err)
+    if (allocated(err)) return
+    select type (material => this%materials(this%material(e))%m)
+    type is (hyperelastic_t)
+      do q = 1, this%catalogue%kinds(this%kind(e))%n_points
+        c(:, :, q) = hyperelastic_jaumann_tangent(material%law, f(:, :, q))
+      end do
+    end select
+  end subroutine hyperelastic_tangents
 
   !> Whether element e takes the multiplicative finite-strain plasticity of CalculiX
   !> (fcs_simo_plasticity, doc/theory.md 2.8): under NLGEOM, a simo_plasticity_t material

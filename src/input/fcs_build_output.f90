@@ -13,6 +13,7 @@ module fcs_build_output
                        TOTALS_NO, TOTALS_YES, TOTALS_ONLY
   use fcs_strings, only: string_t, to_upper, parse_int, parse_real, join_strings
   use fcs_material_factory, only: PLASTICITY_NONE
+  use fcs_hyperelastic, only: HYPER_NONE
   implicit none
   private
   public :: handle_output_request, handle_history, handle_event_catalog
@@ -117,7 +118,8 @@ contains
 
   !> The variable names on the data lines, each checked against `allowed`.
   !> ENER and ELSE print the elastic energy 1/2 S:(E - E_th) (fcs_dat_output): with a plastic
-  !> material that is not the internal energy CalculiX prints, so they are refused there.
+  !> material that is not the internal energy CalculiX prints, so they are refused there; with a
+  !> hyperelastic one (*HYPERELASTIC, *HYPERFOAM) it is not U either: refused too.
   subroutine check_energy_request(card, model, request, diag)
     type(card_t), intent(in) :: card
     type(model_t), intent(in) :: model
@@ -132,6 +134,13 @@ contains
           call diag%report(card%loc, '*' // card%keyword // ': ' // request%variables(v)%s // &
             ' (internal energy) is available for elastic materials only (fcs3d prints 1/2 S:E); ' // &
             'material ' // model%materials(k)%name // ' is plastic')
+          return
+        end if
+        if (model%materials(k)%hyperelastic%family /= HYPER_NONE) then
+          call diag%report(card%loc, '*' // card%keyword // ': ' // request%variables(v)%s // &
+            ' (internal energy) is not available for hyperelastic materials (fcs3d prints ' // &
+            '1/2 S:E, not the strain energy U); material ' // model%materials(k)%name // &
+            ' is hyperelastic')
           return
         end if
       end do

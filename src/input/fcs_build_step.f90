@@ -48,6 +48,7 @@ contains
     ! Abaqus: a step without the parameter inherits the previous step's setting.
     if (card%find_param('NLGEOM') > 0) then
       state%step%nlgeom = param_upper(card, 'NLGEOM') == 'YES'
+      state%step%nlgeom_refused = .not. state%step%nlgeom
     else if (size(state%steps) > 0) then
       state%step%nlgeom = state%steps(size(state%steps))%nlgeom
     else

@@ -189,7 +189,8 @@ contains
     type(keyword_spec_t), allocatable :: t(:)
     t = [ &
       kw('MATERIAL', CONTEXT_MODEL, 'CalculiX', 'Start a material definition; the ' // &
-         'following *ELASTIC, *HYPOELASTIC, *DENSITY, *PLASTIC, *CYCLIC HARDENING, *DRUCKER PRAGER and ' // &
+         'following *ELASTIC, *HYPOELASTIC, *HYPERELASTIC, *HYPERFOAM, *DENSITY, *PLASTIC, ' // &
+         '*CYCLIC HARDENING, *DRUCKER PRAGER and ' // &
          '*DRUCKER PRAGER HARDENING lines belong to it.', '', &
          [p('NAME', PARAM_NAME, required=.true., description='Name of the material.')]), &
       kw('ELASTIC', CONTEXT_MODEL, 'CalculiX', 'Elastic constants of the current material. ' // &
@@ -226,6 +227,48 @@ contains
          'variables, and its user subroutine (USER) are not available.', &
          'Young''s modulus [stress], Poisson''s ratio [-]: one line.', &
          [p_none()], data_required=.true.), &
+      kw('HYPERELASTIC', CONTEXT_MODEL, 'CalculiX', 'Isotropic hyperelastic law of the ' // &
+         'current material (ccx manual, *HYPERELASTIC): the Cauchy stress from the strain ' // &
+         'energy U of the reduced invariants Ibar_1, Ibar_2 and J of C = F^T F (polynomial ' // &
+         'forms, Arruda-Boyce) or of the deviatoric stretches (Ogden), as CalculiX defines ' // &
+         'them (doc/theory.md section 2.11). NEO HOOKE: U = C10 (Ibar_1 - 3) + (J - 1)^2/D1; ' // &
+         'MOONEY-RIVLIN adds C01 (Ibar_2 - 3); POLYNOMIAL: sum C_ij (Ibar_1 - 3)^i (Ibar_2 - ' // &
+         '3)^j, i + j <= N; REDUCED POLYNOMIAL: C_i0 only; YEOH: REDUCED POLYNOMIAL with N=3; ' // &
+         'OGDEN: sum 2 mu_i/alpha_i^2 (lambdabar_1^alpha_i + lambdabar_2^alpha_i + ' // &
+         'lambdabar_3^alpha_i - 3); volumetric sum (J - 1)^(2i)/D_i. As CalculiX, NLGEOM is ' // &
+         'turned on in every step (NLGEOM=NO is refused) and a D_i given as 0 becomes ' // &
+         '(0.1/mu_0)^i (an initial Poisson''s ratio of 0.475), with a warning. Not with ' // &
+         'plasticity, *EXPANSION, C3D8I elements or *EL PRINT ENER/ELSE; VAN DER WAALS is ' // &
+         'not available.', &
+         'ARRUDA-BOYCE: mu, lambda_m, D. MOONEY-RIVLIN: C10, C01, D1. NEO HOOKE: C10, D1. ' // &
+         'OGDEN, N=1: mu_1, alpha_1, D1; N=2: mu_1, alpha_1, mu_2, alpha_2, D1, D2; N=3: a ' // &
+         'pair of lines, mu_1, alpha_1, mu_2, alpha_2, mu_3, alpha_3, D1, D2 / D3. POLYNOMIAL, ' // &
+         'N=1: C10, C01, D1; N=2: C10, C01, C20, C11, C02, D1, D2; N=3: a pair of lines, C10, ' // &
+         'C01, C20, C11, C02, C30, C21, C12 / C03, D1, D2, D3. REDUCED POLYNOMIAL, N=1: C10, ' // &
+         'D1; N=2: C10, C20, D1, D2; N=3: C10, C20, C30, D1, D2, D3. YEOH: C10, C20, C30, D1, ' // &
+         'D2, D3. Each set ends with an optional temperature; one set only (constants that ' // &
+         'depend on temperature are refused). Left-out D_i are 0.', &
+         [p('ARRUDA-BOYCE', PARAM_FLAG, description='Arruda-Boyce form.'), &
+          p('MOONEY-RIVLIN', PARAM_FLAG, description='Mooney-Rivlin form (POLYNOMIAL, N=1).'), &
+          p('NEO HOOKE', PARAM_FLAG, description='Neo-Hooke form (REDUCED POLYNOMIAL, N=1).'), &
+          p('OGDEN', PARAM_FLAG, description='Ogden form, order N.'), &
+          p('POLYNOMIAL', PARAM_FLAG, description='Polynomial form, order N (the default form).'), &
+          p('REDUCED POLYNOMIAL', PARAM_FLAG, description='Reduced polynomial form, order N.'), &
+          p('YEOH', PARAM_FLAG, description='Yeoh form (REDUCED POLYNOMIAL, N=3).'), &
+          p('VAN DER WAALS', PARAM_FLAG, description='Refused: not available in fcs3d.'), &
+          p('N', PARAM_INTEGER, default='1', description='Order of OGDEN, POLYNOMIAL and ' // &
+            'REDUCED POLYNOMIAL: 1, 2 or 3.')], data_required=.true.), &
+      kw('HYPERFOAM', CONTEXT_MODEL, 'CalculiX', 'Hyperfoam law of the current material ' // &
+         '(ccx manual, *HYPERFOAM): U = sum 2 mu_i/alpha_i^2 (lambda_1^alpha_i + ' // &
+         'lambda_2^alpha_i + lambda_3^alpha_i - 3 + (J^(-alpha_i beta_i) - 1)/beta_i) of the ' // &
+         'principal stretches, beta_i = nu_i/(1 - 2 nu_i) (doc/theory.md section 2.11). As ' // &
+         'CalculiX, NLGEOM is turned on in every step (NLGEOM=NO is refused). Not with ' // &
+         'plasticity, *EXPANSION, C3D8I elements or *EL PRINT ENER/ELSE.', 'N=1: mu_1, alpha_1, nu_1; N=2: mu_1, ' // &
+         'alpha_1, mu_2, alpha_2, nu_1, nu_2; N=3: a pair of lines, mu_1, alpha_1, mu_2, ' // &
+         'alpha_2, mu_3, alpha_3, nu_1, nu_2 / nu_3; each set ends with an optional ' // &
+         'temperature; one set only (constants that depend on temperature are refused).', &
+         [p('N', PARAM_INTEGER, default='1', description='Number of terms: 1, 2 or 3.')], &
+         data_required=.true.), &
       kw('EXPANSION', CONTEXT_MODEL, 'CalculiX', 'Isotropic thermal expansion of the ' // &
          'current material: the secant coefficient alpha from the reference temperature ZERO, ' // &
          'thermal strain alpha(T) (T - ZERO) - alpha(T0) (T0 - ZERO) from the initial ' // &

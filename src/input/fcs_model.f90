@@ -10,6 +10,7 @@ module fcs_model
   use fcs_friction_factory, only: friction_def_t
   use fcs_material_factory, only: plastic_def_t
   use fcs_thermal_properties, only: thermal_properties_t
+  use fcs_hyperelastic, only: hyperelastic_law_t
   use fcs_orientation, only: orientation_t
   use fcs_contact_pair, only: contact_pair_def_t
   use fcs_pressure_overclosure, only: pressure_overclosure_t
@@ -74,6 +75,10 @@ module fcs_model
     real(dp) :: stiffness(6, 6) = 0.0_dp
     !> *HYPOELASTIC: the rate form under NLGEOM (else *ELASTIC: St Venant-Kirchhoff).
     logical :: hypoelastic = .false.
+    !> *HYPERELASTIC or *HYPERFOAM (fcs_hyperelastic; family HYPER_NONE: neither), with the
+    !> card that gave it. youngs_modulus and poisson_ratio above hold its initial moduli.
+    type(hyperelastic_law_t) :: hyperelastic
+    type(source_loc_t) :: hyperelastic_loc
   end type material_def_t
 
   !> *ORIENTATION: local material axes (fcs_orientation), with the card that gave them.
@@ -261,6 +266,8 @@ module fcs_model
   type :: step_t
     character(len=:), allocatable :: name
     logical :: nlgeom = .false.
+    !> The step's card says NLGEOM=NO (hyperelastic materials need NLGEOM: fcs_model_checks).
+    logical :: nlgeom_refused = .false.
     integer :: max_increments = 1000000
     real(dp) :: initial_increment = 1.0_dp
     real(dp) :: period = 1.0_dp

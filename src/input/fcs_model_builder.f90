@@ -20,6 +20,7 @@ module fcs_model_builder
   use fcs_builder_state, only: builder_t
   use fcs_build_mesh, only: handle_node, handle_element, handle_nset, handle_elset, &
                             handle_surface, handle_mesh
+  use fcs_build_hyperelastic, only: handle_hyperelastic, handle_hyperfoam
   use fcs_build_material, only: handle_material, handle_elastic, handle_hypoelastic, &
     handle_density, &
                                 handle_solid_section, handle_solver, handle_restart, &
@@ -248,6 +249,10 @@ contains
       end if
     case ('HYPOELASTIC')
       call handle_hypoelastic(card, model, state, diag)
+    case ('HYPERELASTIC')
+      call handle_hyperelastic(card, model, state, diag)
+    case ('HYPERFOAM')
+      call handle_hyperfoam(card, model, state, diag)
     case ('EXPANSION')
       call handle_expansion(card, model, state, diag)
     case ('INITIAL CONDITIONS')
@@ -328,7 +333,7 @@ contains
                        '(the keyword table and the builder disagree)')
     end select
     select case (card%keyword)
-    case ('MATERIAL', 'ELASTIC', 'HYPOELASTIC', 'DENSITY', 'PLASTIC', 'CYCLIC HARDENING', &
+    case ('MATERIAL', 'ELASTIC', 'HYPOELASTIC', 'HYPERELASTIC', 'HYPERFOAM', 'DENSITY', 'PLASTIC', 'CYCLIC HARDENING', &
           'DRUCKER PRAGER', 'DRUCKER PRAGER HARDENING', 'EXPANSION')
     case default
       state%material = 0
@@ -574,11 +579,12 @@ contains
       reason = 'constraints other than *BOUNDARY, *EQUATION, *MPC (PLANE, STRAIGHT, MEANROT), ' // &
                '*RIGID BODY, *COUPLING and *TRANSFORM are not available yet'
     else if (is_one_of(keyword, [character(len=34) :: &
-             'CONDUCTIVITY', 'SPECIFIC HEAT', 'HYPERELASTIC', 'HYPERFOAM', 'CREEP', &
+             'CONDUCTIVITY', 'SPECIFIC HEAT', 'CREEP', &
              'USER MATERIAL', 'DEFORMATION PLASTICITY', 'RATE DEPENDENT', 'CAP PLASTICITY', &
              'MOHR COULOMB', 'DRUCKER PRAGER CREEP'])) then
       reason = 'materials are linear elastic (*ELASTIC: isotropic, or anisotropic and elastic ' // &
-               'only; St Venant-Kirchhoff under NLGEOM), hypoelastic (*HYPOELASTIC), with ' // &
+               'only; St Venant-Kirchhoff under NLGEOM), hypoelastic (*HYPOELASTIC), ' // &
+               'hyperelastic (*HYPERELASTIC, *HYPERFOAM), with ' // &
                'von Mises (*PLASTIC) or linear Drucker-Prager (*DRUCKER PRAGER) ' // &
                'plasticity'
     else if (is_one_of(keyword, [character(len=34) :: 'CFLUX', 'DFLUX', 'FILM', 'RADIATE'])) then

@@ -13,6 +13,7 @@ module fcs_model_checks
   use fcs_model_supports, only: check_supports
   use fcs_build_plasticity, only: check_plasticity, check_initial_plastic_strains
   use fcs_material_factory, only: PLASTICITY_NONE
+  use fcs_hyperelastic, only: HYPER_NONE, HYPER_FOAM
   use fcs_element_kind, only: FORMULATION_HOURGLASS
   use fcs_linear_constraints, only: constraint_map_t
   use fcs_strings, only: str, parse_int
@@ -42,6 +43,7 @@ contains
     end if
     call assign_sections(model, diag, deck)
     call check_materials(model, diag)
+    call check_hyperelastic(model, diag)
     call check_thermal_kinds(model, diag)
     call check_anisotropy(model, diag)
     call check_jacobians(model, diag, deck)
@@ -93,6 +95,103 @@ contains
       end associate
     end do
   end subroutine check_anisotropy
+
+  !> Hyperelastic materials (*HYPERELASTIC, *HYPERFOAM; doc/theory.md 2.11) take their stress
+  !> from the total deformation gradient under NLGEOM. As CalculiX (its readers turn
+  !> "nonlinear geometric effects" on), a model with one has NLGEOM in every step; a step
+  !> whose card says NLGEOM=NO is refused. Refused too: plasticity or thermal expansion with
+  !> them (not CalculiX's finite-strain laws), and C3D8I elements (their incompatible modes
+  !> are found anew in every increment, so the total F is not known).
+  subroutine check_hyperelastic(model, diag)
+    type(model_t), intent(inout) :: model
+    type(diagnostics_t), intent(inout) :: diag
+    integer :: k, i, e, first
+    first = 0
+    do k = 1, size(model%materials)
+      associate (m => model%materials(k))
+        if (m%hyperelastic%family == HYPER_NONE) cycle
+        if (first == 0) first = k
+        if (m%plastic%model /= PLASTICITY_NONE) call diag%report(m%hyperelastic_loc, '*' // &
+          trim(hyper_keyword(m%hyperelastic%family)) // ': material ' // m%name // ': ' // &
+          'plasticity (*PLASTIC, *DRUCKER PRAGER) with a hyperelastic law is not available')
+        if (m%thermal%is_active()) call diag%report(m%hyperelastic_loc, '*' // &
+          trim(hyper_keyword(m%hyperelastic%family)) // ': material ' // m%name // ': ' // &
+          'thermal expansion (*EXPANSION) with a hyperelastic law is not available')
+      end associate
+    end do
+    if (first == 0) return
+    do k = 1, size(model%steps)
+      if (model%steps(k)%nlgeom) cycle
+      if (model%steps(k)%nlgeom_refused) then
+        call diag%report(model%steps(k)%loc, '*STEP: NLGEOM=NO, but material ' // &
+          model%materials(first)%name // ' is hyperelastic, which needs NLGEOM (CalculiX turns ' // &
+          'nonlinear geometric effects on for *HYPERELASTIC and *HYPERFOAM)')
+      else
+        model%steps(k)%nlgeom = .true.
+        call diag%warn(model%steps(k)%loc, '*STEP: NLGEOM is turned on: material ' // &
+          model%materials(first)%name // ' is hyperelastic (as CalculiX: "nonlinear geometric ' // &
+          'effects are turned on")')
+      end if
+    end do
+    do k = 1, size(model%sections)
+      associate (section => model%sections(k))
+        if (section%material <= 0 .or. section%element_set <= 0) cycle
+        if (model%materials(section%material)%hyperelastic%family == HYPER_NONE) cycle
+        associate (members => model%mesh%element_sets(section%element_set)%members)
+          do i = 1, size(members)
+            e = members(i)
+            if (model%element_kinds%kinds(model%mesh%element_kind(e))%n_modes == 0) cycle
+            call diag%report(section%loc, '*SOLID SECTION: material ' // &
+              model%materials(section%material)%name // ' is hyperelastic, which ' // &
+              model%mesh%kinds(model%mesh%element_kind(e))%name // ' elements (element ' // &
+              str(model%mesh%element_id(e)) // ') do not take; use C3D8, C3D8R, C3D20 or C3D20R')
+            exit
+          end do
+        end associate
+      end associate
+    end do
+    call check_hyperelastic_initial_states(model, diag)
+  end subroutine check_hyperelastic
+
+  !> Initial stresses and plastic strains (*INITIAL CONDITIONS) are not in the hyperelastic
+  !> stress, a function of F alone: refused on elements of hyperelastic materials.
+  subroutine check_hyperelastic_initial_states(model, diag)
+    type(model_t), intent(in) :: model
+    type(diagnostics_t), intent(inout) :: diag
+    integer :: k, s
+    if (allocated(model%initial_stresses)) then
+      do k = 1, size(model%initial_stresses)
+        s = model%element_section(model%initial_stresses(k)%element)
+        if (s <= 0) cycle
+        associate (m => model%materials(model%sections(s)%material))
+          if (m%hyperelastic%family == HYPER_NONE) cycle
+          call diag%report(m%hyperelastic_loc, '*' // trim(hyper_keyword(m%hyperelastic%family)) // &
+            ': material ' // m%name // ' is hyperelastic: initial stresses on its elements ' // &
+            '(*INITIAL CONDITIONS, TYPE=STRESS, element ' // &
+            str(model%mesh%element_id(model%initial_stresses(k)%element)) // ') are not available')
+          exit
+        end associate
+      end do
+    end if
+    if (.not. allocated(model%initial_plastic_strains)) return
+    do k = 1, size(model%initial_plastic_strains)
+      s = model%element_section(model%initial_plastic_strains(k)%element)
+      if (s <= 0) cycle
+      associate (m => model%materials(model%sections(s)%material))
+        if (m%hyperelastic%family == HYPER_NONE) cycle
+        call diag%report(model%initial_plastic_strains(k)%loc, '*INITIAL CONDITIONS, TYPE=' // &
+          'PLASTIC STRAIN: material ' // m%name // ' is hyperelastic: initial plastic strains ' // &
+          'are not available for it')
+        exit
+      end associate
+    end do
+  end subroutine check_hyperelastic_initial_states
+
+  pure function hyper_keyword(family) result(keyword)
+    integer, intent(in) :: family
+    character(len=12) :: keyword
+    keyword = merge('HYPERFOAM   ', 'HYPERELASTIC', family == HYPER_FOAM)
+  end function hyper_keyword
 
   !> Thermal strain is not in the incompatible-mode update (C3D8I) yet: a section that gives
   !> elements with incompatible modes a material with expansion or temperature-dependent

@@ -8,6 +8,8 @@ module fcs_assembly
   use fcs_material, only: material_t, material_slot_t
   use fcs_von_mises, only: von_mises_t
   use fcs_simo_plasticity, only: simo_from_von_mises
+  use fcs_hyperelastic, only: HYPER_NONE
+  use fcs_hyperelastic_material, only: hyperelastic_from_law
   use fcs_material_factory, only: create_material, PLASTICITY_NONE
   use fcs_element_loops, only: element_loops_t, BODY_FORCE_GRAVITY, BODY_FORCE_CENTRIFUGAL
   use fcs_sparse, only: sparse_matrix_t
@@ -27,6 +29,11 @@ contains
     integer :: k
     allocate (slots(size(model%materials)))
     do k = 1, size(model%materials)
+      if (model%materials(k)%hyperelastic%family /= HYPER_NONE) then
+        ! *HYPERELASTIC, *HYPERFOAM: the stress a function of F (doc/theory.md 2.11).
+        allocate (slots(k)%m, source=hyperelastic_from_law(model%materials(k)%hyperelastic))
+        cycle
+      end if
       if (model%materials(k)%anisotropic) then
         call create_material(model%materials(k)%youngs_modulus, model%materials(k)%poisson_ratio, &
                              model%materials(k)%plastic, slots(k)%m, err, model%materials(k)%stiffness)

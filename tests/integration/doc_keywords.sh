@@ -45,9 +45,8 @@ ALLOWED = {'KEYWORD', 'DYNAMIC', 'FRICTION', 'PLASTIC', 'EQUATION', 'COUPLING', 
            'MODAL DYNAMIC', 'STEADY STATE DYNAMICS', 'COMPLEX FREQUENCY', 'ELECTROMAGNETICS',
            'GREEN', 'SENSITIVITY', 'SUBSTRUCTURE GENERATE', 'NO ANALYSIS', 'CFD', 'TRANSFORM',
            'UNCOUPLED TEMPERATURE-DISPLACEMENT', 'CHANGE SURFACE BEHAVIOR', 'CYCLIC SYMMETRY MODEL',
-           'HYPERELASTIC', 'SUBMODEL', 'PRE-TENSION SECTION', 'CHANGE SOLID SECTION', 'RIGID BODY',
-           'NODEE', 'PART', 'GEOSTATIC', 'SOLID SECTON', 'MEMBRANE', 'DEFORMATION PLASTICITY',
-           'HYPERFOAM'}
+           'SUBMODEL', 'PRE-TENSION SECTION', 'CHANGE SOLID SECTION', 'RIGID BODY',
+           'NODEE', 'PART', 'GEOSTATIC', 'SOLID SECTON', 'MEMBRANE', 'DEFORMATION PLASTICITY'}
 docs = [p for p in [os.path.join(root, 'README.md')] if os.path.exists(p)] + glob.glob(os.path.join(root, 'doc', '**', '*.md'),
                                                       recursive=True)
 for path in docs:
