@@ -287,7 +287,10 @@ contains
       '  --list-keywords       the keywords the deck may use, with their parameters', &
       '  --markdown            with --list-keywords: the deck reference in Markdown', &
       '  --check               read and check the deck and the model, write job.echo, do not run', &
-      '  --restart FILE        continue from a checkpoint (job.rst.h5)', &
+      '  --restart FILE        continue from a checkpoint (job.rst.h5); --solver, --reuse-tolerance,', &
+      '                        --contact-events and --low-rank-tolerance not given are taken', &
+      '                        from it (the interrupted run''s), one given with another value', &
+      '                        is used with a warning', &
       '  --reuse-tolerance TOL', &
       '                        relative residual of a tangent solved by GMRES with the factors', &
       '                        of an earlier one (default 0: factorise every tangent; 1e-10', &
