@@ -23,7 +23,7 @@ module fcs_checkpoint
   private
   public :: checkpoint_info_t, h5_archive_t, begin_checkpoint, end_checkpoint
   public :: open_checkpoint, close_checkpoint, read_checkpoint_info
-  public :: checkpoint_generation_path, CHECKPOINT_FORMAT, CHECKPOINT_VERSION, OLDEST_CHECKPOINT_VERSION
+  public :: checkpoint_generation_path, CHECKPOINT_FORMAT, CHECKPOINT_VERSION
 
   character(len=*), parameter :: CHECKPOINT_FORMAT = 'fcs3d checkpoint'
   !> Version of the layout and checksums; a checkpoint of another version is refused.
@@ -39,8 +39,8 @@ module fcs_checkpoint
   !> 5: the /meta attribute `options`, the command-line options of the run that change its
   !> results (in the overall checksum). Version 4 is the same without it and is still read.
   integer, parameter :: CHECKPOINT_VERSION = 5
-  !> The oldest version still read (a version-4 checkpoint does not record the options).
-  integer, parameter :: OLDEST_CHECKPOINT_VERSION = 4
+  !> The oldest version still read, and the first that records the options.
+  integer, parameter :: OLDEST_CHECKPOINT_VERSION = 4, OPTIONS_VERSION = 5
 
   !> What a checkpoint says about itself (the /meta attributes).
   type :: checkpoint_info_t
@@ -269,7 +269,7 @@ contains
     if (.not. allocated(err)) call archive%h5%read_attribute('/meta', 'step_hashes', info%step_hashes, err)
     if (.not. allocated(err)) call archive%h5%read_attribute('/meta', 'build', info%build, err)
     ! Version 4 did not record the options (read as "none recorded").
-    info%records_options = version >= 5
+    info%records_options = version >= OPTIONS_VERSION
     info%options = ''
     if (.not. allocated(err) .and. info%records_options) &
       call archive%h5%read_attribute('/meta', 'options', info%options, err)
