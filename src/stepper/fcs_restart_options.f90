@@ -46,7 +46,9 @@ contains
     end if
     call parse_result_options(info%options, recorded, err)
     if (allocated(err)) then
-      call add_context(err, 'the options recorded in the checkpoint ' // options%restart_file)
+      call add_context(err, 'reading checkpoint ' // options%restart_file // ': its record ' // &
+        'of the command-line options ("' // info%options // '") cannot be read (the file is ' // &
+        'damaged, or was written by another fcs3d)')
       return
     end if
     do k = 1, size(RESULT_OPTIONS)

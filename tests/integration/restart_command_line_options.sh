@@ -13,6 +13,8 @@
 #     the run that wrote it); its .dat is not the CLOSING run's (so a. can fail);
 #  d. the final checkpoint of b. records the options b. ran with: restarted without options
 #     it takes both from the checkpoint (log), and the run summary shows the reuse tolerance;
+#  e. the record is in the overall checksum: a checkpoint whose record was changed is refused
+#     (exit 2), and so is one whose record the command line would refuse;
 #  c. a checkpoint of format version 4 (written by fcs3d 2854d27 and earlier: the same file
 #     without the /meta attribute `options`; made here from a run with no options given, by
 #     deleting the attribute and setting the version to 4 with h5py, which leaves the overall
@@ -87,6 +89,29 @@ if "$FCS3D" -q --restart closing.rst.h5 closing.inp; then
 else
   failed "d. restart from the end checkpoint of b. failed"
 fi
+
+# e. The record is in the overall checksum: changed (1E-10 to 1E-09; the attribute keeps its
+# length), the checkpoint is refused; changed into text the command line refuses, too.
+for change in '1E-10 1E-09 the overall checksum does not match' \
+              'ALL XYZ its record of the command-line options ("--reuse-tolerance 1E-10 --contact-events XYZ") cannot be read'; do
+  cp closing.rst.h5 changed.rst.h5 || exit 1
+  set -- $change
+  "$py" - "$1" "$2" <<'EOF' || exit 1
+import sys
+import h5py
+import numpy as np
+with h5py.File('changed.rst.h5', 'r+') as f:
+    text = f['meta'].attrs['options'].replace(sys.argv[1].encode(), sys.argv[2].encode())
+    f['meta'].attrs.modify('options', np.bytes_(text))
+EOF
+  wanted=${change#* * }
+  "$FCS3D" -q --restart changed.rst.h5 closing.inp 2> e.err; status=$?
+  if [ "$status" -eq 2 ] && has_line e.err "$wanted"; then
+    pass "e. recorded $1 changed to $2: refused (exit 2, '$wanted')"
+  else
+    failed "e. recorded $1 changed to $2: exit status $status (expected 2 and '$wanted'); $(cat e.err)"
+  fi
+done
 
 # c. A version-4 checkpoint (no recorded options).
 "$FCS3D" -q deck.inp || { echo "fcs3d failed on deck.inp"; exit 1; }
