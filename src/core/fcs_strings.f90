@@ -3,7 +3,7 @@ module fcs_strings
   use fcs_kinds, only: dp, i8
   implicit none
   private
-  public :: string_t, to_upper, to_lower, collapse_spaces, split_fields
+  public :: string_t, to_upper, to_lower, collapse_spaces, split_fields, split_words
   public :: parse_real, parse_int, is_number_text, str, join_strings, name_index
   public :: dirname, basename, join_path, path_stem, file_exists, replace_all
 
@@ -92,6 +92,25 @@ contains
     end if
     fields = tmp(1:n)
   end subroutine split_fields
+
+  !> The space-separated words of `text` (runs of spaces separate; none at either end).
+  pure function split_words(text) result(out)
+    character(len=*), intent(in) :: text
+    type(string_t), allocatable :: out(:)
+    integer :: i, start
+    allocate (out(0))
+    start = 0
+    do i = 1, len(text) + 1
+      if (i > len(text)) then
+        if (start > 0) out = [out, string_t(text(start:len(text)))]
+      else if (text(i:i) == ' ') then
+        if (start > 0) out = [out, string_t(text(start:i - 1))]
+        start = 0
+      else if (start == 0) then
+        start = i
+      end if
+    end do
+  end function split_words
 
   pure integer function count_commas(text) result(n)
     character(len=*), intent(in) :: text

@@ -36,7 +36,11 @@ module fcs_checkpoint
   !> 4: every owner of run state saves itself (fcs_archive): the contact search and pattern
   !> bookkeeping in /contact_system (pattern_face, grid_<k>, the pattern_dirty flag),
   !> separate from the contact states in /contact.
-  integer, parameter :: CHECKPOINT_VERSION = 4
+  !> 5: the /meta attribute `options`, the command-line options of the run that change its
+  !> results (in the overall checksum). Version 4 is the same without it and is still read.
+  integer, parameter :: CHECKPOINT_VERSION = 5
+  !> The oldest version still read, and the first that records the options.
+  integer, parameter :: OLDEST_CHECKPOINT_VERSION = 4, OPTIONS_VERSION = 5
 
   !> What a checkpoint says about itself (the /meta attributes).
   type :: checkpoint_info_t
@@ -54,6 +58,11 @@ module fcs_checkpoint
     !> of complete frames in its results file.
     integer(i8) :: dat_size = 0
     integer :: n_frames = 0
+    !> Whether the checkpoint records the run's command-line options (version 5 on), and the
+    !> record: the options that change results as they would be written on the command line
+    !> ("--contact-events CLOSING --reuse-tolerance 1E-10"; '' when none was given).
+    logical :: records_options = .false.
+    character(len=:), allocatable :: options
   end type checkpoint_info_t
 
 contains
@@ -140,14 +149,25 @@ contains
     if (.not. allocated(err)) call archive%h5%write_attribute('/meta', 'step_hashes', &
                                                               info%step_hashes // ' ', err)
     if (.not. allocated(err)) call archive%h5%write_attribute('/meta', 'build', info%build, err)
+    if (.not. allocated(err)) call archive%h5%write_attribute('/meta', 'options', &
+                                                              info%options // ' ', err)
     if (.not. allocated(err)) call archive%put('/meta/sizes', [info%n_nodes, info%n_elements, &
       info%n_slaves, info%n_material_state, info%step, info%increment, info%n_frames], err)
     if (.not. allocated(err)) call archive%put('/meta/values', [info%time, &
       real(info%dat_size, dp), info%step_time], err)
-    call archive%total%add_text(info%model_hash // info%step_hashes // info%build)
+    call archive%total%add_text(meta_text(info))
     if (.not. allocated(err)) call archive%h5%write_attribute('/meta', 'checksum', &
                                                               checksum_text(archive%total%value), err)
   end subroutine write_meta
+
+  !> The /meta text the overall checksum covers (a version-4 checkpoint's has no options,
+  !> which read as '': the same text as version 4 wrote).
+  pure function meta_text(info) result(text)
+    type(checkpoint_info_t), intent(in) :: info
+    character(len=:), allocatable :: text
+    text = info%model_hash // info%step_hashes // info%build
+    if (allocated(info%options)) text = text // info%options
+  end function meta_text
 
   !> Read the /meta of a checkpoint (verified) without its data.
   subroutine read_checkpoint_info(path, info, err)
@@ -206,9 +226,10 @@ contains
     end if
     call archive%h5%read_attribute('/meta', 'version', version, err)
     if (allocated(err)) return
-    if (version /= CHECKPOINT_VERSION) call input_error(err, 'checkpoint format version ' // &
-      str(version) // '; this fcs3d reads version ' // str(CHECKPOINT_VERSION) // &
-      ' only (restart with the fcs3d that wrote it)')
+    if (version < OLDEST_CHECKPOINT_VERSION .or. version > CHECKPOINT_VERSION) &
+      call input_error(err, 'checkpoint format version ' // str(version) // &
+      '; this fcs3d reads versions ' // str(OLDEST_CHECKPOINT_VERSION) // ' to ' // &
+      str(CHECKPOINT_VERSION) // ' only (restart with the fcs3d that wrote it)')
   end subroutine open_checkpoint
 
   !> After the owners loaded themselves from `archive` (or failed to: `err` comes in
@@ -222,7 +243,7 @@ contains
     character(len=:), allocatable :: stored
     if (.not. allocated(err)) call read_meta(archive, info, err)
     if (.not. allocated(err)) then
-      call archive%total%add_text(info%model_hash // info%step_hashes // info%build)
+      call archive%total%add_text(meta_text(info))
       call archive%h5%read_attribute('/meta', 'checksum', stored, err)
       if (.not. allocated(err) .and. stored /= checksum_text(archive%total%value)) &
         call input_error(err, 'the overall checksum does not match (the file is damaged)')
@@ -242,11 +263,19 @@ contains
     type(error_t), allocatable, intent(out) :: err
     integer, allocatable :: sizes(:)
     real(dp), allocatable :: values(:)
-    call archive%h5%read_attribute('/meta', 'model_hash', info%model_hash, err)
+    integer :: version
+    call archive%h5%read_attribute('/meta', 'version', version, err)
+    if (.not. allocated(err)) call archive%h5%read_attribute('/meta', 'model_hash', info%model_hash, err)
     if (.not. allocated(err)) call archive%h5%read_attribute('/meta', 'step_hashes', info%step_hashes, err)
     if (.not. allocated(err)) call archive%h5%read_attribute('/meta', 'build', info%build, err)
+    ! Version 4 did not record the options (read as "none recorded").
+    info%records_options = version >= OPTIONS_VERSION
+    info%options = ''
+    if (.not. allocated(err) .and. info%records_options) &
+      call archive%h5%read_attribute('/meta', 'options', info%options, err)
     if (allocated(err)) return
     info%step_hashes = trim(info%step_hashes)
+    info%options = trim(info%options)
     allocate (sizes(7), values(3))
     call archive%get('/meta/sizes', sizes, err)
     if (.not. allocated(err)) call archive%get('/meta/values', values, err)

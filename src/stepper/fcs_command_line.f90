@@ -6,15 +6,23 @@ module fcs_command_line
   use fcs_solver_factory, only: is_linear_solver, linear_solver_names_text, DEFAULT_LINEAR_SOLVER
   use fcs_kinds, only: dp
   use fcs_linear_solver, only: MAX_LOW_RANK_TOLERANCE
-  use fcs_strings, only: to_upper, basename, path_stem, join_path, parse_real, str
+  use fcs_strings, only: to_upper, basename, path_stem, join_path, parse_real, str, string_t, &
+                         split_words
   use fcs_version, only: FCS3D_IDENTITY
   use fcs_files, only: directory_exists
   implicit none
   private
   public :: parse_command_line, ACTION_RUN, ACTION_DONE
+  public :: RESULT_OPTIONS, result_options_text, parse_result_options, parse_result_option, &
+            result_option_value
 
   !> What main does after parsing: run a job, or nothing more (help/version/keywords printed).
   integer, parameter :: ACTION_RUN = 1, ACTION_DONE = 2
+
+  !> The options that change a run's results (recorded in its checkpoints, taken from the
+  !> checkpoint by a restart that does not give them; fcs_restart_options).
+  character(len=*), parameter :: RESULT_OPTIONS(4) = [character(len=20) :: '--solver', &
+    '--reuse-tolerance', '--contact-events', '--low-rank-tolerance']
 
 contains
 
@@ -69,31 +77,13 @@ contains
           return
         end if
         select case (arg)
-        case ('--solver')
-          options%solver = to_upper(argument(i))
-          if (.not. is_linear_solver(options%solver)) then
-            call input_error(err, '--solver ' // argument(i) // ': unknown solver; expected ' // &
-                             'one of ' // linear_solver_names_text())
-            return
-          end if
         case ('--restart')
           options%restart_file = argument(i)
-        case ('--reuse-tolerance')
-          call parse_tolerance(arg, argument(i), 1.0e-3_dp, options%reuse_tolerance, err)
-          if (allocated(err)) return
-        case ('--contact-events')
-          options%contact_events = to_upper(argument(i))
-          if (all(options%contact_events /= [character(len=7) :: 'ALL', 'NORMAL', 'CLOSING'])) then
-            call input_error(err, '--contact-events ' // argument(i) // ': expected ' // &
-                             option_value_text('--contact-events'))
-            return
-          end if
-        case ('--low-rank-tolerance')
-          call parse_tolerance(arg, argument(i), MAX_LOW_RANK_TOLERANCE, &
-                               options%low_rank_tolerance, err)
-          if (allocated(err)) return
-        case default
+        case ('-o', '--output-dir')
           output_dir = argument(i)
+        case default
+          call parse_result_option(arg, argument(i), options, err)
+          if (allocated(err)) return
         end select
       case default
         if (arg(1:1) == '-') then
@@ -126,6 +116,104 @@ contains
       options%job = join_path(output_dir, path_stem(basename(options%deck_path)))
     end if
   end subroutine parse_command_line
+
+  !> Set result option `name` (one of RESULT_OPTIONS) of `options` from its value `text`, as
+  !> the command line gives it; a value it does not accept is a command-line error.
+  subroutine parse_result_option(name, text, options, err)
+    character(len=*), intent(in) :: name, text
+    type(run_options_t), intent(inout) :: options
+    type(error_t), allocatable, intent(out) :: err
+    select case (name)
+    case ('--solver')
+      options%solver = to_upper(text)
+      if (.not. is_linear_solver(options%solver)) call input_error(err, '--solver ' // text // &
+        ': unknown solver; expected one of ' // linear_solver_names_text())
+    case ('--reuse-tolerance')
+      call parse_tolerance(name, text, 1.0e-3_dp, options%reuse_tolerance, err)
+    case ('--contact-events')
+      options%contact_events = to_upper(text)
+      if (all(options%contact_events /= [character(len=7) :: 'ALL', 'NORMAL', 'CLOSING'])) &
+        call input_error(err, '--contact-events ' // text // ': expected ' // &
+                         option_value_text('--contact-events'))
+    case ('--low-rank-tolerance')
+      call parse_tolerance(name, text, MAX_LOW_RANK_TOLERANCE, options%low_rank_tolerance, err)
+    case default
+      call input_error(err, name // ' is not an option that changes results (expected one of ' // &
+                       '--solver, --reuse-tolerance, --contact-events, --low-rank-tolerance)')
+    end select
+  end subroutine parse_result_option
+
+  !> The value of result option `name` in `options` as the command line would give it ('' when
+  !> it was not given): names in capitals, tolerances in the fewest digits that read back to
+  !> the same number, so that equal settings have equal texts.
+  function result_option_value(options, name) result(text)
+    type(run_options_t), intent(in) :: options
+    character(len=*), intent(in) :: name
+    character(len=:), allocatable :: text
+    text = ''
+    select case (name)
+    case ('--solver')
+      if (allocated(options%solver)) text = to_upper(options%solver)
+    case ('--reuse-tolerance')
+      if (options%reuse_tolerance >= 0.0_dp) text = exact_text(options%reuse_tolerance)
+    case ('--contact-events')
+      if (allocated(options%contact_events)) text = to_upper(options%contact_events)
+    case ('--low-rank-tolerance')
+      if (options%low_rank_tolerance >= 0.0_dp) text = exact_text(options%low_rank_tolerance)
+    end select
+  end function result_option_value
+
+  !> The result options of `options` that were given, as a command line would give them
+  !> ("--reuse-tolerance 1E-10 --contact-events CLOSING"; '' when none was).
+  function result_options_text(options) result(text)
+    type(run_options_t), intent(in) :: options
+    character(len=:), allocatable :: text, value
+    integer :: k
+    text = ''
+    do k = 1, size(RESULT_OPTIONS)
+      value = result_option_value(options, trim(RESULT_OPTIONS(k)))
+      if (len(value) > 0) text = text // ' ' // trim(RESULT_OPTIONS(k)) // ' ' // value
+    end do
+    if (len(text) > 0) text = text(2:)
+  end function result_options_text
+
+  !> Read `text` (as result_options_text writes it: option and value, separated by spaces)
+  !> into the result options of `options` (the others untouched); an option or value the
+  !> command line would refuse is an error.
+  subroutine parse_result_options(text, options, err)
+    character(len=*), intent(in) :: text
+    type(run_options_t), intent(inout) :: options
+    type(error_t), allocatable, intent(out) :: err
+    type(string_t), allocatable :: words(:)
+    integer :: k
+    words = split_words(text)
+    options%solver = ''
+    options%contact_events = ''
+    options%reuse_tolerance = -1.0_dp
+    options%low_rank_tolerance = -1.0_dp
+    if (mod(size(words), 2) /= 0) then
+      call input_error(err, 'options "' // text // '": an option without its value')
+      return
+    end if
+    do k = 1, size(words), 2
+      call parse_result_option(words(k)%s, words(k + 1)%s, options, err)
+      if (allocated(err)) return
+    end do
+  end subroutine parse_result_options
+
+  !> `value` in the fewest significant digits (up to 17) that read back to it exactly.
+  function exact_text(value) result(text)
+    real(dp), intent(in) :: value
+    character(len=:), allocatable :: text
+    real(dp) :: back
+    integer :: digits
+    logical :: ok
+    do digits = 1, 17
+      text = str(value, digits)
+      call parse_real(text, back, ok)
+      if (ok .and. back == value) return
+    end do
+  end function exact_text
 
   !> What option `name` expects, for the message about an empty value.
   function option_value_text(name) result(text)
@@ -199,7 +287,10 @@ contains
       '  --list-keywords       the keywords the deck may use, with their parameters', &
       '  --markdown            with --list-keywords: the deck reference in Markdown', &
       '  --check               read and check the deck and the model, write job.echo, do not run', &
-      '  --restart FILE        continue from a checkpoint (job.rst.h5)', &
+      '  --restart FILE        continue from a checkpoint (job.rst.h5); --solver, --reuse-tolerance,', &
+      '                        --contact-events and --low-rank-tolerance not given are taken', &
+      '                        from it (the interrupted run''s), one given with another value', &
+      '                        is used with a warning', &
       '  --reuse-tolerance TOL', &
       '                        relative residual of a tangent solved by GMRES with the factors', &
       '                        of an earlier one (default 0: factorise every tangent; 1e-10', &

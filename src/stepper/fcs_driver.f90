@@ -34,6 +34,8 @@ module fcs_driver
   use fcs_heap_policy, only: keep_freed_memory
   use fcs_memory, only: prepare_memory, ensure_memory, set_activity, set_failure_log
   use fcs_run_checkpoint, only: save_checkpoint, restore_checkpoint
+  use fcs_restart_options, only: take_checkpoint_options
+  use fcs_command_line, only: result_options_text
   use fcs_checkpoint, only: checkpoint_info_t
   use fcs_monitors, only: monitors_t
   use fcs_version, only: FCS3D_IDENTITY
@@ -57,6 +59,8 @@ module fcs_driver
     logical :: writer = .true.
     !> The job's lock (rank 0), held from before the first file is written to the end.
     type(job_lock_t) :: lock
+    !> The result-changing command-line options in effect, as the checkpoints record them.
+    character(len=:), allocatable :: options_record
   end type run_t
 
 contains
@@ -130,16 +134,22 @@ contains
   end subroutine end_log
 
   !> The run on every process: the log, the model, the set-up, the steps, the summary and
-  !> the closing of the outputs.
-  subroutine run_job_on_ranks(options, run, model, deck, t_start, memory_note, err)
-    type(run_options_t), intent(in) :: options
+  !> the closing of the outputs. A restart takes the result-changing options it is not given
+  !> from the checkpoint before the model is built, where the command line's are applied.
+  subroutine run_job_on_ranks(given, run, model, deck, t_start, memory_note, err)
+    type(run_options_t), intent(in) :: given
     type(run_t), intent(inout) :: run
     type(model_t), intent(out) :: model
     type(deck_t), intent(out) :: deck
     real(dp), intent(in) :: t_start
     character(len=*), intent(in) :: memory_note
     type(error_t), allocatable, intent(out) :: err
+    type(run_options_t) :: options
+    options = given
     call start_log(options, run, memory_note, err)
+    if (.not. allocated(err)) call take_checkpoint_options(options, run%log, err)
+    run%options_record = result_options_text(options)
+    call run%analysis%share%comm%agree_error(err)
     if (.not. allocated(err)) call read_model(options, run, model, deck, err)
     if (allocated(err)) return
     if (options%check_only) then
@@ -458,8 +468,8 @@ contains
     type(error_t), allocatable, intent(out) :: err
     call set_activity('writing the checkpoint ' // run%job // '.rst.h5')
     call gather_element_fields(run%analysis)
-    if (run%writer) call save_checkpoint(run%job, run%analysis, run%monitors, model, &
-                                         run%outputs%n_frames(), err)
+    if (run%writer) call save_checkpoint(run%job, run%options_record, run%analysis, run%monitors, &
+                                         model, run%outputs%n_frames(), err)
     call run%analysis%share%comm%agree_error(err)
     run%last_checkpoint = wall_time()
     if (.not. allocated(err)) call run%log%detail('checkpoint written: ' // run%job // '.rst.h5 ' // &

@@ -16,7 +16,7 @@ module fcs_run_checkpoint
   use fcs_archive, only: archive_t
   use fcs_files, only: file_size
   use fcs_monitors, only: monitors_t
-  use fcs_strings, only: str, join_strings, string_t, parse_int, file_exists
+  use fcs_strings, only: str, join_strings, string_t, parse_int, file_exists, split_words
   use fcs_version, only: FCS3D_VERSION, FCS3D_REVISION
   implicit none
   private
@@ -30,9 +30,10 @@ contains
     id = FCS3D_VERSION // ' (git ' // FCS3D_REVISION // ')'
   end function build_id
 
-  !> Write the checkpoint of the analysis now (generation 0 of `<job>.rst.h5`).
-  subroutine save_checkpoint(job, a, monitors, model, n_frames, err)
-    character(len=*), intent(in) :: job
+  !> Write the checkpoint of the analysis now (generation 0 of `<job>.rst.h5`); `options` is
+  !> the run's record of its result-changing command-line options (fcs_restart_options).
+  subroutine save_checkpoint(job, options, a, monitors, model, n_frames, err)
+    character(len=*), intent(in) :: job, options
     type(analysis_t), intent(in) :: a
     type(monitors_t), intent(in) :: monitors
     type(model_t), intent(in) :: model
@@ -43,6 +44,8 @@ contains
     info%model_hash = model%model_hash
     info%step_hashes = join_strings(model%step_hashes, ' ')
     info%build = build_id()
+    info%records_options = .true.
+    info%options = options
     info%n_nodes = a%state%n_nodes
     info%n_elements = a%state%n_elements
     info%n_slaves = a%contact%n_slaves()
@@ -144,7 +147,7 @@ contains
         'steps may be added after the checkpoint''s step')
       return
     end if
-    saved = words(info%step_hashes)
+    saved = split_words(info%step_hashes)
     ! Steps begun before the checkpoint must be unchanged.
     n_done = info%step - 1
     if (info%step_time > 0.0_dp) n_done = info%step
@@ -162,25 +165,6 @@ contains
       end if
     end do
   end subroutine check_deck
-
-  !> Space-separated words.
-  pure function words(text) result(out)
-    character(len=*), intent(in) :: text
-    type(string_t), allocatable :: out(:)
-    integer :: i, start
-    allocate (out(0))
-    start = 0
-    do i = 1, len(text) + 1
-      if (i > len(text)) then
-        if (start > 0) out = [out, string_t(text(start:len(text)))]
-      else if (text(i:i) == ' ') then
-        if (start > 0) out = [out, string_t(text(start:i - 1))]
-        start = 0
-      else if (start == 0) then
-        start = i
-      end if
-    end do
-  end function words
 
   !> When a checkpoint cannot be read, name the newest OLDER generation that can be read in
   !> full: read as a restart reads it (every dataset and the overall checksum verified) into

@@ -36,7 +36,8 @@ for f in .dat _h.csv; do
   fi
 done
 # A restart of the CLOSING run from its end-of-step-1 checkpoint (the older generation), with
-# the same option (the command line is not in the checkpoint), continues bit for bit.
+# the same option (also taken from the checkpoint when not given:
+# restart_command_line_options.sh), continues bit for bit.
 cp closing.dat closing_once.dat && cp closing_h.csv closing_once_h.csv || exit 1
 if "$FCS3D" -q --contact-events CLOSING --restart closing.rst.1.h5 closing.inp &&
    cmp -s closing.dat closing_once.dat && cmp -s closing_h.csv closing_once_h.csv; then
