@@ -5,22 +5,19 @@
 !> "nonlinear geometric effects are turned on"), and so does the model builder; the
 !> small-strain procedures below (the linearisation at F = I: isotropic elasticity with the
 !> initial moduli mu_0, K_0) serve the parts that want an elastic scale (C3D8R's hourglass
-!> stiffness, the default contact penalties).
+!> stiffness, the default contact penalties): they are the hypoelastic material's, with the
+!> initial moduli as its constants, so hyperelastic_t extends hypoelastic_t.
 module fcs_hyperelastic_material
   use fcs_kinds, only: dp
-  use fcs_material, only: material_t
+  use fcs_hypoelastic, only: hypoelastic_t
   use fcs_hyperelastic, only: hyperelastic_law_t, hyperelastic_initial_moduli
   implicit none
   private
   public :: hyperelastic_t, hyperelastic_from_law
 
-  type, extends(material_t) :: hyperelastic_t
+  type, extends(hypoelastic_t) :: hyperelastic_t
     type(hyperelastic_law_t) :: law
   contains
-    procedure :: tangent => hyperelastic_small_tangent
-    procedure :: update => hyperelastic_small_update
-    procedure :: event_fraction => hyperelastic_event_fraction
-    procedure :: n_state => hyperelastic_n_state
     procedure :: name => hyperelastic_name
   end type hyperelastic_t
 
@@ -37,36 +34,6 @@ contains
     material%youngs_modulus = 9.0_dp * k0 * mu0 / (3.0_dp * k0 + mu0)
     material%poisson_ratio = (3.0_dp * k0 - 2.0_dp * mu0) / (2.0_dp * (3.0_dp * k0 + mu0))
   end function hyperelastic_from_law
-
-  pure function hyperelastic_small_tangent(this, stress, state) result(c)
-    class(hyperelastic_t), intent(in) :: this
-    real(dp), intent(in) :: stress(6), state(:)
-    real(dp) :: c(6, 6)
-    c = this%elastic_matrix()
-  end function hyperelastic_small_tangent
-
-  !> The linearisation at F = I (used only where the total form does not apply).
-  pure subroutine hyperelastic_small_update(this, stress, strain_increment, state, consistent_tangent)
-    class(hyperelastic_t), intent(in) :: this
-    real(dp), intent(inout) :: stress(6)
-    real(dp), intent(in) :: strain_increment(6)
-    real(dp), intent(inout) :: state(:)
-    real(dp), intent(out), optional :: consistent_tangent(6, 6)
-    stress = stress + matmul(this%elastic_matrix(), strain_increment)
-    if (present(consistent_tangent)) consistent_tangent = this%elastic_matrix()
-  end subroutine hyperelastic_small_update
-
-  !> No discrete states: never limits the increment.
-  pure real(dp) function hyperelastic_event_fraction(this, stress, stress_increment, state)
-    class(hyperelastic_t), intent(in) :: this
-    real(dp), intent(in) :: stress(6), stress_increment(6), state(:)
-    hyperelastic_event_fraction = huge(1.0_dp)
-  end function hyperelastic_event_fraction
-
-  pure integer function hyperelastic_n_state(this)
-    class(hyperelastic_t), intent(in) :: this
-    hyperelastic_n_state = 0
-  end function hyperelastic_n_state
 
   pure function hyperelastic_name(this) result(name)
     class(hyperelastic_t), intent(in) :: this
