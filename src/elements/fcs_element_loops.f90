@@ -45,10 +45,11 @@ module fcs_element_loops
   use fcs_material, only: material_t, material_slot_t
   use fcs_voigt, only: spin_rotation, rotate_stress_like, rotate_strain_like
   use fcs_simo_plasticity, only: simo_plasticity_t
-  use fcs_hyperelastic, only: hyperelastic_stress, hyperelastic_jaumann_tangent
+  use fcs_hyperelastic, only: hyperelastic_stress, hyperelastic_jaumann_tangent, almansi_strain, &
+                              HYPER_DEFORMATION_PLASTICITY
   use fcs_hyperelastic_material, only: hyperelastic_t
   use fcs_st_venant_kirchhoff, only: green_lagrange_strain, cauchy_from_pk2, pk2_from_cauchy, &
-                                     svk_jaumann_tangent, determinant_of
+                                     svk_jaumann_tangent, determinant_of, tensor_voigt
   use fcs_orientation, only: orientation_t, orientation_axes, stress_to_global, strain_to_local, &
                              stress_to_local, rotate_stiffness
   use fcs_sparse, only: sparse_matrix_t
@@ -72,6 +73,8 @@ module fcs_element_loops
   integer, parameter :: MAX_MODE_ITERATIONS = 25
   !> C3D8R: generalised hourglass forces Q(3, 4) kept per element.
   integer, parameter :: HOURGLASS_STATE = 12
+  !> Tensor Voigt components to engineering shears (strains are stored with 2 e_12, ...).
+  real(dp), parameter :: ENGINEERING_SHEARS(6) = [1.0_dp, 1.0_dp, 1.0_dp, 2.0_dp, 2.0_dp, 2.0_dp]
 
   !> The R-minimum limits of an increment at the integration points (doc/theory.md 6.4):
   !> largest equivalent strain increment [-], rotation increment [rad] and growth of the
@@ -727,7 +730,9 @@ contains
   !> Hyperelastic update of element e whose nodes have reached xe (3, n): each point's Cauchy
   !> stress is the law's at its deformation gradient F (hyperelastic_stress: a total form, a
   !> function of F alone, so that iterations and restarts recompute it exactly); its strain
-  !> the Green-Lagrange strain of F (CalculiX's E under NLGEOM).
+  !> the Green-Lagrange strain of F (CalculiX's E under NLGEOM), or for *DEFORMATION
+  !> PLASTICITY the Almansi strain the law takes (ccx 2.20 prints that Eulerian strain as E for
+  !> this material: e_c3d.f / results.f convert the strain in place before the law).
   subroutine update_hyperelastic(this, e, xe, fields, err)
     class(element_loops_t), intent(in) :: this
     integer, intent(in) :: e
@@ -742,7 +747,11 @@ contains
     type is (hyperelastic_t)
       do q = 1, this%catalogue%kinds(this%kind(e))%n_points
         fields%stress(:, q, e) = hyperelastic_stress(material%law, f(:, :, q))
-        fields%strain(:, q, e) = green_lagrange_strain(f(:, :, q))
+        if (material%law%family == HYPER_DEFORMATION_PLASTICITY) then
+          fields%strain(:, q, e) = tensor_voigt(almansi_strain(f(:, :, q))) * ENGINEERING_SHEARS
+        else
+          fields%strain(:, q, e) = green_lagrange_strain(f(:, :, q))
+        end if
       end do
     end select
   end subroutine update_hyperelastic

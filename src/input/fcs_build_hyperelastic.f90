@@ -9,6 +9,11 @@
 !> D_i given as 0 (or left out) becomes (0.1 / mu_0)^i, mu_0 the initial shear modulus (D_1 then
 !> corresponds to an initial Poisson's ratio of 0.475), with a warning, as ccx does. Not
 !> available (refused): VAN DER WAALS, and tables over more than one temperature.
+!>
+!> *DEFORMATION PLASTICITY (ccx 2.20 manual, "*DEFORMATION PLASTICITY"; ccx's reader
+!> deformationplasticitys.f) takes the same total path (fcs_deformation_plasticity,
+!> doc/theory.md 2.12): one line E, nu, sigma_0, n, alpha and an optional temperature; more
+!> lines (a table over temperature) are refused.
 module fcs_build_hyperelastic
   use fcs_kinds, only: dp
   use fcs_deck_lexer, only: card_t
@@ -17,11 +22,12 @@ module fcs_build_hyperelastic
   use fcs_builder_state, only: builder_t
   use fcs_model, only: model_t
   use fcs_hyperelastic, only: hyperelastic_law_t, hyperelastic_initial_moduli, HYPER_POLYNOMIAL, &
-                              HYPER_ARRUDA_BOYCE, HYPER_OGDEN, HYPER_FOAM
+                              HYPER_ARRUDA_BOYCE, HYPER_OGDEN, HYPER_FOAM, &
+                              HYPER_DEFORMATION_PLASTICITY
   use fcs_strings, only: str, parse_int
   implicit none
   private
-  public :: handle_hyperelastic, handle_hyperfoam, HYPERELASTIC_FORMS
+  public :: handle_hyperelastic, handle_hyperfoam, handle_deformation_plasticity, HYPERELASTIC_FORMS
 
   !> The forms of *HYPERELASTIC, as parameters without value (the keyword table lists them).
   character(len=18), parameter :: HYPERELASTIC_FORMS(8) = [character(len=18) :: 'ARRUDA-BOYCE', &
@@ -121,6 +127,45 @@ contains
     end do
     call set_law(card, law, model, state, diag)
   end subroutine handle_hyperfoam
+
+  !> *DEFORMATION PLASTICITY: E, nu, sigma_0, n, alpha of the current material's Ramberg-Osgood
+  !> law (E > 0, -1 < nu < 0.5, sigma_0 > 0, n >= 1, alpha >= 0).
+  subroutine handle_deformation_plasticity(card, model, state, diag)
+    type(card_t), intent(in) :: card
+    type(model_t), intent(inout) :: model
+    type(builder_t), intent(in) :: state
+    type(diagnostics_t), intent(inout) :: diag
+    type(hyperelastic_law_t) :: law
+    type(layout_t) :: layout
+    real(dp), allocatable :: values(:)
+    character(len=:), allocatable :: problem
+    logical :: ok
+    if (.not. has_material(card, state, diag)) return
+    layout%names = 'E, nu, sigma_0, n, alpha'
+    layout%n = 5
+    call read_constants(card, 'DEFORMATION PLASTICITY', layout, values, ok, diag)
+    if (.not. ok) return
+    problem = ''
+    if (.not. (values(1) > 0.0_dp)) problem = 'Young''s modulus E must be positive'
+    if (.not. (values(2) > -1.0_dp .and. values(2) < 0.5_dp)) problem = 'Poisson''s ratio nu ' // &
+      'must lie in (-1, 0.5)'
+    if (.not. (values(3) > 0.0_dp)) problem = 'the yield stress sigma_0 must be positive'
+    if (.not. (values(4) >= 1.0_dp)) problem = 'the exponent n must be at least 1'
+    if (.not. (values(5) >= 0.0_dp)) problem = 'the yield offset alpha must not be negative'
+    if (len(problem) > 0) then
+      call diag%report(card%lines(1)%loc, '*DEFORMATION PLASTICITY: ' // problem // &
+                       ' (E, nu, sigma_0, n, alpha[, temperature])')
+      return
+    end if
+    law%family = HYPER_DEFORMATION_PLASTICITY
+    law%form = 'DEFORMATION PLASTICITY'
+    law%ramberg_osgood%youngs_modulus = values(1)
+    law%ramberg_osgood%poisson_ratio = values(2)
+    law%ramberg_osgood%yield_stress = values(3)
+    law%ramberg_osgood%exponent = values(4)
+    law%ramberg_osgood%yield_offset = values(5)
+    call set_law(card, law, model, state, diag)
+  end subroutine handle_deformation_plasticity
 
   !> The constants of *HYPERELASTIC's `form` of order N, in deck order (ccx hyperelastics.f).
   function hyperelastic_layout(form, order) result(layout)
@@ -242,7 +287,8 @@ contains
     integer :: i, n_terms
     character(len=:), allocatable :: keyword
     keyword = '*HYPERELASTIC, ' // law%form
-    if (law%family == HYPER_FOAM) keyword = '*' // law%form
+    if (law%family == HYPER_FOAM .or. law%family == HYPER_DEFORMATION_PLASTICITY) &
+      keyword = '*' // law%form
     n_terms = law%order
     if (law%family == HYPER_OGDEN .or. law%family == HYPER_FOAM) then
       do i = 1, n_terms
@@ -274,7 +320,8 @@ contains
     associate (m => model%materials(state%material))
       if (m%has_elastic) then
         call diag%report(card%loc, keyword // ': material ' // m%name // ' already has elastic ' // &
-                         'constants (*ELASTIC, *HYPOELASTIC, *HYPERELASTIC or *HYPERFOAM)')
+                         'constants (*ELASTIC, *HYPOELASTIC, *HYPERELASTIC, *HYPERFOAM or ' // &
+                         '*DEFORMATION PLASTICITY)')
         return
       end if
       m%has_elastic = .true.
@@ -297,7 +344,7 @@ contains
     type(diagnostics_t), intent(inout) :: diag
     character(len=32) :: text
     integer :: i, n_d
-    if (law%family == HYPER_FOAM) return
+    if (law%family == HYPER_FOAM .or. law%family == HYPER_DEFORMATION_PLASTICITY) return
     n_d = law%order
     if (law%family == HYPER_ARRUDA_BOYCE) n_d = 1
     do i = 1, n_d

@@ -119,7 +119,8 @@ contains
   !> The variable names on the data lines, each checked against `allowed`.
   !> ENER and ELSE print the elastic energy 1/2 S:(E - E_th) (fcs_dat_output): with a plastic
   !> material that is not the internal energy CalculiX prints, so they are refused there; with a
-  !> hyperelastic one (*HYPERELASTIC, *HYPERFOAM) it is not U either: refused too.
+  !> hyperelastic one (*HYPERELASTIC, *HYPERFOAM, *DEFORMATION PLASTICITY) it is not U either:
+  !> refused too.
   subroutine check_energy_request(card, model, request, diag)
     type(card_t), intent(in) :: card
     type(model_t), intent(in) :: model
@@ -138,9 +139,9 @@ contains
         end if
         if (model%materials(k)%hyperelastic%family /= HYPER_NONE) then
           call diag%report(card%loc, '*' // card%keyword // ': ' // request%variables(v)%s // &
-            ' (internal energy) is not available for hyperelastic materials (fcs3d prints ' // &
-            '1/2 S:E, not the strain energy U); material ' // model%materials(k)%name // &
-            ' is hyperelastic')
+            ' (internal energy) is not available for hyperelastic materials and *DEFORMATION ' // &
+            'PLASTICITY (fcs3d prints 1/2 S:E, not the strain energy U); material ' // &
+            model%materials(k)%name // ' is one')
           return
         end if
       end do

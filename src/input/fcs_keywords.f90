@@ -189,7 +189,8 @@ contains
     type(keyword_spec_t), allocatable :: t(:)
     t = [ &
       kw('MATERIAL', CONTEXT_MODEL, 'CalculiX', 'Start a material definition; the ' // &
-         'following *ELASTIC, *HYPOELASTIC, *HYPERELASTIC, *HYPERFOAM, *DENSITY, *PLASTIC, ' // &
+         'following *ELASTIC, *HYPOELASTIC, *HYPERELASTIC, *HYPERFOAM, *DEFORMATION PLASTICITY, ' // &
+         '*DENSITY, *PLASTIC, ' // &
          '*CYCLIC HARDENING, *DRUCKER PRAGER and ' // &
          '*DRUCKER PRAGER HARDENING lines belong to it.', '', &
          [p('NAME', PARAM_NAME, required=.true., description='Name of the material.')]), &
@@ -269,6 +270,19 @@ contains
          'temperature; one set only (constants that depend on temperature are refused).', &
          [p('N', PARAM_INTEGER, default='1', description='Number of terms: 1, 2 or 3.')], &
          data_required=.true.), &
+      kw('DEFORMATION PLASTICITY', CONTEXT_MODEL, 'CalculiX', 'Ramberg-Osgood deformation ' // &
+         'plasticity of the current material (ccx manual, *DEFORMATION PLASTICITY; Ramberg & ' // &
+         'Osgood 1943): a total, nonlinear elastic law, E e = (1 + nu) s - (1 - 2 nu) p I + ' // &
+         '3/2 alpha (q/sigma_0)^(n - 1) s of the Cauchy stress (s its deviator, p the ' // &
+         'pressure, q the Mises stress) and the Almansi strain e; in uniaxial stress E eps = ' // &
+         'sigma + alpha (|sigma|/sigma_0)^(n - 1) sigma (doc/theory.md section 2.12). As ' // &
+         'CalculiX, NLGEOM is turned on in every step (NLGEOM=NO is refused); unloading ' // &
+         'follows the loading curve. Not with *ELASTIC, *PLASTIC, *EXPANSION, C3D8I elements ' // &
+         'or *EL PRINT ENER/ELSE.', &
+         'Young''s modulus E [stress], Poisson''s ratio nu [-], yield stress sigma_0 [stress], ' // &
+         'exponent n [-] (>= 1), yield offset alpha [-] (>= 0), an optional temperature: one ' // &
+         'line (constants that depend on temperature are refused).', &
+         [p_none()], data_required=.true.), &
       kw('EXPANSION', CONTEXT_MODEL, 'CalculiX', 'Isotropic thermal expansion of the ' // &
          'current material: the secant coefficient alpha from the reference temperature ZERO, ' // &
          'thermal strain alpha(T) (T - ZERO) - alpha(T0) (T0 - ZERO) from the initial ' // &

@@ -20,7 +20,7 @@ module fcs_model_builder
   use fcs_builder_state, only: builder_t
   use fcs_build_mesh, only: handle_node, handle_element, handle_nset, handle_elset, &
                             handle_surface, handle_mesh
-  use fcs_build_hyperelastic, only: handle_hyperelastic, handle_hyperfoam
+  use fcs_build_hyperelastic, only: handle_hyperelastic, handle_hyperfoam, handle_deformation_plasticity
   use fcs_build_material, only: handle_material, handle_elastic, handle_hypoelastic, &
     handle_density, &
                                 handle_solid_section, handle_solver, handle_restart, &
@@ -253,6 +253,8 @@ contains
       call handle_hyperelastic(card, model, state, diag)
     case ('HYPERFOAM')
       call handle_hyperfoam(card, model, state, diag)
+    case ('DEFORMATION PLASTICITY')
+      call handle_deformation_plasticity(card, model, state, diag)
     case ('EXPANSION')
       call handle_expansion(card, model, state, diag)
     case ('INITIAL CONDITIONS')
@@ -334,7 +336,7 @@ contains
     end select
     select case (card%keyword)
     case ('MATERIAL', 'ELASTIC', 'HYPOELASTIC', 'HYPERELASTIC', 'HYPERFOAM', 'DENSITY', 'PLASTIC', 'CYCLIC HARDENING', &
-          'DRUCKER PRAGER', 'DRUCKER PRAGER HARDENING', 'EXPANSION')
+          'DRUCKER PRAGER', 'DRUCKER PRAGER HARDENING', 'EXPANSION', 'DEFORMATION PLASTICITY')
     case default
       state%material = 0
     end select
@@ -580,11 +582,12 @@ contains
                '*RIGID BODY, *COUPLING and *TRANSFORM are not available yet'
     else if (is_one_of(keyword, [character(len=34) :: &
              'CONDUCTIVITY', 'SPECIFIC HEAT', 'CREEP', &
-             'USER MATERIAL', 'DEFORMATION PLASTICITY', 'RATE DEPENDENT', 'CAP PLASTICITY', &
+             'USER MATERIAL', 'RATE DEPENDENT', 'CAP PLASTICITY', &
              'MOHR COULOMB', 'DRUCKER PRAGER CREEP'])) then
       reason = 'materials are linear elastic (*ELASTIC: isotropic, or anisotropic and elastic ' // &
                'only; St Venant-Kirchhoff under NLGEOM), hypoelastic (*HYPOELASTIC), ' // &
-               'hyperelastic (*HYPERELASTIC, *HYPERFOAM), with ' // &
+               'hyperelastic (*HYPERELASTIC, *HYPERFOAM), Ramberg-Osgood (*DEFORMATION ' // &
+               'PLASTICITY), with ' // &
                'von Mises (*PLASTIC) or linear Drucker-Prager (*DRUCKER PRAGER) ' // &
                'plasticity'
     else if (is_one_of(keyword, [character(len=34) :: 'CFLUX', 'DFLUX', 'FILM', 'RADIATE'])) then

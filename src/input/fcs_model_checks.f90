@@ -13,7 +13,7 @@ module fcs_model_checks
   use fcs_model_supports, only: check_supports
   use fcs_build_plasticity, only: check_plasticity, check_initial_plastic_strains
   use fcs_material_factory, only: PLASTICITY_NONE
-  use fcs_hyperelastic, only: HYPER_NONE, HYPER_FOAM
+  use fcs_hyperelastic, only: HYPER_NONE, HYPER_FOAM, HYPER_DEFORMATION_PLASTICITY
   use fcs_element_kind, only: FORMULATION_HOURGLASS
   use fcs_linear_constraints, only: constraint_map_t
   use fcs_strings, only: str, parse_int
@@ -96,8 +96,8 @@ contains
     end do
   end subroutine check_anisotropy
 
-  !> Hyperelastic materials (*HYPERELASTIC, *HYPERFOAM; doc/theory.md 2.11) take their stress
-  !> from the total deformation gradient under NLGEOM. As CalculiX (its readers turn
+  !> Hyperelastic materials (*HYPERELASTIC, *HYPERFOAM; doc/theory.md 2.11) and *DEFORMATION
+  !> PLASTICITY (2.12) take their stress from the total deformation gradient under NLGEOM. As CalculiX (its readers turn
   !> "nonlinear geometric effects" on), a model with one has NLGEOM in every step; a step
   !> whose card says NLGEOM=NO is refused. Refused too: plasticity or thermal expansion with
   !> them (not CalculiX's finite-strain laws), and C3D8I elements (their incompatible modes
@@ -113,10 +113,12 @@ contains
         if (first == 0) first = k
         if (m%plastic%model /= PLASTICITY_NONE) call diag%report(m%hyperelastic_loc, '*' // &
           trim(hyper_keyword(m%hyperelastic%family)) // ': material ' // m%name // ': ' // &
-          'plasticity (*PLASTIC, *DRUCKER PRAGER) with a hyperelastic law is not available')
+          'plasticity (*PLASTIC, *DRUCKER PRAGER) with a hyperelastic law (or *DEFORMATION ' // &
+          'PLASTICITY) is not available')
         if (m%thermal%is_active()) call diag%report(m%hyperelastic_loc, '*' // &
           trim(hyper_keyword(m%hyperelastic%family)) // ': material ' // m%name // ': ' // &
-          'thermal expansion (*EXPANSION) with a hyperelastic law is not available')
+          'thermal expansion (*EXPANSION) with a hyperelastic law (or *DEFORMATION ' // &
+          'PLASTICITY) is not available')
       end associate
     end do
     if (first == 0) return
@@ -124,12 +126,16 @@ contains
       if (model%steps(k)%nlgeom) cycle
       if (model%steps(k)%nlgeom_refused) then
         call diag%report(model%steps(k)%loc, '*STEP: NLGEOM=NO, but material ' // &
-          model%materials(first)%name // ' is hyperelastic, which needs NLGEOM (CalculiX turns ' // &
-          'nonlinear geometric effects on for *HYPERELASTIC and *HYPERFOAM)')
+          model%materials(first)%name // ' is ' // &
+          law_text(model%materials(first)%hyperelastic%family) // ', which needs NLGEOM ' // &
+          '(CalculiX turns ' // &
+          'nonlinear geometric effects on for *HYPERELASTIC, *HYPERFOAM and *DEFORMATION PLASTICITY)')
       else
         model%steps(k)%nlgeom = .true.
         call diag%warn(model%steps(k)%loc, '*STEP: NLGEOM is turned on: material ' // &
-          model%materials(first)%name // ' is hyperelastic (as CalculiX: "nonlinear geometric ' // &
+          model%materials(first)%name // ' is ' // &
+          law_text(model%materials(first)%hyperelastic%family) // &
+          ' (as CalculiX: "nonlinear geometric ' // &
           'effects are turned on")')
       end if
     end do
@@ -142,7 +148,8 @@ contains
             e = members(i)
             if (model%element_kinds%kinds(model%mesh%element_kind(e))%n_modes == 0) cycle
             call diag%report(section%loc, '*SOLID SECTION: material ' // &
-              model%materials(section%material)%name // ' is hyperelastic, which ' // &
+              model%materials(section%material)%name // ' is ' // &
+              law_text(model%materials(section%material)%hyperelastic%family) // ', which ' // &
               model%mesh%kinds(model%mesh%element_kind(e))%name // ' elements (element ' // &
               str(model%mesh%element_id(e)) // ') do not take; use C3D8, C3D8R, C3D20 or C3D20R')
             exit
@@ -166,7 +173,8 @@ contains
         associate (m => model%materials(model%sections(s)%material))
           if (m%hyperelastic%family == HYPER_NONE) cycle
           call diag%report(m%hyperelastic_loc, '*' // trim(hyper_keyword(m%hyperelastic%family)) // &
-            ': material ' // m%name // ' is hyperelastic: initial stresses on its elements ' // &
+            ': material ' // m%name // ' is ' // law_text(m%hyperelastic%family) // &
+            ': initial stresses on its elements ' // &
             '(*INITIAL CONDITIONS, TYPE=STRESS, element ' // &
             str(model%mesh%element_id(model%initial_stresses(k)%element)) // ') are not available')
           exit
@@ -180,17 +188,33 @@ contains
       associate (m => model%materials(model%sections(s)%material))
         if (m%hyperelastic%family == HYPER_NONE) cycle
         call diag%report(model%initial_plastic_strains(k)%loc, '*INITIAL CONDITIONS, TYPE=' // &
-          'PLASTIC STRAIN: material ' // m%name // ' is hyperelastic: initial plastic strains ' // &
+          'PLASTIC STRAIN: material ' // m%name // ' is ' // law_text(m%hyperelastic%family) // &
+          ': initial plastic strains ' // &
           'are not available for it')
         exit
       end associate
     end do
   end subroutine check_hyperelastic_initial_states
 
+  !> "hyperelastic", or for *DEFORMATION PLASTICITY what it is, for messages.
+  pure function law_text(family) result(text)
+    integer, intent(in) :: family
+    character(len=:), allocatable :: text
+    text = 'hyperelastic'
+    if (family == HYPER_DEFORMATION_PLASTICITY) text = 'Ramberg-Osgood (*DEFORMATION PLASTICITY)'
+  end function law_text
+
   pure function hyper_keyword(family) result(keyword)
     integer, intent(in) :: family
-    character(len=12) :: keyword
-    keyword = merge('HYPERFOAM   ', 'HYPERELASTIC', family == HYPER_FOAM)
+    character(len=22) :: keyword
+    select case (family)
+    case (HYPER_FOAM)
+      keyword = 'HYPERFOAM'
+    case (HYPER_DEFORMATION_PLASTICITY)
+      keyword = 'DEFORMATION PLASTICITY'
+    case default
+      keyword = 'HYPERELASTIC'
+    end select
   end function hyper_keyword
 
   !> Thermal strain is not in the incompatible-mode update (C3D8I) yet: a section that gives

@@ -23,22 +23,28 @@
 !>   Ogden:      tau_a = sum_i 2 mu_i / alpha_i (lambdabar_a^alpha_i - 1/3 sum_b lambdabar_b^alpha_i) + J U_J,
 !>   hyperfoam:  tau_a = sum_i 2 mu_i / alpha_i (lambda_a^alpha_i - J^(-alpha_i beta_i)),          (H2)
 !> and sigma = tau / J. The tangent is Miehe's (1996) numerical one (`hyperelastic_jaumann_tangent`).
+!> The same total path serves `*DEFORMATION PLASTICITY` (family HYPER_DEFORMATION_PLASTICITY,
+!> fcs_deformation_plasticity, doc/theory.md 2.12): a nonlinear elastic law without an energy
+!> written here, sigma = f(e) of the Almansi strain e = (I - b^-1) / 2, tau = J sigma.
 !>
 !> Stresses are Voigt vectors (11, 22, 33, 12, 13, 23); tangents map engineering-shear rates of
 !> deformation to stress rates.
 module fcs_hyperelastic
   use fcs_kinds, only: dp
-  use fcs_st_venant_kirchhoff, only: determinant_of, tensor_voigt
+  use fcs_st_venant_kirchhoff, only: determinant_of, tensor_voigt, inverse_of
+  use fcs_deformation_plasticity, only: ramberg_osgood_t, deformation_plasticity_stress
   implicit none
   private
   public :: hyperelastic_law_t, hyperelastic_stress, hyperelastic_jaumann_tangent
   public :: hyperelastic_initial_moduli, symmetric_eigen
   public :: HYPER_NONE, HYPER_POLYNOMIAL, HYPER_ARRUDA_BOYCE, HYPER_OGDEN, HYPER_FOAM
+  public :: HYPER_DEFORMATION_PLASTICITY, almansi_strain
 
   !> Families of energies: by the reduced invariants (polynomial, with its special cases, and
-  !> Arruda-Boyce) or by the principal stretches (Ogden; hyperfoam).
+  !> Arruda-Boyce) or by the principal stretches (Ogden; hyperfoam); and the Ramberg-Osgood
+  !> deformation plasticity of the Almansi strain (*DEFORMATION PLASTICITY).
   integer, parameter :: HYPER_NONE = 0, HYPER_POLYNOMIAL = 1, HYPER_ARRUDA_BOYCE = 2, &
-                        HYPER_OGDEN = 3, HYPER_FOAM = 4
+                        HYPER_OGDEN = 3, HYPER_FOAM = 4, HYPER_DEFORMATION_PLASTICITY = 5
 
   !> The perturbation of Miehe's numerical tangent (a central difference: truncation ~ h^2
   !> times the third derivative, round-off ~ 1e-16 / h, both ~1e-10 relative for stretches of
@@ -65,6 +71,8 @@ module fcs_hyperelastic
     real(dp) :: alpha(3) = 0.0_dp
     real(dp) :: beta(3) = 0.0_dp
     real(dp) :: lambda_m = 1.0_dp
+    !> *DEFORMATION PLASTICITY: E, nu, sigma_0, n, alpha.
+    type(ramberg_osgood_t) :: ramberg_osgood
   end type hyperelastic_law_t
 
 contains
@@ -109,10 +117,17 @@ contains
 
   !> The initial shear modulus mu_0 and bulk modulus K_0 of the law (its small-strain limit):
   !> polynomial mu_0 = 2 (C10 + C01), Ogden sum mu_i, Arruda-Boyce mu, K_0 = 2 / D_1;
-  !> hyperfoam mu_0 = sum mu_i, K_0 = sum 2 mu_i (1/3 + beta_i).
+  !> hyperfoam mu_0 = sum mu_i, K_0 = sum 2 mu_i (1/3 + beta_i); deformation plasticity
+  !> mu_0 = E / (2 (1 + nu)), K_0 = E / (3 (1 - 2 nu)).
   pure subroutine hyperelastic_initial_moduli(law, mu0, k0)
     type(hyperelastic_law_t), intent(in) :: law
     real(dp), intent(out) :: mu0, k0
+    if (law%family == HYPER_DEFORMATION_PLASTICITY) then
+      mu0 = law%ramberg_osgood%youngs_modulus / (2.0_dp * (1.0_dp + law%ramberg_osgood%poisson_ratio))
+      k0 = law%ramberg_osgood%youngs_modulus / (3.0_dp * (1.0_dp - 2.0_dp * &
+           law%ramberg_osgood%poisson_ratio))
+      return
+    end if
     select case (law%family)
     case (HYPER_POLYNOMIAL)
       mu0 = 2.0_dp * (law%c(1, 0) + law%c(0, 1))
@@ -136,6 +151,8 @@ contains
     select case (law%family)
     case (HYPER_POLYNOMIAL, HYPER_ARRUDA_BOYCE)
       tau = invariant_stress(law, f)
+    case (HYPER_DEFORMATION_PLASTICITY)
+      tau = determinant_of(f) * deformation_plasticity_stress(law%ramberg_osgood, almansi_strain(f))
     case default
       tau = principal_stress(law, f)
     end select
@@ -216,6 +233,16 @@ contains
       tau = tau + principal(a) * spread(vectors(:, a), 2, 3) * spread(vectors(:, a), 1, 3)
     end do
   end function principal_stress
+
+  !> The Almansi strain e = (I - b^-1) / 2 = F^-T E F^-1 (b = F F^T, E the Green-Lagrange
+  !> strain) of F.
+  pure function almansi_strain(f) result(e)
+    real(dp), intent(in) :: f(3, 3)
+    real(dp) :: e(3, 3)
+    real(dp) :: g(3, 3)
+    g = inverse_of(f)
+    e = 0.5_dp * (identity() - matmul(transpose(g), g))
+  end function almansi_strain
 
   !> Eigenvalues `values` and orthonormal eigenvectors (columns of `vectors`) of a symmetric
   !> 3 x 3 matrix by cyclic Jacobi rotations (Golub & Van Loan 2013, section 8.5): accurate to

@@ -46,7 +46,7 @@ ALLOWED = {'KEYWORD', 'DYNAMIC', 'FRICTION', 'PLASTIC', 'EQUATION', 'COUPLING', 
            'GREEN', 'SENSITIVITY', 'SUBSTRUCTURE GENERATE', 'NO ANALYSIS', 'CFD', 'TRANSFORM',
            'UNCOUPLED TEMPERATURE-DISPLACEMENT', 'CHANGE SURFACE BEHAVIOR', 'CYCLIC SYMMETRY MODEL',
            'SUBMODEL', 'PRE-TENSION SECTION', 'CHANGE SOLID SECTION', 'RIGID BODY',
-           'NODEE', 'PART', 'GEOSTATIC', 'SOLID SECTON', 'MEMBRANE', 'DEFORMATION PLASTICITY'}
+           'NODEE', 'PART', 'GEOSTATIC', 'SOLID SECTON', 'MEMBRANE'}
 docs = [p for p in [os.path.join(root, 'README.md')] if os.path.exists(p)] + glob.glob(os.path.join(root, 'doc', '**', '*.md'),
                                                       recursive=True)
 for path in docs:
