@@ -342,7 +342,6 @@ contains
     type(hyperelastic_law_t), intent(inout) :: law
     real(dp), intent(in) :: mu0
     type(diagnostics_t), intent(inout) :: diag
-    character(len=32) :: text
     integer :: i, n_d
     if (law%family == HYPER_FOAM .or. law%family == HYPER_DEFORMATION_PLASTICITY) return
     n_d = law%order
@@ -350,9 +349,8 @@ contains
     do i = 1, n_d
       if (abs(law%d(i)) >= 1.0e-10_dp) cycle
       law%d(i) = (0.1_dp / mu0)**i
-      write (text, '(es12.5)') law%d(i)
       call diag%warn(card%lines(1)%loc, keyword // ': D' // str(i) // ' = 0 (incompressible) ' // &
-        'is replaced by D' // str(i) // ' = (0.1 / mu_0)^' // str(i) // ' =' // trim(text) // &
+        'is replaced by D' // str(i) // ' = (0.1 / mu_0)^' // str(i) // ' = ' // str(law%d(i)) // &
         ', as CalculiX does (an initial Poisson''s ratio of 0.475)')
     end do
   end subroutine default_compressibility

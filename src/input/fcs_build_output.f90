@@ -13,7 +13,7 @@ module fcs_build_output
                        TOTALS_NO, TOTALS_YES, TOTALS_ONLY
   use fcs_strings, only: string_t, to_upper, parse_int, parse_real, join_strings
   use fcs_material_factory, only: PLASTICITY_NONE
-  use fcs_hyperelastic, only: HYPER_NONE
+  use fcs_hyperelastic, only: HYPER_NONE, hyper_law_text
   implicit none
   private
   public :: handle_output_request, handle_history, handle_event_catalog
@@ -141,7 +141,7 @@ contains
           call diag%report(card%loc, '*' // card%keyword // ': ' // request%variables(v)%s // &
             ' (internal energy) is not available for hyperelastic materials and *DEFORMATION ' // &
             'PLASTICITY (fcs3d prints 1/2 S:E, not the strain energy U); material ' // &
-            model%materials(k)%name // ' is one')
+            model%materials(k)%name // ' is ' // hyper_law_text(model%materials(k)%hyperelastic%family))
           return
         end if
       end do

@@ -13,7 +13,7 @@ module fcs_model_checks
   use fcs_model_supports, only: check_supports
   use fcs_build_plasticity, only: check_plasticity, check_initial_plastic_strains
   use fcs_material_factory, only: PLASTICITY_NONE
-  use fcs_hyperelastic, only: HYPER_NONE, HYPER_FOAM, HYPER_DEFORMATION_PLASTICITY
+  use fcs_hyperelastic, only: HYPER_NONE, hyper_law_text, hyper_law_keyword
   use fcs_element_kind, only: FORMULATION_HOURGLASS
   use fcs_linear_constraints, only: constraint_map_t
   use fcs_strings, only: str, parse_int
@@ -112,11 +112,11 @@ contains
         if (m%hyperelastic%family == HYPER_NONE) cycle
         if (first == 0) first = k
         if (m%plastic%model /= PLASTICITY_NONE) call diag%report(m%hyperelastic_loc, '*' // &
-          trim(hyper_keyword(m%hyperelastic%family)) // ': material ' // m%name // ': ' // &
+          hyper_law_keyword(m%hyperelastic%family) // ': material ' // m%name // ': ' // &
           'plasticity (*PLASTIC, *DRUCKER PRAGER) with a hyperelastic law (or *DEFORMATION ' // &
           'PLASTICITY) is not available')
         if (m%thermal%is_active()) call diag%report(m%hyperelastic_loc, '*' // &
-          trim(hyper_keyword(m%hyperelastic%family)) // ': material ' // m%name // ': ' // &
+          hyper_law_keyword(m%hyperelastic%family) // ': material ' // m%name // ': ' // &
           'thermal expansion (*EXPANSION) with a hyperelastic law (or *DEFORMATION ' // &
           'PLASTICITY) is not available')
       end associate
@@ -127,14 +127,14 @@ contains
       if (model%steps(k)%nlgeom_refused) then
         call diag%report(model%steps(k)%loc, '*STEP: NLGEOM=NO, but material ' // &
           model%materials(first)%name // ' is ' // &
-          law_text(model%materials(first)%hyperelastic%family) // ', which needs NLGEOM ' // &
+          hyper_law_text(model%materials(first)%hyperelastic%family) // ', which needs NLGEOM ' // &
           '(CalculiX turns ' // &
           'nonlinear geometric effects on for *HYPERELASTIC, *HYPERFOAM and *DEFORMATION PLASTICITY)')
       else
         model%steps(k)%nlgeom = .true.
         call diag%warn(model%steps(k)%loc, '*STEP: NLGEOM is turned on: material ' // &
           model%materials(first)%name // ' is ' // &
-          law_text(model%materials(first)%hyperelastic%family) // &
+          hyper_law_text(model%materials(first)%hyperelastic%family) // &
           ' (as CalculiX: "nonlinear geometric ' // &
           'effects are turned on")')
       end if
@@ -149,7 +149,7 @@ contains
             if (model%element_kinds%kinds(model%mesh%element_kind(e))%n_modes == 0) cycle
             call diag%report(section%loc, '*SOLID SECTION: material ' // &
               model%materials(section%material)%name // ' is ' // &
-              law_text(model%materials(section%material)%hyperelastic%family) // ', which ' // &
+              hyper_law_text(model%materials(section%material)%hyperelastic%family) // ', which ' // &
               model%mesh%kinds(model%mesh%element_kind(e))%name // ' elements (element ' // &
               str(model%mesh%element_id(e)) // ') do not take; use C3D8, C3D8R, C3D20 or C3D20R')
             exit
@@ -172,8 +172,8 @@ contains
         if (s <= 0) cycle
         associate (m => model%materials(model%sections(s)%material))
           if (m%hyperelastic%family == HYPER_NONE) cycle
-          call diag%report(m%hyperelastic_loc, '*' // trim(hyper_keyword(m%hyperelastic%family)) // &
-            ': material ' // m%name // ' is ' // law_text(m%hyperelastic%family) // &
+          call diag%report(m%hyperelastic_loc, '*' // hyper_law_keyword(m%hyperelastic%family) // &
+            ': material ' // m%name // ' is ' // hyper_law_text(m%hyperelastic%family) // &
             ': initial stresses on its elements ' // &
             '(*INITIAL CONDITIONS, TYPE=STRESS, element ' // &
             str(model%mesh%element_id(model%initial_stresses(k)%element)) // ') are not available')
@@ -188,34 +188,13 @@ contains
       associate (m => model%materials(model%sections(s)%material))
         if (m%hyperelastic%family == HYPER_NONE) cycle
         call diag%report(model%initial_plastic_strains(k)%loc, '*INITIAL CONDITIONS, TYPE=' // &
-          'PLASTIC STRAIN: material ' // m%name // ' is ' // law_text(m%hyperelastic%family) // &
+          'PLASTIC STRAIN: material ' // m%name // ' is ' // hyper_law_text(m%hyperelastic%family) // &
           ': initial plastic strains ' // &
           'are not available for it')
         exit
       end associate
     end do
   end subroutine check_hyperelastic_initial_states
-
-  !> "hyperelastic", or for *DEFORMATION PLASTICITY what it is, for messages.
-  pure function law_text(family) result(text)
-    integer, intent(in) :: family
-    character(len=:), allocatable :: text
-    text = 'hyperelastic'
-    if (family == HYPER_DEFORMATION_PLASTICITY) text = 'Ramberg-Osgood (*DEFORMATION PLASTICITY)'
-  end function law_text
-
-  pure function hyper_keyword(family) result(keyword)
-    integer, intent(in) :: family
-    character(len=22) :: keyword
-    select case (family)
-    case (HYPER_FOAM)
-      keyword = 'HYPERFOAM'
-    case (HYPER_DEFORMATION_PLASTICITY)
-      keyword = 'DEFORMATION PLASTICITY'
-    case default
-      keyword = 'HYPERELASTIC'
-    end select
-  end function hyper_keyword
 
   !> Thermal strain is not in the incompatible-mode update (C3D8I) yet: a section that gives
   !> elements with incompatible modes a material with expansion or temperature-dependent

@@ -38,7 +38,7 @@ module fcs_hyperelastic
   public :: hyperelastic_law_t, hyperelastic_stress, hyperelastic_jaumann_tangent
   public :: hyperelastic_initial_moduli, symmetric_eigen
   public :: HYPER_NONE, HYPER_POLYNOMIAL, HYPER_ARRUDA_BOYCE, HYPER_OGDEN, HYPER_FOAM
-  public :: HYPER_DEFORMATION_PLASTICITY, almansi_strain
+  public :: HYPER_DEFORMATION_PLASTICITY, almansi_strain, hyper_law_text, hyper_law_keyword
 
   !> Families of energies: by the reduced invariants (polynomial, with its special cases, and
   !> Arruda-Boyce) or by the principal stretches (Ogden; hyperfoam); and the Ramberg-Osgood
@@ -298,5 +298,28 @@ contains
       eye(i, i) = 1.0_dp
     end do
   end function identity
+
+  !> What a law of `family` is, for messages: "hyperelastic", or for *DEFORMATION PLASTICITY
+  !> "Ramberg-Osgood (*DEFORMATION PLASTICITY)".
+  pure function hyper_law_text(family) result(text)
+    integer, intent(in) :: family
+    character(len=:), allocatable :: text
+    text = 'hyperelastic'
+    if (family == HYPER_DEFORMATION_PLASTICITY) text = 'Ramberg-Osgood (*DEFORMATION PLASTICITY)'
+  end function hyper_law_text
+
+  !> The keyword that defines a law of `family` (without the star), for messages.
+  pure function hyper_law_keyword(family) result(keyword)
+    integer, intent(in) :: family
+    character(len=:), allocatable :: keyword
+    select case (family)
+    case (HYPER_FOAM)
+      keyword = 'HYPERFOAM'
+    case (HYPER_DEFORMATION_PLASTICITY)
+      keyword = 'DEFORMATION PLASTICITY'
+    case default
+      keyword = 'HYPERELASTIC'
+    end select
+  end function hyper_law_keyword
 
 end module fcs_hyperelastic
